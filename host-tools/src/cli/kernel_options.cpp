@@ -1,0 +1,91 @@
+#include "cli/kernel_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include "cli/command.hpp"
+#include "jacobid/kernel_design.hpp"
+
+namespace jacobid::cli {
+
+namespace {
+// Host-side bound on kernel length: 10 million taps is far beyond any useful window and keeps a typo
+// (--window 1000) from allocating gigabytes.
+constexpr std::size_t kMaxHostTaps = 10'000'000;
+}  // namespace
+
+void add_kernel_options(CLI::App* command, KernelOptions& o, bool with_order, bool with_ts) {
+    if (with_order) command->add_option("--order,-n", o.order, "derivative order n (0, 1, 2 or 3)")->capture_default_str();
+    command->add_option("--kappa", o.kappa, "Jacobi weight exponent kappa > -1 of (1 + tau), the oldest end")->capture_default_str();
+    command->add_option("--mu", o.mu, "Jacobi weight exponent mu > -1 of (1 - tau), the newest end")->capture_default_str();
+    command->add_option("--q", o.q, "truncation order q >= 0 (polynomial degree q + n)")->capture_default_str();
+    command->add_option("--window,-T", o.window, "window length T in seconds (taps = round(T/Ts) + 1)");
+    if (with_ts) command->add_option("--ts", o.ts, "sample period Ts in seconds")->required();
+    command->add_option("--xi", o.xi,
+                        "evaluation point in [-1, 1]: 0 or 'central' (delay T/2), 1 or 'causal' (no delay), "
+                        "'delayed' (largest root of P_{q+1}^{(mu+n,kappa+n)}), or any number")
+        ->capture_default_str();
+    command->add_option("--discretization", o.discretization, "trapezoidal (as the paper) or exact (polynomial-exact on the grid)")
+        ->check(CLI::IsMember({"trapezoidal", "exact"}))
+        ->capture_default_str();
+}
+
+const char* option_for(KernelStatus status) {
+    switch (status) {
+        case KernelStatus::InvalidOrder: return "--order";
+        case KernelStatus::InvalidKappa: return "--kappa";
+        case KernelStatus::InvalidMu: return "--mu";
+        case KernelStatus::InvalidTruncation: return "--q";
+        case KernelStatus::InvalidSamplePeriod: return "--ts";
+        case KernelStatus::WindowTooShort:
+        case KernelStatus::TooManyTaps:
+        case KernelStatus::TooFewPoints: return "--window";
+        case KernelStatus::InvalidXi:
+        case KernelStatus::ClosedFormNeedsCentral: return "--xi";
+        case KernelStatus::Ok: break;
+    }
+    return "kernel parameters";
+}
+
+KernelParams to_kernel_params(const KernelOptions& o) {
+    KernelParams p;
+    p.order = o.order;
+    p.kappa = o.kappa;
+    p.mu = o.mu;
+    p.q = o.q;
+    p.window = o.window;
+    p.sample_period = o.ts;
+    p.discretization = o.discretization == "exact" ? Discretization::Exact : Discretization::Trapezoidal;
+    if (o.xi == "central") {
+        p.xi = 0.0;
+    } else if (o.xi == "causal") {
+        p.xi = 1.0;
+    } else if (o.xi == "delayed") {
+        if (p.order < 0 || p.order > kMaxOrder || p.q < 0) {
+            p.xi = 0.0;  // validation below reports the real problem
+        } else {
+            p.xi = delayed_causal_xi(p.order, p.kappa, p.mu, p.q);
+        }
+    } else {
+        try {
+            std::size_t used = 0;
+            p.xi = std::stod(o.xi, &used);
+            if (used != o.xi.size()) throw std::invalid_argument(o.xi);
+        } catch (const std::exception&) {
+            throw InputError(fmt::format("--xi: expected a number in [-1, 1] or central|causal|delayed, got '{}'", o.xi));
+        }
+    }
+    if (o.window <= 0.0) throw InputError("--window: the window length T in seconds is required and must be > 0");
+    const KernelStatus s = validate(p, kMaxHostTaps);
+    if (s != KernelStatus::Ok) throw InputError(fmt::format("{}: {}", option_for(s), describe(s)));
+    return p;
+}
+
+std::vector<double> design_kernel_or_throw(const KernelParams& params) {
+    std::vector<double> weights(tap_count(params));
+    const KernelStatus s = design_kernel(params, Span<double>(weights));
+    if (s != KernelStatus::Ok) throw InputError(fmt::format("{}: {}", option_for(s), describe(s)));
+    return weights;
+}
+
+}  // namespace jacobid::cli

@@ -1,0 +1,38 @@
+#pragma once
+// Command-line options that describe one Jacobi kernel, shared by kernel, bode and differentiate.
+#include <string>
+#include <vector>
+
+#include "jacobid/kernel_params.hpp"
+
+namespace CLI {
+class App;
+class Option;
+}
+
+namespace jacobid::cli {
+
+struct KernelOptions {
+    int order = 1;
+    double kappa = 6.0;
+    double mu = 6.0;
+    int q = 2;
+    double window = 0.0;     // seconds; 0 = not given
+    double ts = 0.0;         // seconds; 0 = not given (commands reading a log take it from the time column)
+    std::string xi = "0";    // a number in [-1, 1], or central | causal | delayed
+    std::string discretization = "trapezoidal";
+};
+
+// Adds --kappa --mu --q --window --xi --discretization (and --order, --ts when asked) to `command`.
+void add_kernel_options(CLI::App* command, KernelOptions& options, bool with_order, bool with_ts);
+
+// Converts and validates; InputError names the offending option ("--kappa must be ...").
+KernelParams to_kernel_params(const KernelOptions& options);
+
+// The option a KernelStatus complains about, for messages.
+const char* option_for(KernelStatus status);
+
+// Designs the kernel (any length the machine can hold) or throws InputError naming the option.
+std::vector<double> design_kernel_or_throw(const KernelParams& params);
+
+}  // namespace jacobid::cli

@@ -1,0 +1,42 @@
+#pragma once
+// Numeric CSV logs: a header row of column names, then one row per sample, every cell a finite number.
+// Anything else is an InputError naming the file, line and column; nothing is skipped or guessed.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace jacobid::io {
+
+class CsvTable {
+public:
+    CsvTable() = default;
+    CsvTable(std::string source, std::vector<std::string> header);
+
+    const std::string& source() const { return source_; }
+    const std::vector<std::string>& header() const { return header_; }
+    std::size_t rows() const { return columns_.empty() ? 0 : columns_.front().size(); }
+    std::size_t columns() const { return header_.size(); }
+
+    bool has_column(const std::string& name) const;
+    // The column's index; throws InputError naming the file and the available columns when missing.
+    std::size_t column_index(const std::string& name) const;
+    const std::vector<double>& column(const std::string& name) const { return columns_[column_index(name)]; }
+    const std::vector<double>& column(std::size_t index) const { return columns_[index]; }
+    std::vector<double>& mutable_column(std::size_t index) { return columns_[index]; }
+    // Line number in the file of data row `row` (the header is line 1), for error messages.
+    std::size_t line_of_row(std::size_t row) const { return row + 2; }
+
+private:
+    std::string source_;
+    std::vector<std::string> header_;
+    std::vector<std::vector<double>> columns_;  // column-major: what the numerics consume
+};
+
+// Reads `path`. Accepts ',' separators, optional spaces around cells, '\n' or '\r\n' line ends, a final
+// line with or without '\n'; rejects empty files, empty or duplicate header names, rows with too few or
+// too many cells, non-numeric cells and NaN/Inf.
+CsvTable read_csv(const std::string& path);
+// Same, from text already in memory (`source` names it in messages).
+CsvTable parse_csv(const std::string& text, const std::string& source);
+
+}  // namespace jacobid::io

@@ -1,0 +1,28 @@
+// jacobid: the host-side command line. Subcommands are defined in src/cli/*_command.cpp.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <exception>
+
+#include "cli/command.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"jacobid: robot dynamic identification with the Jacobi differentiator"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "jacobid 0.1.0");
+    jacobid::cli::add_kernel_command(app);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const jacobid::cli::InputError& e) {
+        const auto* sub = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
+        fmt::print(stderr, "jacobid {}: error: {}\n", sub ? sub->get_name() : "", e.what());
+        return jacobid::cli::kExitInputError;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "jacobid: internal error: {}\n", e.what());
+        return jacobid::cli::kExitInternalError;
+    }
+    return jacobid::cli::kExitOk;
+}
