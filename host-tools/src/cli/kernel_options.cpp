@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <type_traits>
+
 #include "cli/command.hpp"
 #include "jacobid/kernel_design.hpp"
 
@@ -79,6 +81,51 @@ KernelParams to_kernel_params(const KernelOptions& o) {
     const KernelStatus s = validate(p, kMaxHostTaps);
     if (s != KernelStatus::Ok) throw InputError(fmt::format("{}: {}", option_for(s), describe(s)));
     return p;
+}
+
+KernelOptions with_overrides(KernelOptions o, const std::string& spec, const std::string& option_name) {
+    std::size_t start = 0;
+    while (start <= spec.size()) {
+        std::size_t comma = spec.find(',', start);
+        if (comma == std::string::npos) comma = spec.size();
+        const std::string item = spec.substr(start, comma - start);
+        start = comma + 1;
+        if (item.empty()) continue;
+        const std::size_t eq = item.find('=');
+        if (eq == std::string::npos) throw InputError(fmt::format("{} '{}': expected key=value, got '{}'", option_name, spec, item));
+        const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+        auto number = [&](auto& target) {
+            try {
+                std::size_t used = 0;
+                const double v = std::stod(value, &used);
+                if (used != value.size()) throw std::invalid_argument(value);
+                target = static_cast<std::remove_reference_t<decltype(target)>>(v);
+            } catch (const std::exception&) {
+                throw InputError(fmt::format("{} '{}': {} expects a number, got '{}'", option_name, spec, key, value));
+            }
+        };
+        if (key == "order" || key == "n") number(o.order);
+        else if (key == "kappa") number(o.kappa);
+        else if (key == "mu") number(o.mu);
+        else if (key == "q") number(o.q);
+        else if (key == "window" || key == "T") number(o.window);
+        else if (key == "ts") number(o.ts);
+        else if (key == "xi") o.xi = value;
+        else if (key == "discretization") {
+            if (value != "trapezoidal" && value != "exact") throw InputError(fmt::format("{} '{}': discretization must be trapezoidal or exact", option_name, spec));
+            o.discretization = value;
+        } else {
+            throw InputError(fmt::format("{} '{}': unknown key '{}' (order, kappa, mu, q, window, ts, xi, discretization)", option_name, spec, key));
+        }
+    }
+    return o;
+}
+
+std::string kernel_label(const KernelParams& p) {
+    std::string label = fmt::format("n{} k{:g} m{:g} q{} T{:g}", p.order, p.kappa, p.mu, p.q, p.window);
+    if (p.xi != 0.0) label += fmt::format(" xi{:.3g}", p.xi);
+    if (p.discretization == Discretization::Exact) label += " exact";
+    return label;
 }
 
 std::vector<double> design_kernel_or_throw(const KernelParams& params) {

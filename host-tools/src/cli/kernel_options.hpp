@@ -32,6 +32,13 @@ KernelParams to_kernel_params(const KernelOptions& options);
 // The option a KernelStatus complains about, for messages.
 const char* option_for(KernelStatus status);
 
+// Applies "key=value,key=value" overrides (keys: order kappa mu q window ts xi discretization) to
+// `options`, e.g. "kappa=12,mu=12,q=6,window=0.21"; InputError names `option_name` and the bad item.
+KernelOptions with_overrides(KernelOptions options, const std::string& spec, const std::string& option_name);
+
+// Short label of a kernel for legends and CSV headers, e.g. "n1 k6 m6 q2 T0.2".
+std::string kernel_label(const KernelParams& params);
+
 // Designs the kernel (any length the machine can hold) or throws InputError naming the option.
 std::vector<double> design_kernel_or_throw(const KernelParams& params);
 

@@ -37,7 +37,7 @@ std::string gnuplot_script(const std::string& png_path, const std::vector<Panel>
     if (panels.size() > 1) s += fmt::format("set multiplot layout {},1\n", panels.size());
     for (std::size_t p = 0; p < panels.size(); ++p) {
         const Panel& panel = panels[p];
-        s += "reset\nset grid\nset key outside right top\n";
+        s += "reset\nset grid\nset key inside top right opaque box\n";
         s += fmt::format("set title {}\nset xlabel {}\nset ylabel {}\n", quoted(panel.title), quoted(panel.xlabel), quoted(panel.ylabel));
         s += panel.log_x ? "set logscale x\n" : "unset logscale x\n";
         s += panel.log_y ? "set logscale y\n" : "unset logscale y\n";

@@ -1,0 +1,137 @@
+// jacobid differentiate: velocity/acceleration (any order 0..3) of columns of a CSV log, with the Jacobi
+// differentiator or the Butterworth + central Euler baseline, written with their time stamps.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <cmath>
+#include <memory>
+
+#include "cli/command.hpp"
+#include "cli/kernel_options.hpp"
+#include "cli/output_file.hpp"
+#include "io/csv_table.hpp"
+#include "io/time_axis.hpp"
+#include "jacobid/frequency_response.hpp"
+#include "signal/differentiation.hpp"
+
+namespace jacobid::cli {
+namespace {
+
+struct DifferentiateOptions {
+    std::string input;
+    std::vector<std::string> columns;
+    std::string time_column = "t";
+    std::string method = "jacobi";
+    std::vector<int> orders{1, 2};
+    KernelOptions kernel;
+    double cutoff = 0.0;
+    std::string butterworth;
+    double crop = -1.0;
+    double time_tolerance = io::kDefaultTimeTolerance;
+    std::string output = "-";
+};
+
+struct Channel {
+    std::string name;
+    signal::Estimate estimate;
+};
+
+KernelParams jacobi_params_for(const DifferentiateOptions& o, int order, double ts) {
+    KernelOptions k = o.kernel;
+    k.order = order;
+    k.ts = ts;
+    if (o.cutoff > 0.0) {
+        KernelParams base = to_kernel_params(with_overrides(k, "window=1", "--cutoff"));
+        std::vector<double> scratch(200001);
+        const WindowDesign d = window_for_cutoff(base, o.cutoff, true, Span<double>(scratch));
+        if (d.status != KernelStatus::Ok) {
+            throw InputError(fmt::format("--cutoff {} Hz for derivative order {}: no window fits ({})", o.cutoff, order, describe(d.status)));
+        }
+        k.window = d.window;
+        fmt::print(stderr, "order {}: window {:.6g} s ({} taps) for a cutoff of {:.4g} Hz\n", order, d.window,
+                   std::llround(d.window / ts) + 1, d.cutoff);
+    }
+    return to_kernel_params(k);
+}
+
+void run(const DifferentiateOptions& o) {
+    const io::CsvTable table = io::read_csv(o.input);
+    const io::TimeAxis time = io::check_uniform_time(table, o.time_column, o.time_tolerance);
+    const double ts = time.sample_period;
+    for (int n : o.orders) {
+        if (n < 0 || n > kMaxOrder) throw InputError(fmt::format("--orders: derivative order {} is not 0, 1, 2 or 3", n));
+        if (o.method == "butterworth" && n > 2) throw InputError("--orders: the Butterworth + Euler baseline provides orders 0, 1 and 2");
+    }
+    if (o.method == "jacobi" && (o.kernel.window > 0.0) == (o.cutoff > 0.0)) {
+        throw InputError("--window / --cutoff: give exactly one of them for the Jacobi method");
+    }
+    if (o.method == "butterworth" && o.butterworth.empty()) throw InputError("--butterworth ORDER:CUTOFF_HZ is required with --method butterworth");
+
+    std::vector<Channel> channels;
+    for (const std::string& column : o.columns) {
+        const std::vector<double>& x = table.column(column);
+        for (int n : o.orders) {
+            const std::string what = fmt::format("{}: column '{}'", o.input, column);
+            const std::string name = n == 0 ? column + "_filtered" : fmt::format("{}_d{}", column, n);
+            if (o.method == "jacobi") {
+                channels.push_back({name, signal::jacobi_estimate(jacobi_params_for(o, n, ts), x, what)});
+            } else {
+                const signal::ButterworthEuler bw = signal::parse_butterworth_spec(o.butterworth, "--butterworth", ts);
+                const std::size_t crop = o.crop >= 0.0 ? static_cast<std::size_t>(std::llround(o.crop / ts))
+                                                       : signal::butterworth_edge_samples(bw.cutoff_hz, ts);
+                channels.push_back({name, signal::butterworth_euler_estimate(bw.sos, n, ts, x, crop, what)});
+            }
+        }
+    }
+    // Rows where every estimate exists, on one time grid (offsets must differ by whole samples).
+    double first = -1e300, last = 1e300;
+    const double frac = channels.front().estimate.first_index - std::floor(channels.front().estimate.first_index);
+    for (const Channel& c : channels) {
+        const double f = c.estimate.first_index - std::floor(c.estimate.first_index);
+        if (std::abs(f - frac) > 1e-9) {
+            throw InputError("--xi/--window: the requested estimates refer to instants that differ by a fraction of a sample; run them separately");
+        }
+        first = std::max(first, c.estimate.first_index);
+        last = std::min(last, c.estimate.first_index + static_cast<double>(c.estimate.values.size()) - 1.0);
+    }
+    if (last < first) throw InputError(fmt::format("{}: the estimates have no sample in common (log too short for these windows)", o.input));
+    std::string out = o.time_column;
+    for (const Channel& c : channels) out += "," + c.name;
+    out += "\n";
+    const auto rows = static_cast<std::size_t>(std::llround(last - first)) + 1;
+    for (std::size_t r = 0; r < rows; ++r) {
+        const double index = first + static_cast<double>(r);
+        out += fmt::format("{:.17g}", time.start + index * ts);
+        for (const Channel& c : channels) {
+            out += fmt::format(",{:.17g}", c.estimate.values[static_cast<std::size_t>(std::llround(index - c.estimate.first_index))]);
+        }
+        out += "\n";
+    }
+    write_output(o.output, out);
+    fmt::print(stderr, "{}: {} rows in, {} rows out ({} dropped at the ends, where a window is incomplete)\n", o.input, table.rows(), rows,
+               table.rows() - rows);
+}
+
+}  // namespace
+
+void add_differentiate_command(CLI::App& app) {
+    auto o = std::make_shared<DifferentiateOptions>();
+    CLI::App* cmd = app.add_subcommand("differentiate", "estimate derivatives of columns of a CSV log (header row, first column time in seconds)");
+    cmd->add_option("--in,-i", o->input, "input CSV log")->required();
+    cmd->add_option("--columns,-c", o->columns, "columns to differentiate, e.g. q1,q2")->required()->delimiter(',');
+    cmd->add_option("--time-column", o->time_column, "name of the time column (seconds)")->capture_default_str();
+    cmd->add_option("--method", o->method, "jacobi or butterworth (forward-backward Butterworth + central Euler differences)")
+        ->check(CLI::IsMember({"jacobi", "butterworth"}))
+        ->capture_default_str();
+    cmd->add_option("--orders", o->orders, "derivative orders to write (0 = smoothed signal), e.g. 1,2")->delimiter(',')->capture_default_str();
+    add_kernel_options(cmd, o->kernel, false, false);
+    cmd->add_option("--cutoff", o->cutoff, "Jacobi: choose each window so that the cutoff is this frequency in Hz (instead of --window)");
+    cmd->add_option("--butterworth", o->butterworth, "Butterworth method: ORDER:CUTOFF_HZ, e.g. 4:5");
+    cmd->add_option("--crop-edges", o->crop, "Butterworth method: seconds dropped at each end (default 3/cutoff, the filter's end transient)");
+    cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
+        ->capture_default_str();
+    cmd->add_option("--out,-o", o->output, "output CSV ('-' = stdout): time, then <column>_d<order> for each column and order")->capture_default_str();
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace jacobid::cli

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs jacobid's build and test dependencies from Debian 12 packages (needs root or sudo).
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev                                   # lib/: the real-time core
+  libcli11-dev libfmt-dev libyaml-cpp-dev libfast-float-dev nlohmann-json3-dev libfftw3-dev gnuplot-nox  # host-tools/
+  libgtest-dev libgmock-dev libbenchmark-dev valgrind python3-scipy python3-numpy  # tests, benchmarks, references
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
