@@ -19,19 +19,8 @@ namespace jacobid::reference {
 
 using ReferenceArrays = std::map<std::string, std::vector<double>>;
 
-// JACOBID_TESTS_DIR is the source directory of the CMakeLists that added the test (tests/unit when the
-// test is added from there); accept tests/ as well so the helper survives either definition.
-inline std::string scipy_baseline_script() {
-    const std::string tests_dir = JACOBID_TESTS_DIR;
-    for (const std::string& candidate :
-         {tests_dir + "/reference/scipy_baseline.py", tests_dir + "/../reference/scipy_baseline.py"}) {
-        if (std::FILE* file = std::fopen(candidate.c_str(), "r")) {
-            std::fclose(file);
-            return candidate;
-        }
-    }
-    throw std::runtime_error("scipy_baseline.py not found next to " + tests_dir);
-}
+// JACOBID_TESTS_DIR is the tests/ folder of the source tree.
+inline std::string scipy_baseline_script() { return std::string(JACOBID_TESTS_DIR) + "/reference/scipy_baseline.py"; }
 
 // Formats a double so that python parses back the same double.
 inline std::string exact(double value) {
