@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# README command 1: installs the dependencies, builds, and runs the main job.
+# README command 1: installs the dependencies, builds, and runs the main job: simulate the paper-like 2R
+# robot, identify it with the Jacobi pipeline and the Butterworth baseline, print the Table II comparison
+# next to the truth, and write the report with plots (examples/01_identify_planar2r.sh).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
 "$root/scripts/build.sh"
-out="${JACOBID_OUT_DIR:-$root/out}"
-mkdir -p "$out"
-"${JACOBID_BUILD_DIR:-$root/build}/host-tools/jacobid" paper-sines --out-dir "$out/paper-sines"
+bash "$root/examples/01_identify_planar2r.sh" "${JACOBID_BUILD_DIR:-$root/build}" "${JACOBID_OUT_DIR:-$root/out}/01_identify_planar2r"

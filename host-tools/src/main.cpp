@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", "jacobid 0.1.0");
     jacobid::cli::add_kernel_command(app);
+    jacobid::cli::add_simulate_command(app);
+    jacobid::cli::add_identify_command(app);
     jacobid::cli::add_bode_command(app);
     jacobid::cli::add_differentiate_command(app);
     jacobid::cli::add_paper_sines_command(app);

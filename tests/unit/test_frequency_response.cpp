@@ -103,4 +103,31 @@ TEST(FrequencyResponse, InverseDesignHitsTheWantedCutoff) {
     EXPECT_EQ(too_low.status, jacobid::KernelStatus::TooManyTaps);
 }
 
+TEST(FrequencyResponse, InverseDesignOfShortKernelsIsTheBestOddTapCount) {
+    // At 100 Hz the windows of a motion-bandwidth cutoff have a handful of taps, where cutoff ~ 1/T does not
+    // hold; the answer must be the best of all odd tap counts, checked here by brute force.
+    for (auto discretization : {jacobid::Discretization::Exact, jacobid::Discretization::Trapezoidal}) {
+        for (double wanted : {4.0, 9.0, 18.0}) {
+            KernelParams base;
+            base.order = 2;
+            base.kappa = base.mu = 6;
+            base.q = 2;
+            base.sample_period = 0.01;
+            base.discretization = discretization;
+            std::vector<double> scratch(301);
+            const auto d = jacobid::window_for_cutoff(base, wanted, true, jacobid::Span<double>(scratch));
+            ASSERT_EQ(d.status, jacobid::KernelStatus::Ok);
+            double best = 1e300;
+            for (std::size_t taps = 3; taps <= 301; taps += 2) {
+                KernelParams p = base;
+                p.window = static_cast<double>(taps - 1) * base.sample_period;
+                std::vector<double> w(taps);
+                if (jacobid::design_kernel(p, jacobid::Span<double>(w)) != jacobid::KernelStatus::Ok) continue;
+                best = std::min(best, std::abs(jacobid::find_cutoff(jacobid::Span<const double>(w), 0.01, 2).frequency - wanted));
+            }
+            EXPECT_NEAR(std::abs(d.cutoff - wanted), best, 1e-12) << wanted;
+        }
+    }
+}
+
 }  // namespace

@@ -23,6 +23,8 @@ struct InputError : std::runtime_error {
 };
 
 void add_kernel_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
+void add_identify_command(CLI::App& app);
 void add_bode_command(CLI::App& app);
 void add_differentiate_command(CLI::App& app);
 void add_paper_sines_command(CLI::App& app);

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "cli/command.hpp"
+#include "cli/kernel_options.hpp"
 #include "cli/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
 #include "jacobid/kernel_design.hpp"
@@ -75,17 +76,16 @@ void run(const PaperSinesOptions& o) {
     const signal::ButterworthSos sos = signal::design_butterworth_or_throw(o.bw_order, o.bw_cutoff, o.ts, "--bw-order/--bw-cutoff");
     std::array<std::vector<double>, 2> jacobi_weights;
     for (int d = 0; d < 2; ++d) {
-        KernelParams p;
-        p.order = d + 1;
-        p.kappa = o.kappa;
-        p.mu = o.mu;
-        p.q = o.q;
-        p.window = o.window;
-        p.sample_period = o.ts;
-        p.discretization = o.discretization == "exact" ? Discretization::Exact : Discretization::Trapezoidal;
-        if (const KernelStatus s = validate(p, n); s != KernelStatus::Ok) throw InputError(fmt::format("Jacobi parameters: {}", describe(s)));
-        jacobi_weights[d].resize(tap_count(p));
-        design_kernel(p, Span<double>(jacobi_weights[d]));
+        KernelOptions k;
+        k.order = d + 1;
+        k.kappa = o.kappa;
+        k.mu = o.mu;
+        k.q = o.q;
+        k.window = o.window;
+        k.ts = o.ts;
+        k.discretization = o.discretization;
+        const KernelParams p = to_kernel_params(k);
+        jacobi_weights[d] = design_kernel_or_throw(p);
         methods[0].estimates[d] = signal::jacobi_estimate(p, x, "paper-sines signal");
         // Both methods are compared on the common interior (below), which the Jacobi half windows set;
         // the Butterworth filter runs over the whole record with scipy's odd padding at the ends.

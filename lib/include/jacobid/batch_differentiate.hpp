@@ -48,7 +48,10 @@ BatchStatus differentiate_direct(Span<const Scalar> weights, Span<const Scalar> 
     if (y.size() < outputs) return BatchStatus::OutputTooSmall;
     // Blocks of kBlock outputs: the inner loop over the block is independent per output (vectorizable
     // without reassociation), and every weight is loaded once per block instead of once per output.
-    constexpr std::size_t kBlock = 128 / sizeof(Scalar);
+    // 256 bytes of accumulators (32 doubles: 4 AVX-512, 8 AVX or 16 SSE registers) give enough independent
+    // FMA chains to hide their latency; 128 bytes left AVX-512 with 2 chains, 4x slower (docs/performance.md).
+    // Each output still sums its taps in order k = 0..L-1, so the block size does not change the rounding.
+    constexpr std::size_t kBlock = 256 / sizeof(Scalar);
     const Scalar* w = weights.data();
     const Scalar* in = x.data();
     std::size_t j = 0;

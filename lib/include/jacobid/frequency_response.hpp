@@ -86,10 +86,15 @@ struct WindowDesign {
 };
 
 // The window T (a whole number of samples) whose kernel has its cutoff closest to `wanted_cutoff`, for the
-// other parameters of `base`. The cutoff of a Jacobi kernel scales as 1/T, so a first guess from one design
-// is refined by stepping the tap count. With odd_taps the tap count stays odd (integer central delay,
-// needed to align central estimates with raw samples). `scratch` holds one kernel (its size bounds T).
+// other parameters of `base`. With odd_taps the tap count stays odd (integer central delay, needed to align
+// central estimates with raw samples). `scratch` holds one kernel (its size bounds T).
+//
+// Short kernels (a few tens of taps, e.g. at 100 Hz) do not follow the continuous-time law cutoff ~ 1/T
+// closely and their cutoff need not decrease monotonically with the tap count, so every tap count up to
+// kExhaustiveTaps is tried. Longer kernels follow the law well: a first guess from it is refined by
+// stepping the tap count while the error shrinks.
 inline WindowDesign window_for_cutoff(KernelParams base, double wanted_cutoff, bool odd_taps, Span<double> scratch) noexcept {
+    constexpr std::size_t kExhaustiveTaps = 101;
     WindowDesign result;
     const double ts = base.sample_period;
     if (!(wanted_cutoff > 0.0) || !std::isfinite(wanted_cutoff)) {
@@ -97,48 +102,58 @@ inline WindowDesign window_for_cutoff(KernelParams base, double wanted_cutoff, b
         return result;
     }
     const std::size_t step = odd_taps ? 2 : 1;
-    auto cutoff_at = [&](std::size_t taps, KernelStatus& status) {
+    KernelStatus status = KernelStatus::Ok;
+    double best_error = 1e300;
+    std::size_t best_taps = 0;
+    double best_cutoff = 0.0;
+    // Designs the kernel of `taps` taps, returns its cutoff (0 when the design fails, see `status`) and
+    // keeps the best candidate so far.
+    auto evaluate = [&](std::size_t taps) {
         KernelParams p = base;
         p.window = static_cast<double>(taps - 1) * ts;
         status = design_kernel(p, scratch);
         if (status != KernelStatus::Ok) return 0.0;
-        const Cutoff c = find_cutoff(Span<const double>(scratch.data(), taps), ts, p.order);
-        return c.frequency;
+        const double c = find_cutoff(Span<const double>(scratch.data(), taps), ts, p.order).frequency;
+        if (std::abs(c - wanted_cutoff) < best_error) {
+            best_error = std::abs(c - wanted_cutoff);
+            best_taps = taps;
+            best_cutoff = c;
+        }
+        return c;
     };
-    // First guess from a probe design of moderate length.
-    std::size_t probe = std::min<std::size_t>(scratch.size(), 101);
-    if (odd_taps && probe % 2 == 0) --probe;
-    KernelStatus status;
-    const double probe_cutoff = cutoff_at(probe, status);
-    if (status != KernelStatus::Ok) {
-        result.status = status;
-        return result;
+    // Exhaustive over short kernels (cheap: at most 50 designs of <= 101 taps).
+    double longest_short_cutoff = 0.0;
+    for (std::size_t taps = 3; taps <= std::min(kExhaustiveTaps, scratch.size()); taps += step) {
+        const double c = evaluate(taps);
+        if (status == KernelStatus::TooFewPoints) continue;  // not enough weighted samples yet
+        if (status != KernelStatus::Ok) {
+            result.status = status;
+            return result;
+        }
+        longest_short_cutoff = c;
     }
-    const double product = probe_cutoff * static_cast<double>(probe - 1) * ts;  // ~ constant
-    double guess = product / (wanted_cutoff * ts) + 1.0;
-    std::size_t taps = static_cast<std::size_t>(std::llround(std::max(guess, 3.0)));
-    if (odd_taps && taps % 2 == 0) ++taps;
-    if (taps > scratch.size()) {
-        result.status = KernelStatus::TooManyTaps;
-        return result;
-    }
-    // Walk in the direction that reduces the error until it grows (cutoff decreases with taps).
-    double best_error = 1e300;
-    std::size_t best_taps = taps;
-    double best_cutoff = 0.0;
-    for (int direction : {+1, -1}) {
-        for (std::size_t t = taps; t >= 3 && t <= scratch.size(); t = direction > 0 ? t + step : t - step) {
-            const double c = cutoff_at(t, status);
-            if (status != KernelStatus::Ok) break;
-            const double error = std::abs(c - wanted_cutoff);
-            if (error < best_error) {
-                best_error = error;
-                best_taps = t;
-                best_cutoff = c;
-            } else if (t != taps) {
-                break;
+    const bool needs_longer = longest_short_cutoff > wanted_cutoff;
+    if (needs_longer && scratch.size() > kExhaustiveTaps) {
+        // First guess from the 1/T law at the longest short kernel, then walk while the error shrinks.
+        const double product = longest_short_cutoff * static_cast<double>(kExhaustiveTaps - 1) * ts;  // 101: odd
+        std::size_t taps = static_cast<std::size_t>(std::llround(std::max(product / (wanted_cutoff * ts) + 1.0, static_cast<double>(kExhaustiveTaps))));
+        if (odd_taps && taps % 2 == 0) ++taps;
+        if (taps > scratch.size()) {
+            result.status = KernelStatus::TooManyTaps;
+            return result;
+        }
+        for (int direction : {+1, -1}) {
+            double previous_error = 1e300;
+            for (std::size_t t = taps; t > kExhaustiveTaps && t <= scratch.size(); t = direction > 0 ? t + step : t - step) {
+                const double error = std::abs(evaluate(t) - wanted_cutoff);
+                if (status != KernelStatus::Ok || error > previous_error) break;
+                previous_error = error;
             }
         }
+    }
+    if (best_taps == 0) {
+        result.status = status == KernelStatus::Ok ? KernelStatus::TooManyTaps : status;
+        return result;
     }
     result.window = static_cast<double>(best_taps - 1) * ts;
     result.cutoff = best_cutoff;

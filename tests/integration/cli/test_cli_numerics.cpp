@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "run_command.hpp"
+#include "scratch_directory.hpp"
 
 namespace {
 
@@ -17,11 +18,7 @@ using jacobid::test::run_command;
 
 const std::string kJacobid = JACOBID_EXECUTABLE;
 
-fs::path scratch_dir() {
-    const fs::path d = fs::temp_directory_path() / ("jacobid-cli-test-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-}
+fs::path scratch_dir() { return jacobid::test::scratch_directory(); }
 
 std::vector<double> parse_lines(const std::string& text) {
     std::vector<double> v;

@@ -1,0 +1,209 @@
+// jacobid identify: dynamic parameters of a robot from a log of joint positions and motor torques
+// (Table II of the paper: X^, 2 sigma, %sigma_r), with the Jacobi pipeline, the Butterworth baseline or
+// both side by side.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/command.hpp"
+#include "cli/output_file.hpp"
+#include "identify/least_squares.hpp"
+#include "identify/pipeline.hpp"
+#include "identify/report.hpp"
+#include "identify/validation.hpp"
+#include "io/csv_table.hpp"
+#include "io/time_axis.hpp"
+#include "robot/robot_description.hpp"
+
+namespace jacobid::cli {
+namespace {
+
+struct IdentifyOptions {
+    std::string robot;
+    std::string in;
+    std::string method = "jacobi";
+    std::string format = "table";
+    std::string output = "-";
+    std::string report;
+    std::string truth;
+    std::string validate;
+    std::string time_column = "t";
+    std::string discretization = "exact";
+    identify::PipelineSettings pipeline;
+    bool weighted = false;
+    double essential = 0.0;  // threshold in %; 0: off
+    bool essential_flag = false;
+    double rank_tolerance = 1e-7;
+    bool quiet = false;
+};
+
+identify::LogColumns columns_of(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column) {
+    identify::LogColumns log;
+    log.source = table.source();
+    const io::TimeAxis axis = io::check_uniform_time(table, time_column);
+    log.sample_period = axis.sample_period;
+    log.start_time = axis.start;
+    for (const auto& j : robot.joints) {
+        log.q.push_back(&table.column(j.position_column));  // InputError names the file and the columns it has
+        log.q_names.push_back(j.position_column);
+    }
+    for (const auto& j : robot.joints) {
+        log.tau.push_back(&table.column(j.torque_column));
+        log.tau_names.push_back(j.torque_column);
+    }
+    return log;
+}
+
+std::map<std::string, double> read_truth(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(fmt::format("--truth {}: cannot open file", path));
+    nlohmann::json j;
+    try {
+        in >> j;
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError(fmt::format("--truth {}: invalid JSON: {}", path, e.what()));
+    }
+    if (!j.contains("parameters") || !j["parameters"].is_object()) throw InputError(fmt::format("--truth {}: no object 'parameters'", path));
+    std::map<std::string, double> truth;
+    for (auto& [name, value] : j["parameters"].items()) {
+        if (!value.is_number()) throw InputError(fmt::format("--truth {}: parameter '{}' is not a number", path, name));
+        truth[name] = value.get<double>();
+    }
+    return truth;
+}
+
+void run(IdentifyOptions o) {
+    using Clock = std::chrono::steady_clock;
+    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    const auto model = robot::make_robot_model(robot);
+    const auto parse_start = Clock::now();
+    const io::CsvTable table = io::read_csv(o.in);
+    const identify::LogColumns log = columns_of(table, robot, o.time_column);
+    const double parse_seconds = std::chrono::duration<double>(Clock::now() - parse_start).count();
+    o.pipeline.progress = !o.quiet && log.samples() > 500'000;
+    if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", log.samples(), o.in, parse_seconds);
+
+    std::unique_ptr<io::CsvTable> validation_table;
+    identify::LogColumns validation_log;
+    if (!o.validate.empty()) {
+        validation_table = std::make_unique<io::CsvTable>(io::read_csv(o.validate));
+        validation_log = columns_of(*validation_table, robot, o.time_column);
+    }
+
+    identify::ReportContext ctx;
+    ctx.log_source = o.in;
+    ctx.model_name = model->model_name();
+    for (const auto& j : robot.joints) ctx.joint_names.push_back(j.name);
+    if (!o.truth.empty()) ctx.truth = read_truth(o.truth);
+
+    std::vector<identify::Method> methods;
+    if (o.method == "jacobi" || o.method == "both") methods.push_back(identify::Method::Jacobi);
+    if (o.method == "butterworth" || o.method == "both") methods.push_back(identify::Method::Butterworth);
+    std::vector<identify::MethodResult> results;
+    for (const identify::Method m : methods) {
+        identify::PipelineSettings settings = o.pipeline;
+        settings.method = m;
+        identify::PipelineOutput out = identify::run_pipeline(*model, log, settings);
+        identify::SolveOptions solve;
+        solve.weighted = o.weighted;
+        solve.rank_tolerance = o.rank_tolerance;
+        identify::MethodResult r;
+        r.info = out.info;
+        r.plot = std::move(out.plot);
+        r.solution = identify::solve_least_squares(out.factors, model->parameter_names(), solve);
+        if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, model->parameter_names(), o.essential, solve);
+        if (!o.validate.empty()) {
+            identify::PipelineSettings v = settings;
+            // Same differentiators (in seconds) on the validation log; the bandwidth is that of the
+            // identification log so the windows do not change.
+            v.bandwidth = r.info.bandwidth;
+            if (m == identify::Method::Jacobi) {
+                v.velocity_window = r.info.velocity_window;
+                v.acceleration_window = r.info.acceleration_window;
+            }
+            v.differentiator_cutoff = r.info.differentiator_cutoff;
+            v.decimation_cutoff = r.info.decimation_cutoff;
+            v.progress = false;
+            r.validation = identify::validate_prediction(*model, validation_log, v, r.solution.x);
+        }
+        for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
+            ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));
+        }
+        results.push_back(std::move(r));
+    }
+    for (const auto& w : ctx.warnings) fmt::print(stderr, "jacobid identify: warning: {}\n", w);
+
+    std::string text;
+    if (o.format == "json") {
+        nlohmann::json j;
+        if (results.size() == 1) {
+            j = identify::to_json(results.front(), ctx);
+        } else {
+            for (const auto& r : results) j["methods"][identify::to_string(r.info.method)] = identify::to_json(r, ctx);
+        }
+        j["log"] = o.in;
+        j["model"] = model->model_name();
+        j["parse_seconds"] = parse_seconds;
+        text = j.dump(2) + "\n";
+    } else {
+        text = identify::format_table(results, ctx);
+    }
+    write_output(o.output, text);
+    if (!o.report.empty()) identify::write_report(o.report, results, ctx);
+}
+
+}  // namespace
+
+void add_identify_command(CLI::App& app) {
+    auto o = std::make_shared<IdentifyOptions>();
+    CLI::App* cmd = app.add_subcommand("identify",
+                                       "identify base dynamic parameters from a log (t, positions, torques) by least squares on the "
+                                       "decimated inverse dynamic model; prints the paper's Table II");
+    cmd->add_option("--robot", o->robot, "robot description (YAML, e.g. 'model: planar2r')")->required();
+    cmd->add_option("--in", o->in, "log (CSV with a header: time column, the joints' position and torque columns)")->required();
+    cmd->add_option("--method", o->method, "jacobi, butterworth, or both side by side")
+        ->check(CLI::IsMember({"jacobi", "butterworth", "both"}))
+        ->capture_default_str();
+    cmd->add_option("--format", o->format, "table (Table II text) or json")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
+    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
+    cmd->add_option("--report", o->report, "also write DIR/report.md and PNG plots (torque measured vs model)");
+    cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table");
+    cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors");
+    cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
+    cmd->add_option("--bandwidth", o->pipeline.bandwidth, "motion bandwidth in Hz (default: estimated, 99 % of the velocity energy)");
+    cmd->add_option("--cutoff", o->pipeline.differentiator_cutoff,
+                    "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)");
+    cmd->add_option("--velocity-window", o->pipeline.velocity_window, "Jacobi velocity window T in s (overrides --cutoff)");
+    cmd->add_option("--acceleration-window", o->pipeline.acceleration_window, "Jacobi acceleration window T in s (overrides --cutoff)");
+    cmd->add_option("--kappa", o->pipeline.kappa, "Jacobi kappa")->capture_default_str();
+    cmd->add_option("--mu", o->pipeline.mu, "Jacobi mu")->capture_default_str();
+    cmd->add_option("--q", o->pipeline.q, "Jacobi truncation order q")->capture_default_str();
+    cmd->add_option("--discretization", o->discretization, "Jacobi kernel discretization: exact (polynomial-exact on the grid) or trapezoidal (paper)")
+        ->check(CLI::IsMember({"exact", "trapezoidal"}))
+        ->capture_default_str();
+    cmd->add_option("--butterworth-order", o->pipeline.butterworth_order, "order of the Butterworth prefilter")->capture_default_str();
+    cmd->add_option("--decimation-cutoff", o->pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)");
+    cmd->add_option("--decimation", o->pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))");
+    cmd->add_option("--min-motion", o->pipeline.min_joint_motion, "position range in rad below which a joint counts as not moving")
+        ->capture_default_str();
+    cmd->add_flag("--weighted", o->weighted, "weighted LS: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier)");
+    cmd->add_option("--essential", o->essential,
+                    "essential parameters: drop the parameter with the largest %sigma_r above this threshold (%), re-identify, repeat")
+        ->each([o](const std::string&) { o->essential_flag = true; })
+        ->expected(0, 1)
+        ->default_str("10");
+    cmd->add_option("--rank-tolerance", o->rank_tolerance, "relative singular value below which the column-normalized W is rank deficient")
+        ->capture_default_str();
+    cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
+    cmd->callback([o] {
+        if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;
+        o->pipeline.exact_discretization = o->discretization == "exact";
+        run(*o);
+    });
+}
+
+}  // namespace jacobid::cli

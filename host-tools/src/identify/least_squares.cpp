@@ -1,0 +1,210 @@
+#include "identify/least_squares.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "identify/running_qr.hpp"
+
+namespace jacobid::identify {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Factor of [W_active Y] from an augmented factor of [W_all Y]: R^T R is the Gram matrix, so the columns
+// of R that are kept give the same Gram matrix for the sub-problem; one more QR makes it triangular.
+Eigen::MatrixXd select_columns(const Eigen::MatrixXd& r, const std::vector<int>& columns) {
+    const Eigen::Index c = static_cast<Eigen::Index>(columns.size());
+    Eigen::MatrixXd m(r.rows(), c + 1);
+    for (Eigen::Index k = 0; k < c; ++k) m.col(k) = r.col(columns[static_cast<std::size_t>(k)]);
+    m.col(c) = r.col(r.cols() - 1);
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(c + 1, c + 1);
+    const Eigen::Index k = std::min<Eigen::Index>(m.rows(), c + 1);
+    out.topRows(k) = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+    return out;
+}
+
+Eigen::MatrixXd stack(const JointFactors& f, const std::vector<double>& scale, std::size_t& rows) {
+    const Eigen::Index n = f.r.front().cols();
+    RunningQr total(static_cast<int>(n));
+    rows = 0;
+    for (std::size_t j = 0; j < f.r.size(); ++j) {
+        total.add_factor(f.r[j], f.rows[j], scale[j]);
+        rows += f.rows[j];
+    }
+    return total.r();
+}
+
+}  // namespace
+
+LsSolution solve_least_squares(const JointFactors& factors, const std::vector<std::string>& names, const SolveOptions& options) {
+    const int all = static_cast<int>(names.size());
+    const std::size_t joints = factors.r.size();
+    LsSolution s;
+    s.names = names;
+    s.x = Eigen::VectorXd::Constant(all, kNaN);
+    s.std_dev = Eigen::VectorXd::Constant(all, kNaN);
+    s.rel_std_percent = Eigen::VectorXd::Constant(all, kNaN);
+    s.identified.assign(static_cast<std::size_t>(all), false);
+    s.removed.assign(static_cast<std::size_t>(all), false);
+    s.joint_weights.assign(joints, 1.0);
+    s.joint_residual_rms.assign(joints, kNaN);
+
+    std::vector<int> active;
+    for (int p = 0; p < all; ++p) {
+        if (options.active.empty() || options.active[static_cast<std::size_t>(p)]) active.push_back(p);
+        else s.removed[static_cast<std::size_t>(p)] = true;
+    }
+    std::size_t rows = 0;
+    const Eigen::MatrixXd total = select_columns(stack(factors, s.joint_weights, rows), active);
+    s.equations = rows;
+    const Eigen::Index c = static_cast<Eigen::Index>(active.size());
+
+    // Rank analysis on W_active: zero columns first, then the column-normalized matrix.
+    const Eigen::MatrixXd w = total.topLeftCorner(c, c);
+    Eigen::VectorXd norms = w.colwise().norm();
+    const double max_norm = norms.size() ? norms.maxCoeff() : 0.0;
+    std::vector<int> nonzero;  // positions in `active`
+    for (Eigen::Index k = 0; k < c; ++k) {
+        if (norms[k] > 1e-10 * max_norm && norms[k] > 0.0) {
+            nonzero.push_back(static_cast<int>(k));
+        } else {
+            Unidentifiable u;
+            u.parameters = {active[static_cast<std::size_t>(k)]};
+            u.coefficients = {1.0};
+            u.zero_column = true;
+            s.unidentifiable.push_back(u);
+        }
+    }
+    const Eigen::Index nz = static_cast<Eigen::Index>(nonzero.size());
+    Eigen::MatrixXd scaled(c, nz);
+    for (Eigen::Index k = 0; k < nz; ++k) scaled.col(k) = w.col(nonzero[static_cast<std::size_t>(k)]) / norms[nonzero[static_cast<std::size_t>(k)]];
+    std::vector<int> keep;  // positions in `active` that are identified
+    if (nz > 0) {
+        Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeFullV);
+        const Eigen::VectorXd sv = svd.singularValues();
+        int rank = 0;
+        for (Eigen::Index k = 0; k < sv.size(); ++k) {
+            if (sv[k] > options.rank_tolerance * sv[0]) ++rank;
+        }
+        s.rank = rank;
+        for (Eigen::Index k = rank; k < nz; ++k) {
+            const Eigen::VectorXd v = svd.matrixV().col(k);
+            Eigen::VectorXd a(nz);
+            for (Eigen::Index i = 0; i < nz; ++i) a[i] = v[i] / norms[nonzero[static_cast<std::size_t>(i)]];
+            const double amax = a.cwiseAbs().maxCoeff();
+            Unidentifiable u;
+            for (Eigen::Index i = 0; i < nz; ++i) {
+                if (std::abs(v[i]) > 0.05) {  // members of the null direction that matter
+                    u.parameters.push_back(active[static_cast<std::size_t>(nonzero[static_cast<std::size_t>(i)])]);
+                    u.coefficients.push_back(a[i] / amax);
+                }
+            }
+            s.unidentifiable.push_back(u);
+        }
+        // A maximal independent subset: the first `rank` pivots of a column-pivoted QR.
+        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> pivoted(scaled);
+        for (int k = 0; k < rank; ++k) keep.push_back(nonzero[static_cast<std::size_t>(pivoted.colsPermutation().indices()[k])]);
+        std::sort(keep.begin(), keep.end());
+    }
+
+    auto solve_subset = [&](const Eigen::MatrixXd& factor, std::vector<double>& x, Eigen::MatrixXd& rinv, double& residual) {
+        const Eigen::Index k = static_cast<Eigen::Index>(keep.size());
+        std::vector<int> cols;
+        for (int i : keep) cols.push_back(i);
+        const Eigen::MatrixXd sub = select_columns(factor, cols);
+        const auto r11 = sub.topLeftCorner(k, k).triangularView<Eigen::Upper>();
+        const Eigen::VectorXd sol = r11.solve(sub.col(k).head(k));
+        x.assign(sol.data(), sol.data() + k);
+        rinv = r11.solve(Eigen::MatrixXd::Identity(k, k));
+        residual = std::abs(sub(k, k));
+    };
+
+    std::vector<double> x;
+    Eigen::MatrixXd rinv;
+    double residual = 0.0;
+    if (!keep.empty()) solve_subset(total, x, rinv, residual);
+    auto joint_residual = [&](std::size_t j) {
+        // ||R_j [x; -1]|| restricted to the kept columns (all other parameters are 0 in this model).
+        Eigen::VectorXd v = -factors.r[j].col(factors.r[j].cols() - 1);
+        for (std::size_t i = 0; i < keep.size(); ++i) v += factors.r[j].col(active[static_cast<std::size_t>(keep[i])]) * x[i];
+        return v.norm();
+    };
+    if (options.weighted && !keep.empty()) {
+        // Gautier: weight joint j by 1 / sigma_j, sigma_j^2 = ||rho_j||^2 / (r_j - c), from the OLS residuals.
+        std::vector<double> scale(joints, 1.0);
+        for (std::size_t j = 0; j < joints; ++j) {
+            const double dof = static_cast<double>(factors.rows[j]) - static_cast<double>(keep.size());
+            const double sigma = dof > 0 ? joint_residual(j) / std::sqrt(dof) : 0.0;
+            scale[j] = sigma > 0.0 ? 1.0 / sigma : 1.0;
+        }
+        s.joint_weights = scale;
+        s.weighted = true;
+        std::size_t unused = 0;
+        const Eigen::MatrixXd weighted = select_columns(stack(factors, scale, unused), active);
+        solve_subset(weighted, x, rinv, residual);
+    }
+    const Eigen::Index k = static_cast<Eigen::Index>(keep.size());
+    s.identified_count = static_cast<int>(k);
+    // sigma_rho from the residual of the problem actually solved (weighted or not); the norms reported
+    // are the unweighted ones, comparable between OLS and WLS.
+    const double dof = static_cast<double>(rows) - static_cast<double>(k);
+    s.sigma_rho = dof > 0 ? residual / std::sqrt(dof) : kNaN;
+    double y2 = 0.0, e2 = 0.0;
+    for (std::size_t j = 0; j < joints; ++j) {
+        const double yj = factors.r[j].col(factors.r[j].cols() - 1).norm();
+        y2 += yj * yj;
+        const double ej = keep.empty() ? yj : joint_residual(j);
+        e2 += ej * ej;
+    }
+    s.y_norm = std::sqrt(y2);
+    s.residual_norm = std::sqrt(e2);
+    s.relative_error_norm = s.y_norm > 0 ? s.residual_norm / s.y_norm : kNaN;
+    for (Eigen::Index i = 0; i < k; ++i) {
+        const auto p = static_cast<std::size_t>(active[static_cast<std::size_t>(keep[static_cast<std::size_t>(i)])]);
+        s.identified[p] = true;
+        s.x[static_cast<Eigen::Index>(p)] = x[static_cast<std::size_t>(i)];
+        const double sd = s.sigma_rho * rinv.row(i).norm();  // C = sigma^2 R^-1 R^-T
+        s.std_dev[static_cast<Eigen::Index>(p)] = sd;
+        s.rel_std_percent[static_cast<Eigen::Index>(p)] = 100.0 * sd / std::abs(x[static_cast<std::size_t>(i)]);
+    }
+    if (k > 0) {
+        std::vector<int> cols;
+        for (int i : keep) cols.push_back(i);
+        const Eigen::MatrixXd wk = select_columns(total, cols).topLeftCorner(k, k);
+        const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(wk).singularValues();
+        s.cond = sv[sv.size() - 1] > 0 ? sv[0] / sv[sv.size() - 1] : std::numeric_limits<double>::infinity();
+    }
+    for (std::size_t j = 0; j < joints; ++j) {
+        s.joint_residual_rms[j] = factors.rows[j] > 0 && !keep.empty() ? joint_residual(j) / std::sqrt(static_cast<double>(factors.rows[j])) : kNaN;
+    }
+    return s;
+}
+
+EssentialResult essential_parameters(const JointFactors& factors, const std::vector<std::string>& names, double threshold_percent,
+                                     const SolveOptions& options) {
+    EssentialResult result;
+    SolveOptions o = options;
+    if (o.active.empty()) o.active.assign(names.size(), true);
+    LsSolution s = solve_least_squares(factors, names, o);
+    result.steps.push_back({"", 0.0, s.relative_error_norm, s.identified_count});
+    while (s.identified_count > 1) {
+        int worst = -1;
+        double worst_value = threshold_percent;
+        for (Eigen::Index p = 0; p < s.x.size(); ++p) {
+            if (s.identified[static_cast<std::size_t>(p)] && s.rel_std_percent[p] > worst_value) {
+                worst = static_cast<int>(p);
+                worst_value = s.rel_std_percent[p];
+            }
+        }
+        if (worst < 0) break;
+        o.active[static_cast<std::size_t>(worst)] = false;
+        s = solve_least_squares(factors, names, o);
+        result.steps.push_back({names[static_cast<std::size_t>(worst)], worst_value, s.relative_error_norm, s.identified_count});
+    }
+    result.solution = s;
+    return result;
+}
+
+}  // namespace jacobid::identify

@@ -1,0 +1,312 @@
+#include "identify/pipeline.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "cli/command.hpp"
+#include "identify/bandwidth.hpp"
+#include "identify/running_qr.hpp"
+#include "jacobid/baseline/butterworth.hpp"
+#include "jacobid/baseline/euler_difference.hpp"
+#include "jacobid/baseline/filtfilt.hpp"
+#include "jacobid/frequency_response.hpp"
+#include "jacobid/kernel_design.hpp"
+#include "signal/baseline_response.hpp"
+#include "signal/fft_convolver.hpp"
+
+namespace jacobid::identify {
+namespace {
+
+using cli::InputError;
+using Clock = std::chrono::steady_clock;
+using Lowpass = signal::ButterworthSos;  // Butterworth up to order 16
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+KernelParams jacobi_params(const PipelineSettings& s, int order, double ts) {
+    KernelParams p;
+    p.order = order;
+    p.kappa = s.kappa;
+    p.mu = s.mu;
+    p.q = s.q;
+    p.sample_period = ts;
+    p.discretization = s.exact_discretization ? Discretization::Exact : Discretization::Trapezoidal;
+    p.xi = 0.0;  // central: delay-free once aligned, as the off-line identification wants
+    return p;
+}
+
+std::size_t odd_taps_for_window(double window, double ts) {
+    std::size_t taps = static_cast<std::size_t>(std::llround(window / ts)) + 1;
+    if (taps % 2 == 0) ++taps;
+    return taps;
+}
+
+std::vector<double> design_or_throw(KernelParams p) {
+    std::vector<double> w(tap_count(p));
+    const KernelStatus status = design_kernel(p, Span<double>(w));
+    if (status != KernelStatus::Ok) throw InputError(fmt::format("Jacobi order-{} differentiator: {}", p.order, describe(status)));
+    return w;
+}
+
+void filtfilt_or_throw(const Lowpass& sos, const double* x, double* y, std::size_t n, std::vector<double>& workspace) {
+    workspace.resize(sosfiltfilt_workspace_size(sos));
+    const FilterStatus status = sosfiltfilt(sos, Span<const double>(x, n), Span<double>(y, n), Span<double>(workspace));
+    if (status != FilterStatus::Ok) throw InputError(fmt::format("zero-phase filter on {} samples: {}", n, describe(status)));
+}
+
+}  // namespace
+
+const char* to_string(Method m) { return m == Method::Jacobi ? "jacobi" : "butterworth"; }
+
+PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
+    PipelineInfo info;
+    info.method = s.method;
+    info.sample_period = log.sample_period;
+    info.samples = log.samples();
+    const double ts = log.sample_period;
+    const double fs = 1.0 / ts;
+    const std::size_t n = info.samples;
+    for (const auto* q : log.q) {
+        const auto [lo, hi] = std::minmax_element(q->begin(), q->end());
+        info.joint_range.push_back(n ? *hi - *lo : 0.0);
+        info.joint_moves.push_back(n && *hi - *lo > s.min_joint_motion);
+    }
+    if (std::none_of(info.joint_moves.begin(), info.joint_moves.end(), [](bool b) { return b; })) {
+        throw InputError(fmt::format("{}: the robot stands still (every joint's position range is below {} rad): no parameter can be identified",
+                                     log.source, s.min_joint_motion));
+    }
+    if (s.bandwidth > 0.0) {
+        info.bandwidth = s.bandwidth;
+    } else {
+        const BandwidthEstimate b = estimate_motion_bandwidth(log.q, ts);
+        if (!b.moving) throw InputError(fmt::format("{}: the positions are constant: no parameter can be identified", log.source));
+        info.bandwidth = b.frequency;
+        info.bandwidth_estimated = true;
+    }
+    info.differentiator_cutoff = s.differentiator_cutoff > 0.0 ? s.differentiator_cutoff : s.differentiator_ratio * info.bandwidth;
+    info.differentiator_cutoff = std::min(info.differentiator_cutoff, 0.4 * fs);
+    if (s.method == Method::Jacobi) {
+        // Windows: explicit, or the odd tap count whose cutoff is closest to the wanted one.
+        const std::size_t max_taps = std::max<std::size_t>(std::min<std::size_t>(n, 2'000'001), 3);
+        std::vector<double> scratch(max_taps);
+        auto window_for = [&](int order, double explicit_window) {
+            if (explicit_window > 0.0) return static_cast<double>(odd_taps_for_window(explicit_window, ts) - 1) * ts;
+            const WindowDesign d = window_for_cutoff(jacobi_params(s, order, ts), info.differentiator_cutoff, true, Span<double>(scratch));
+            if (d.status == KernelStatus::TooManyTaps) {
+                throw InputError(fmt::format("{}: {} samples are too short for the Jacobi window of a {:.3g} Hz cutoff (bandwidth {:.3g} Hz); "
+                                             "give --cutoff or --velocity-window/--acceleration-window",
+                                             log.source, n, info.differentiator_cutoff, info.bandwidth));
+            }
+            if (d.status != KernelStatus::Ok) throw InputError(fmt::format("Jacobi window design: {}", describe(d.status)));
+            return d.window;
+        };
+        info.velocity_window = window_for(1, s.velocity_window);
+        info.acceleration_window = window_for(2, s.acceleration_window);
+        const std::size_t h = (std::max(odd_taps_for_window(info.velocity_window, ts), odd_taps_for_window(info.acceleration_window, ts)) - 1) / 2;
+        if (2 * h + 1 > n) {
+            throw InputError(fmt::format("{}: {} samples are shorter than the differentiator window ({} samples = {:.4g} s)", log.source, n,
+                                         2 * h + 1, static_cast<double>(2 * h) * ts));
+        }
+        info.first = h;
+        info.last = n - h;
+    } else {
+        if (info.differentiator_cutoff >= 0.5 * fs) {
+            throw InputError(fmt::format("--cutoff {:.4g} Hz must be below half the sample rate ({:.4g} Hz)", info.differentiator_cutoff, 0.5 * fs));
+        }
+        info.prefilter_cutoff = info.differentiator_cutoff;
+        const auto edge = static_cast<std::size_t>(std::ceil(3.0 * fs / info.prefilter_cutoff)) + 1;
+        if (2 * edge + 3 > n) {
+            throw InputError(fmt::format("{}: {} samples are too short for the Butterworth prefilter's end transients ({} samples each)",
+                                         log.source, n, edge));
+        }
+        info.first = edge;
+        info.last = n - edge;
+    }
+    info.decimation_cutoff = s.decimation_cutoff > 0.0 ? s.decimation_cutoff : s.decimation_ratio * info.bandwidth;
+    if (info.decimation_cutoff >= 0.5 * fs) {
+        throw InputError(fmt::format("decimation filter cutoff {:.4g} Hz must be below half the sample rate ({:.4g} Hz); lower --decimation-cutoff",
+                                     info.decimation_cutoff, 0.5 * fs));
+    }
+    info.decimation = s.decimation > 0 ? s.decimation : std::max(1, static_cast<int>(std::floor(fs / (4.0 * info.decimation_cutoff))));
+    info.crop = static_cast<std::size_t>(std::ceil(3.0 * fs / info.decimation_cutoff));
+    if (info.last <= info.first + 2 * info.crop + 1) {
+        throw InputError(fmt::format("{}: {} samples are too short: the differentiator windows and the decimation filter's end transients "
+                                     "({} + 2 x {} samples) leave nothing to identify",
+                                     log.source, n, info.first * 2, info.crop));
+    }
+    return info;
+}
+
+StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s, PipelineInfo& info) {
+    const auto start = Clock::now();
+    const std::size_t n = log.samples();
+    const std::size_t joints = log.q.size();
+    const double ts = log.sample_period;
+    StateEstimates e;
+    e.first = info.first;
+    e.last = info.last;
+    e.q.resize(joints);
+    e.qd.assign(joints, std::vector<double>(n, 0.0));
+    e.qdd.assign(joints, std::vector<double>(n, 0.0));
+    e.tau.resize(joints);
+    if (s.method == Method::Jacobi) {
+        KernelParams pv = jacobi_params(s, 1, ts), pa = jacobi_params(s, 2, ts);
+        pv.window = info.velocity_window;
+        pa.window = info.acceleration_window;
+        const std::vector<double> wv = design_or_throw(pv), wa = design_or_throw(pa);
+        info.velocity_cutoff = find_cutoff(Span<const double>(wv), ts, 1).frequency;
+        info.acceleration_cutoff = find_cutoff(Span<const double>(wa), ts, 2).frequency;
+        std::vector<double> out(n);
+        for (std::size_t j = 0; j < joints; ++j) {
+            // The central estimate of output k belongs to input sample k + (L - 1) / 2 (odd L).
+            for (auto [weights, target] : {std::pair{&wv, &e.qd[j]}, std::pair{&wa, &e.qdd[j]}}) {
+                const std::size_t outputs = n - weights->size() + 1;
+                const BatchStatus status = signal::differentiate_batch(Span<const double>(*weights), Span<const double>(*log.q[j]),
+                                                                       Span<double>(out.data(), outputs));
+                if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
+                std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
+                          target->begin() + static_cast<std::ptrdiff_t>((weights->size() - 1) / 2));
+            }
+            e.q[j] = *log.q[j];
+            e.tau[j] = *log.tau[j];
+        }
+    } else {
+        // The paper's baseline: positions AND torques through the same forward-backward Butterworth F_q
+        // (filtering only q would leave torque content the regressor lacks), then central Euler differences.
+        const Lowpass fq = signal::design_butterworth_or_throw(s.butterworth_order, info.prefilter_cutoff, ts, "Butterworth prefilter");
+        std::vector<double> workspace;
+        for (std::size_t j = 0; j < joints; ++j) {
+            e.q[j].resize(n);
+            e.tau[j].resize(n);
+            filtfilt_or_throw(fq, log.q[j]->data(), e.q[j].data(), n, workspace);
+            filtfilt_or_throw(fq, log.tau[j]->data(), e.tau[j].data(), n, workspace);
+            euler_first_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qd[j]));
+            euler_second_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qdd[j]));
+        }
+    }
+    // A joint below the motion threshold is standing still: what its estimates contain is encoder
+    // flicker and servo jitter, not excitation. Pinning it (mean position, zero velocity and acceleration)
+    // makes the parameters only its motion excites exactly unidentifiable (zero columns, null
+    // combinations), which the LS then reports, instead of fitting them to noise.
+    for (std::size_t j = 0; j < joints && j < info.joint_moves.size(); ++j) {
+        if (info.joint_moves[j]) continue;
+        double mean = 0.0;
+        for (std::size_t k = e.first; k < e.last; ++k) mean += e.q[j][k];
+        mean /= static_cast<double>(e.last - e.first);
+        std::fill(e.q[j].begin(), e.q[j].end(), mean);
+        std::fill(e.qd[j].begin(), e.qd[j].end(), 0.0);
+        std::fill(e.qdd[j].begin(), e.qdd[j].end(), 0.0);
+    }
+    info.seconds_differentiate = seconds_since(start);
+    return e;
+}
+
+PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s) {
+    PipelineOutput out;
+    out.info = plan_pipeline(log, s);
+    PipelineInfo& info = out.info;
+    if (s.progress) {
+        fmt::print(stderr, "identify [{}]: {} samples, bandwidth {:.3g} Hz{}, F_p {:.3g} Hz, decimation {}\n", to_string(s.method),
+                   log.samples(), info.bandwidth, info.bandwidth_estimated ? " (estimated)" : "", info.decimation_cutoff, info.decimation);
+    }
+    const StateEstimates e = estimate_states(log, s, info);
+    if (s.progress) fmt::print(stderr, "identify [{}]: derivatives in {:.2f} s\n", to_string(s.method), info.seconds_differentiate);
+
+    const int joints = model.joint_count();
+    const int c = model.parameter_count();
+    const double fs = 1.0 / log.sample_period;
+    const Lowpass fp = signal::design_butterworth_or_throw(s.decimation_order, info.decimation_cutoff, log.sample_period, "decimation filter F_p");
+    // Margin: F_p's impulse response decays as exp(-0.38 * 2 pi fc t) for order 4 (slowest pole); 16 / fc
+    // seconds bring a chunk boundary's transient below 1e-16 whatever the order up to 16.
+    const auto margin = static_cast<std::size_t>(std::ceil(16.0 * fs / info.decimation_cutoff * std::max(1.0, s.decimation_order / 4.0)));
+    const std::size_t a0 = info.first, a1 = info.last;
+    const std::size_t keep0 = a0 + info.crop, keep1 = a1 - info.crop;
+    const std::size_t d = static_cast<std::size_t>(info.decimation);
+    const std::size_t chunk = std::max(s.chunk, 4 * margin);
+
+    std::vector<RunningQr> qr;
+    for (int j = 0; j < joints; ++j) qr.emplace_back(c + 1);
+    const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
+    std::vector<std::vector<double>> buffer(columns);
+    std::vector<double> workspace;
+    Eigen::MatrixXd D(joints, c);
+    std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs), row(static_cast<std::size_t>(c + 1));
+    out.plot.y.resize(static_cast<std::size_t>(joints));
+    out.plot.w.resize(static_cast<std::size_t>(joints));
+    double regressor_seconds = 0.0, ls_seconds = 0.0;
+    int reported_tenth = 0;
+    // Decimated samples are k = a0 + m d; the first kept one is the first such k >= keep0.
+    for (std::size_t c0 = keep0; c0 < keep1; c0 += chunk) {
+        const std::size_t c1 = std::min(keep1, c0 + chunk);
+        const std::size_t e0 = c0 >= a0 + margin ? c0 - margin : a0;
+        const std::size_t e1 = std::min(a1, c1 + margin);
+        const std::size_t len = e1 - e0;
+        const auto t0 = Clock::now();
+        for (auto& col : buffer) col.resize(len);
+        for (std::size_t i = 0; i < len; ++i) {
+            const std::size_t k = e0 + i;
+            for (int j = 0; j < joints; ++j) {
+                const auto js = static_cast<std::size_t>(j);
+                qs[js] = e.q[js][k];
+                qds[js] = e.qd[js][k];
+                qdds[js] = e.qdd[js][k];
+            }
+            model.regressor(qs.data(), qds.data(), qdds.data(), D);
+            for (int j = 0; j < joints; ++j) {
+                const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
+                for (int p = 0; p < c; ++p) buffer[base + static_cast<std::size_t>(p)][i] = D(j, p);
+                buffer[base + static_cast<std::size_t>(c)][i] = e.tau[static_cast<std::size_t>(j)][k];
+            }
+        }
+        for (auto& col : buffer) filtfilt_or_throw(fp, col.data(), col.data(), len, workspace);
+        const auto t1 = Clock::now();
+        regressor_seconds += std::chrono::duration<double>(t1 - t0).count();
+        std::size_t k = c0 + (d - (c0 - a0) % d) % d;
+        for (; k < c1; k += d) {
+            const std::size_t i = k - e0;
+            const bool keep_for_plot = out.plot.t.size() < s.plot_rows;
+            if (keep_for_plot) out.plot.t.push_back(log.start_time + static_cast<double>(k) * log.sample_period);
+            for (int j = 0; j < joints; ++j) {
+                const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
+                for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][i];
+                qr[static_cast<std::size_t>(j)].add_row(row.data());
+                if (keep_for_plot) {
+                    out.plot.y[static_cast<std::size_t>(j)].push_back(row[static_cast<std::size_t>(c)]);
+                    out.plot.w[static_cast<std::size_t>(j)].insert(out.plot.w[static_cast<std::size_t>(j)].end(), row.begin(), row.end() - 1);
+                }
+            }
+        }
+        ls_seconds += seconds_since(t1);
+        if (s.progress && keep1 - keep0 > 10 * chunk) {
+            // One line per tenth: readable in a terminal and in a CI log alike.
+            const auto tenth = static_cast<int>(10 * (c1 - keep0) / (keep1 - keep0));
+            if (tenth > reported_tenth) {
+                reported_tenth = tenth;
+                fmt::print(stderr, "identify [{}]: regressor + F_p {} %\n", to_string(s.method), 10 * tenth);
+            }
+        }
+    }
+    const auto t2 = Clock::now();
+    for (auto& f : qr) {
+        out.factors.r.push_back(f.r());
+        out.factors.rows.push_back(f.rows());
+    }
+    ls_seconds += seconds_since(t2);
+    info.seconds_regressor_filter = regressor_seconds;
+    info.seconds_ls = ls_seconds;
+    std::size_t equations = 0;
+    for (auto r : out.factors.rows) equations += r;
+    if (equations <= static_cast<std::size_t>(c)) {
+        throw InputError(fmt::format("{}: only {} equations after decimation for {} parameters: the log is too short", log.source, equations, c));
+    }
+    if (s.progress) {
+        fmt::print(stderr, "identify [{}]: regressor + F_p {:.2f} s, LS {:.2f} s, {} equations\n", to_string(s.method), regressor_seconds,
+                   ls_seconds, equations);
+    }
+    return out;
+}
+
+}  // namespace jacobid::identify

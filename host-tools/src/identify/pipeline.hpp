@@ -1,0 +1,104 @@
+#pragma once
+// The identification pipeline of the paper (Sec. II-B, method-notes §2 and §4) on one log:
+//   1. joint velocities and accelerations from the measured positions: central Jacobi differentiators
+//      whose windows are designed from a wanted cutoff (window_for_cutoff), or the Butterworth baseline
+//      (forward-backward Butterworth on q and tau, then central Euler differences);
+//   2. the regressor W row by row;
+//   3. parallel decimation: Y and every column of W through the same zero-phase low-pass F_p, then every
+//      d-th sample; the samples within h of the ends (invalid derivatives) are cropped BEFORE F_p and F_p's
+//      own end transients after it;
+//   4. rows folded into per-joint running QR factors (memory independent of the log length).
+// F_p runs chunk by chunk with overlapping margins long enough for its impulse response to die out
+// (to ~1e-20), so the whole W is never held in memory and the result equals a whole-record filtfilt.
+// Cutoffs default to multiples of the motion bandwidth estimated from the data (bandwidth.hpp): the
+// differentiators (or F_q) at 10x, F_p at 5x (the paper's rules of thumb, F_p below the differentiators).
+#include <string>
+#include <vector>
+
+#include "identify/least_squares.hpp"
+#include "robot/robot_model.hpp"
+
+namespace jacobid::identify {
+
+enum class Method { Jacobi, Butterworth };
+const char* to_string(Method m);
+
+struct PipelineSettings {
+    Method method = Method::Jacobi;
+    double bandwidth = 0.0;              // Hz; 0: estimated (99 % of the velocity energy)
+    double differentiator_ratio = 10.0;  // differentiator / F_q cutoff = ratio x bandwidth
+    double decimation_ratio = 5.0;       // F_p cutoff = ratio x bandwidth
+    double differentiator_cutoff = 0.0;  // Hz; overrides the ratio
+    double velocity_window = 0.0;        // s; Jacobi windows, override the cutoff
+    double acceleration_window = 0.0;    // s
+    double kappa = 6.0, mu = 6.0;
+    int q = 2;
+    // Exact (polynomial-exact on the sample grid) by default: short windows, e.g. at 100 Hz, have so few
+    // taps that the trapezoidal rule misses the derivative's gain by tens of percent; for long windows
+    // both agree.
+    bool exact_discretization = true;
+    double decimation_cutoff = 0.0;  // Hz; overrides the ratio
+    int decimation = 0;              // factor; 0: about 4 samples per F_p cutoff period
+    int decimation_order = 4;        // Butterworth order of F_p (doubled by forward-backward filtering)
+    int butterworth_order = 4;       // order of F_q in the Butterworth method
+    double min_joint_motion = 1e-3;  // rad: a joint whose position range is smaller "does not move"
+    bool progress = false;           // stage timings on stderr
+    std::size_t chunk = 1 << 16;     // samples per F_p chunk
+    std::size_t plot_rows = 20000;   // decimated rows kept for plots
+};
+
+// The positions and torques of a log, one column per joint (pointers into a CsvTable).
+struct LogColumns {
+    std::string source;
+    double sample_period = 0.0;
+    double start_time = 0.0;
+    std::vector<const std::vector<double>*> q, tau;
+    std::vector<std::string> q_names, tau_names;
+    std::size_t samples() const { return q.empty() ? 0 : q.front()->size(); }
+};
+
+struct PipelineInfo {
+    Method method = Method::Jacobi;
+    double sample_period = 0.0;
+    std::size_t samples = 0;
+    double bandwidth = 0.0;
+    bool bandwidth_estimated = false;
+    double differentiator_cutoff = 0.0;  // wanted
+    double velocity_window = 0.0, acceleration_window = 0.0;  // Jacobi, s
+    double velocity_cutoff = 0.0, acceleration_cutoff = 0.0;  // achieved, Hz
+    double prefilter_cutoff = 0.0;                            // Butterworth F_q, Hz
+    double decimation_cutoff = 0.0;
+    int decimation = 1;
+    std::size_t first = 0, last = 0;  // valid derivative range [first, last) of input samples
+    std::size_t crop = 0;             // F_p edge samples dropped at each end
+    double seconds_differentiate = 0.0, seconds_regressor_filter = 0.0, seconds_ls = 0.0;
+    std::vector<double> joint_range;  // rad
+    std::vector<bool> joint_moves;
+};
+
+// Decimated, filtered rows kept for plots (the first plot_rows of them).
+struct PlotRows {
+    std::vector<double> t;
+    std::vector<std::vector<double>> y;  // per joint
+    std::vector<std::vector<double>> w;  // per joint, row-major rows x parameters
+};
+
+struct PipelineOutput {
+    PipelineInfo info;
+    JointFactors factors;
+    PlotRows plot;
+};
+
+// Full-rate estimates on the valid range, shared by the pipeline and validation.
+struct StateEstimates {
+    std::size_t first = 0, last = 0;  // valid input samples [first, last)
+    std::vector<std::vector<double>> q, qd, qdd, tau;  // per joint, full length (only [first, last) meaningful)
+};
+
+// Resolves automatic choices (bandwidth, cutoffs, windows, decimation) and checks that the log is long
+// enough; InputError names the option or the file otherwise.
+PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& settings);
+StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& settings, PipelineInfo& info);
+PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings);
+
+}  // namespace jacobid::identify

@@ -1,0 +1,43 @@
+#pragma once
+// Presentation of identification results: the paper's Table II layout (X^, 2 sigma, %sigma_r per
+// parameter, methods side by side, optionally next to the truth of a simulation), JSON, and a Markdown
+// report with PNG plots (filtered torque measured vs model, validation).
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "identify/least_squares.hpp"
+#include "identify/pipeline.hpp"
+#include "identify/validation.hpp"
+
+namespace jacobid::identify {
+
+struct MethodResult {
+    PipelineInfo info;
+    LsSolution solution;
+    std::optional<EssentialResult> essential;
+    std::optional<ValidationResult> validation;
+    PlotRows plot;
+};
+
+struct ReportContext {
+    std::string log_source;
+    std::string model_name;
+    std::vector<std::string> joint_names;
+    std::map<std::string, double> truth;  // empty: unknown
+    std::vector<std::string> warnings;
+};
+
+// Human-readable warnings about what cannot be identified (zero columns, null combinations, joints that
+// do not move).
+std::vector<std::string> identifiability_warnings(const MethodResult& result, const std::vector<std::string>& joint_names);
+
+std::string format_table(const std::vector<MethodResult>& results, const ReportContext& context);
+nlohmann::json to_json(const MethodResult& result, const ReportContext& context);
+// Writes DIR/report.md and DIR/torque_<method>_<joint>.png (and validation plots). Throws InputError if
+// DIR cannot be created.
+void write_report(const std::string& directory, const std::vector<MethodResult>& results, const ReportContext& context);
+
+}  // namespace jacobid::identify

@@ -1,0 +1,68 @@
+#include "identify/validation.hpp"
+
+#include <cmath>
+
+#include "identify/pipeline.hpp"
+
+namespace jacobid::identify {
+
+ValidationResult validate_prediction(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings,
+                                     const Eigen::VectorXd& x_in) {
+    PipelineInfo info = plan_pipeline(log, settings);
+    const StateEstimates e = estimate_states(log, settings, info);
+    const Eigen::VectorXd x = x_in.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+    const int joints = model.joint_count();
+    ValidationResult r;
+    r.source = log.source;
+    const auto nj = static_cast<std::size_t>(joints);
+    r.rms_error.assign(nj, 0.0);
+    r.raw_rms_error.assign(nj, 0.0);
+    r.rms_torque.assign(nj, 0.0);
+    r.measured.resize(nj);
+    r.predicted.resize(nj);
+    // Filtered comparison: the identification pipeline on the new log, residual of the given X.
+    PipelineSettings quiet = settings;
+    quiet.progress = false;
+    const PipelineOutput out = run_pipeline(model, log, quiet);
+    double e2 = 0.0, y2 = 0.0;
+    const Eigen::Index c = model.parameter_count();
+    for (std::size_t j = 0; j < nj; ++j) {
+        const Eigen::MatrixXd& f = out.factors.r[j];
+        Eigen::VectorXd v = f.leftCols(c) * x - f.col(c);
+        const double rows = static_cast<double>(out.factors.rows[j]);
+        r.rms_error[j] = v.norm() / std::sqrt(rows);
+        r.rms_torque[j] = f.col(c).norm() / std::sqrt(rows);
+        e2 += v.squaredNorm();
+        y2 += f.col(c).squaredNorm();
+        for (std::size_t k = 0; k < out.plot.t.size(); ++k) {
+            double model_torque = 0.0;
+            for (Eigen::Index p = 0; p < c; ++p) model_torque += out.plot.w[j][k * static_cast<std::size_t>(c) + static_cast<std::size_t>(p)] * x[p];
+            r.measured[j].push_back(out.plot.y[j][k]);
+            r.predicted[j].push_back(model_torque);
+        }
+    }
+    r.t = out.plot.t;
+    r.samples = out.factors.rows.empty() ? 0 : out.factors.rows.front();
+    r.relative_error = y2 > 0 ? std::sqrt(e2 / y2) : 0.0;
+
+    // Raw full-rate comparison over the valid derivative range.
+    Eigen::MatrixXd D(joints, model.parameter_count());
+    std::vector<double> q(nj), qd(nj), qdd(nj);
+    for (std::size_t k = e.first; k < e.last; ++k) {
+        for (std::size_t j = 0; j < nj; ++j) {
+            q[j] = e.q[j][k];
+            qd[j] = e.qd[j][k];
+            qdd[j] = e.qdd[j][k];
+        }
+        model.regressor(q.data(), qd.data(), qdd.data(), D);
+        const Eigen::VectorXd tau = D * x;
+        for (std::size_t j = 0; j < nj; ++j) {
+            const double err = (*log.tau[j])[k] - tau[static_cast<Eigen::Index>(j)];
+            r.raw_rms_error[j] += err * err;
+        }
+    }
+    for (std::size_t j = 0; j < nj; ++j) r.raw_rms_error[j] = std::sqrt(r.raw_rms_error[j] / static_cast<double>(e.last - e.first));
+    return r;
+}
+
+}  // namespace jacobid::identify

@@ -1,0 +1,57 @@
+#include "robot/robot_model.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+namespace jacobid::robot {
+
+int RobotModel::parameter_index(const std::string& name) const {
+    const auto& names = parameter_names();
+    const auto it = std::find(names.begin(), names.end(), name);
+    return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+ForwardDynamics::ForwardDynamics(const RobotModel& model, Eigen::VectorXd parameters)
+    : model_(model),
+      parameters_(std::move(parameters)),
+      D_(model.joint_count(), model.parameter_count()),
+      M_(model.joint_count(), model.joint_count()),
+      zero_(Eigen::VectorXd::Zero(model.joint_count())),
+      unit_(Eigen::VectorXd::Zero(model.joint_count())),
+      bias_(model.joint_count()),
+      rhs_(model.joint_count()),
+      base_(model.joint_count()),
+      llt_(model.joint_count()) {}
+
+const Eigen::MatrixXd& ForwardDynamics::inertia(const double* q) {
+    const Eigen::Index n = model_.joint_count();
+    model_.regressor(q, zero_.data(), zero_.data(), D_);
+    base_.noalias() = D_ * parameters_;  // friction offsets and anything else that does not depend on motion
+    for (Eigen::Index j = 0; j < n; ++j) {
+        unit_.setZero();
+        unit_[j] = 1.0;
+        model_.regressor(q, zero_.data(), unit_.data(), D_);
+        M_.col(j).noalias() = D_ * parameters_;
+        M_.col(j) -= base_;
+    }
+    return M_;
+}
+
+void ForwardDynamics::accelerations(const double* q, const double* qd, const double* tau, double* qdd) {
+    const Eigen::Index n = model_.joint_count();
+    inertia(q);
+    model_.regressor(q, qd, zero_.data(), D_);
+    bias_.noalias() = D_ * parameters_;
+    for (Eigen::Index j = 0; j < n; ++j) rhs_[j] = tau[j] - bias_[j];
+    llt_.compute(M_);
+    rhs_ = llt_.solve(rhs_);
+    for (Eigen::Index j = 0; j < n; ++j) qdd[j] = rhs_[j];
+}
+
+void ForwardDynamics::torques(const double* q, const double* qd, const double* qdd, double* tau) {
+    model_.regressor(q, qd, qdd, D_);
+    rhs_.noalias() = D_ * parameters_;
+    for (Eigen::Index j = 0; j < model_.joint_count(); ++j) tau[j] = rhs_[j];
+}
+
+}  // namespace jacobid::robot

@@ -1,0 +1,51 @@
+#pragma once
+// Host-side robot model interface: any number of joints, any number of base parameters. The identifier
+// and the simulator only see this interface; each concrete model adapts a fixed-size, allocation-free
+// regressor from lib/include/jacobid/robot/.
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace jacobid::robot {
+
+class RobotModel {
+public:
+    virtual ~RobotModel() = default;
+    virtual std::string model_name() const = 0;
+    virtual int joint_count() const = 0;
+    virtual int parameter_count() const = 0;
+    virtual const std::vector<std::string>& parameter_names() const = 0;
+    // D (joint_count x parameter_count) such that tau = D X. q, qd, qdd have joint_count entries.
+    virtual void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const = 0;
+
+    // Index of a parameter by name, -1 if the model has none of that name.
+    int parameter_index(const std::string& name) const;
+};
+
+// Rigid-body forward dynamics from the regressor alone (valid for every model linear in its parameters):
+//   h(q, qd) = D(q, qd, 0) X,  M(q) e_j = D(q, 0, e_j) X - D(q, 0, 0) X,  qdd = M^-1 (tau - h).
+// The column trick needs no model-specific code, so a new model is simulated as soon as its regressor
+// exists. Workspace is preallocated in the constructor; accelerations() does not allocate.
+class ForwardDynamics {
+public:
+    ForwardDynamics(const RobotModel& model, Eigen::VectorXd parameters);
+    const Eigen::VectorXd& parameters() const { return parameters_; }
+    // Inertia matrix at q.
+    const Eigen::MatrixXd& inertia(const double* q);
+    // qdd for the torque tau at state (q, qd).
+    void accelerations(const double* q, const double* qd, const double* tau, double* qdd);
+    // tau = D(q, qd, qdd) X.
+    void torques(const double* q, const double* qd, const double* qdd, double* tau);
+
+private:
+    const RobotModel& model_;
+    Eigen::VectorXd parameters_;
+    Eigen::MatrixXd D_;
+    Eigen::MatrixXd M_;
+    Eigen::VectorXd zero_, unit_, bias_, rhs_, base_;
+    Eigen::LLT<Eigen::MatrixXd> llt_;
+};
+
+}  // namespace jacobid::robot

@@ -1,0 +1,34 @@
+#pragma once
+// What the log records instead of the truth: encoder quantization of the positions, Gaussian noise on the
+// torques (per joint) and an optional position-dependent torque ripple (cogging-like: amplitude *
+// sin(periods * q)), which is a real drive effect the rigid-body model does not contain.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace jacobid::sim {
+
+struct MeasurementSettings {
+    double encoder_counts_per_rev = 65536.0;  // 0: no quantization
+    std::vector<double> torque_noise;         // N.m standard deviation per joint; empty: none
+    std::vector<double> ripple_amplitude;     // N.m per joint; empty: none
+    double ripple_periods_per_rev = 50.0;
+    std::uint64_t seed = 2;
+};
+
+class MeasurementModel {
+public:
+    explicit MeasurementModel(MeasurementSettings settings);
+    const MeasurementSettings& settings() const { return settings_; }
+    // Quantized position: the encoder reports whole counts (rounding to the nearest count).
+    double position(double q) const;
+    // Measured torque of `joint` given the true motor torque and the true position.
+    double torque(std::size_t joint, double tau, double q);
+
+private:
+    MeasurementSettings settings_;
+    std::mt19937_64 rng_;
+    std::normal_distribution<double> normal_{0.0, 1.0};
+};
+
+}  // namespace jacobid::sim
