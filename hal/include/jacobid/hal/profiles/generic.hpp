@@ -1,0 +1,180 @@
+#pragma once
+// Generic signal profile, for devices without a dedicated profile: each quantity is one bit field of
+// one CAN frame, described like a DBC signal but simpler.
+//
+// Layout: the field starts at `byte_offset` and spans ceil((bit_shift + bit_width) / 8) bytes, read as
+// one integer in `order`; the value is (integer >> bit_shift) & (2^bit_width - 1), sign-extended when
+// `is_signed`. bit_shift = 0 gives the common byte-aligned fields; a non-zero shift reaches packed
+// fields (e.g. the MIT velocity: bytes 3..4 big-endian, shift 4, width 12).
+// Physical value = raw * scale + offset. For the position that is the device angle in rad (motor side,
+// before the gear ratio); for the effort a torque in N.m or a current in A (EffortKind).
+// The position field wraps at 2^bit_width counts; it is unwrapped on counts when unwrap_position is set.
+#include <cmath>
+#include <cstdint>
+
+#include "jacobid/hal/byte_codec.hpp"
+#include "jacobid/hal/can_frame.hpp"
+#include "jacobid/hal/joint_state.hpp"
+#include "jacobid/hal/unwrap.hpp"
+
+namespace jacobid::hal::generic {
+
+struct Signal {
+    std::uint32_t can_id = 0;
+    bool extended_id = false;
+    std::uint8_t byte_offset = 0;
+    std::uint8_t bit_width = 16;  // 1..64
+    std::uint8_t bit_shift = 0;   // 0..7
+    bool is_signed = true;
+    ByteOrder order = ByteOrder::LittleEndian;
+    double scale = 1.0;
+    double offset = 0.0;
+    // Optional validity range of the raw value (e.g. a sensor that marks "invalid" with 0x8000).
+    bool check_raw_range = false;
+    std::int64_t raw_min = 0;
+    std::int64_t raw_max = 0;
+
+    std::size_t byte_count() const noexcept { return (static_cast<std::size_t>(bit_shift) + bit_width + 7u) / 8u; }
+};
+
+inline ConfigStatus validate(const Signal& s) noexcept {
+    if ((s.can_id & ~(s.extended_id ? kCanExtendedIdMask : kCanStandardIdMask)) != 0) return ConfigStatus::InvalidCanId;
+    if (s.bit_width < 1 || s.bit_width > 64 || s.bit_shift > 7 || s.byte_count() > 8) return ConfigStatus::InvalidLayout;
+    if (s.byte_offset + s.byte_count() > kCanFdMaxDataLength) return ConfigStatus::InvalidLayout;
+    if (!std::isfinite(s.scale) || s.scale == 0.0 || !std::isfinite(s.offset)) return ConfigStatus::InvalidScale;
+    if (s.check_raw_range && s.raw_min > s.raw_max) return ConfigStatus::InvalidRange;
+    return ConfigStatus::Ok;
+}
+
+inline bool is_signal_frame(const Signal& s, const CanFrame& f) noexcept {
+    return f.id == s.can_id && f.extended() == s.extended_id;
+}
+
+// Raw value of the field (id not checked). Short when the frame ends before the field.
+inline DecodeStatus extract_raw(const Signal& s, const CanFrame& f, std::int64_t& raw) noexcept {
+    if (f.remote() || f.error()) return DecodeStatus::Malformed;
+    if (f.len < s.byte_offset + s.byte_count()) return DecodeStatus::Short;
+    const std::uint64_t word = load_uint(&f.data[s.byte_offset], s.byte_count(), s.order) >> s.bit_shift;
+    raw = s.is_signed ? sign_extend(word, s.bit_width) : static_cast<std::int64_t>(word & low_bits_mask(s.bit_width));
+    if (s.check_raw_range && (raw < s.raw_min || raw > s.raw_max)) return DecodeStatus::OutOfRange;
+    return DecodeStatus::Ok;
+}
+
+// Writes the field, leaving the other bits of its bytes as they are (several signals can share a
+// frame). Grows f.len to cover the field.
+inline void insert_raw(const Signal& s, std::int64_t raw, CanFrame& f) noexcept {
+    if (s.byte_count() == 0 || s.byte_count() > 8 || s.byte_offset + s.byte_count() > kCanFdMaxDataLength) return;
+    std::uint8_t* p = &f.data[s.byte_offset];
+    const std::uint64_t field_mask = low_bits_mask(s.bit_width) << s.bit_shift;
+    std::uint64_t word = load_uint(p, s.byte_count(), s.order);
+    word = (word & ~field_mask) | ((static_cast<std::uint64_t>(raw) << s.bit_shift) & field_mask);
+    store_uint(p, s.byte_count(), s.order, word);
+    const auto end = static_cast<std::uint8_t>(s.byte_offset + s.byte_count());
+    if (f.len < end) f.len = end;
+}
+
+inline double to_physical(const Signal& s, std::int64_t raw) noexcept { return static_cast<double>(raw) * s.scale + s.offset; }
+
+// Nearest raw value, saturated to what the field can hold.
+inline std::int64_t to_raw(const Signal& s, double physical) noexcept {
+    const double r = std::round((physical - s.offset) / s.scale);
+    const unsigned w = s.bit_width;
+    const double lo = s.is_signed ? -std::ldexp(1.0, static_cast<int>(w) - 1) : 0.0;
+    const double hi = s.is_signed ? std::ldexp(1.0, static_cast<int>(w) - 1) - 1.0 : std::ldexp(1.0, static_cast<int>(w)) - 1.0;
+    if (!(r >= lo)) return static_cast<std::int64_t>(lo);  // also NaN
+    if (r >= hi) return w >= 63 ? INT64_MAX : static_cast<std::int64_t>(hi);
+    return static_cast<std::int64_t>(r);
+}
+
+struct JointConfig {
+    Signal position{};
+    bool unwrap_position = true;  // the field wraps at 2^bit_width counts (needs bit_width <= 32)
+    bool has_velocity = false;
+    Signal velocity{};            // device rad/s
+    bool has_effort = true;
+    Signal effort{};              // device N.m or A
+    EffortKind effort_kind = EffortKind::Torque;
+    JointMapping mapping{};
+};
+
+inline ConfigStatus validate(const JointConfig& c) noexcept {
+    for (const Signal* s : {&c.position, c.has_velocity ? &c.velocity : nullptr, c.has_effort ? &c.effort : nullptr}) {
+        if (s == nullptr) continue;
+        if (const ConfigStatus st = validate(*s); st != ConfigStatus::Ok) return st;
+    }
+    if (c.unwrap_position && c.position.bit_width > 32) return ConfigStatus::InvalidLayout;
+    return validate(c.mapping, c.has_effort ? c.effort_kind : EffortKind::Torque);
+}
+
+class JointDecoder {
+public:
+    ConfigStatus configure(const JointConfig& c) noexcept {
+        const ConfigStatus s = validate(c);
+        if (s == ConfigStatus::Ok) {
+            config_ = c;
+            unwrap_.set_modulus(c.unwrap_position ? (1ull << c.position.bit_width) : 0);
+        }
+        return s;
+    }
+    const JointConfig& config() const noexcept { return config_; }
+    void reset() noexcept { unwrap_.reset(); }
+
+    // Position, velocity and effort may share a frame or come in separate ones; every field the frame
+    // carries is checked before any is stored, so a rejected frame changes nothing.
+    DecodeStatus decode(const CanFrame& f, JointState& s) noexcept {
+        const JointConfig& c = config_;
+        const bool pos = is_signal_frame(c.position, f);
+        const bool vel = c.has_velocity && is_signal_frame(c.velocity, f);
+        const bool eff = c.has_effort && is_signal_frame(c.effort, f);
+        if (!pos && !vel && !eff) return DecodeStatus::NotMine;
+        const JointMapping& m = c.mapping;
+        std::int64_t raw_p = 0, raw_v = 0, raw_e = 0;
+        double v = 0.0, tau = 0.0;
+        if (pos) {
+            if (const DecodeStatus st = extract_raw(c.position, f, raw_p); st != DecodeStatus::Ok) return st;
+        }
+        if (vel) {
+            if (const DecodeStatus st = extract_raw(c.velocity, f, raw_v); st != DecodeStatus::Ok) return st;
+            v = link_velocity(m, to_physical(c.velocity, raw_v));
+            if (!(std::abs(v) <= m.max_abs_velocity)) return DecodeStatus::OutOfRange;
+        }
+        if (eff) {
+            if (const DecodeStatus st = extract_raw(c.effort, f, raw_e); st != DecodeStatus::Ok) return st;
+            tau = link_torque(m, c.effort_kind, to_physical(c.effort, raw_e));
+            if (!(std::abs(tau) <= m.max_abs_torque)) return DecodeStatus::OutOfRange;
+        }
+        if (pos) {
+            const std::int64_t counts = c.unwrap_position ? unwrap_.update(raw_p) : raw_p;
+            s.position = link_position(m, to_physical(c.position, counts));
+            mark_position(s, f.timestamp_ns);
+        }
+        if (vel) s.velocity = v;
+        if (eff) {
+            s.torque = tau;
+            mark_torque(s, f.timestamp_ns);
+        }
+        return DecodeStatus::Ok;
+    }
+
+private:
+    JointConfig config_{};
+    CountUnwrapper unwrap_{};
+};
+
+// Simulator side: writes the fields of `f` that belong to its id (position, velocity, effort), wrapping
+// the position to the field width as the device would. Call with a zeroed frame whose id and
+// flags are set, once per CAN id the joint uses.
+inline void encode_fields(const JointConfig& c, double link_q, double link_qd, double link_tau, CanFrame& f) noexcept {
+    const JointMapping& m = c.mapping;
+    if (is_signal_frame(c.position, f)) {
+        const Signal& s = c.position;
+        const double r = std::round((motor_position(m, link_q) - s.offset) / s.scale);
+        // Wrap modulo 2^width (insert_raw keeps the low bits), saturate only when not wrapping.
+        insert_raw(s, c.unwrap_position ? static_cast<std::int64_t>(r) : to_raw(s, motor_position(m, link_q)), f);
+    }
+    if (c.has_velocity && is_signal_frame(c.velocity, f)) insert_raw(c.velocity, to_raw(c.velocity, motor_velocity(m, link_qd)), f);
+    if (c.has_effort && is_signal_frame(c.effort, f))
+        insert_raw(c.effort, to_raw(c.effort, device_effort(m, c.effort_kind, link_tau)), f);
+}
+
+}  // namespace jacobid::hal::generic
