@@ -6,7 +6,7 @@ packages=(
   libeigen3-dev                                   # lib/: the real-time core
   libgpiod-dev                                    # hal/: GPIO lines (libgpiod v1 C API)
   libcli11-dev libfmt-dev libyaml-cpp-dev libfast-float-dev nlohmann-json3-dev libfftw3-dev gnuplot-nox  # host-tools/
-  libgtest-dev libgmock-dev libbenchmark-dev valgrind python3-scipy python3-numpy  # tests, benchmarks, references
+  libgtest-dev libgmock-dev libbenchmark-dev valgrind python3-scipy python3-numpy python3-can  # tests, benchmarks, references
 )
 missing=()
 for p in "${packages[@]}"; do

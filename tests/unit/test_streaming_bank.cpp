@@ -76,6 +76,8 @@ TEST(StreamingBank, EqualsBatchAfterTheCommonDelay) {
         EXPECT_NEAR(out.acceleration[0], batch[2][m - offset[2]], 1e-8);
         EXPECT_DOUBLE_EQ(out.torque[0], 10.0 * x0[m]);  // raw torque aligned to the same instant
         EXPECT_DOUBLE_EQ(out.torque[1], -x1[m]);
+        EXPECT_DOUBLE_EQ(out.raw_position[0], x0[m]);  // the measured position of the same instant
+        EXPECT_DOUBLE_EQ(out.raw_position[1], x1[m]);
     }
     EXPECT_EQ(valid, n - 300);
 }

@@ -21,18 +21,23 @@ TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_nam
                                               table.source(), table.line_of_row(i + 1), column_name, t[i + 1], t[i]));
         }
     }
-    // The sample period from the end points (robust to rounding of individual stamps); each step is then
-    // checked against it, so a gap or a jitter beyond the tolerance is reported at its line.
-    const double ts = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
-    for (std::size_t i = 0; i + 1 < t.size(); ++i) {
-        const double step = t[i + 1] - t[i];
-        if (std::abs(step - ts) > tolerance * ts) {
+    // Each step is checked against the median step (robust: a gap or a burst of jitter cannot shift it),
+    // so the message names the line of the first bad step; the sample period reported is then taken from
+    // the end points, which averages the rounding of individual stamps.
+    std::vector<double> steps(t.size() - 1);
+    for (std::size_t i = 0; i + 1 < t.size(); ++i) steps[i] = t[i + 1] - t[i];
+    std::vector<double> sorted = steps;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        if (std::abs(steps[i] - median) > tolerance * median) {
             throw cli::InputError(fmt::format(
                 "{}:{}: column '{}': time step {:.6g} s differs from the sample period {:.6g} s by more than {:.3g} % "
                 "(non-uniform sampling or lost samples)",
-                table.source(), table.line_of_row(i + 1), column_name, step, ts, 100 * tolerance));
+                table.source(), table.line_of_row(i + 1), column_name, steps[i], median, 100 * tolerance));
         }
     }
+    const double ts = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
     return {ts, t.front(), t.size()};
 }
 

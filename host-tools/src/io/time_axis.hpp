@@ -17,7 +17,7 @@ struct TimeAxis {
 constexpr double kDefaultTimeTolerance = 0.01;
 
 // Checks `time` (column `column_name` of `table`) and returns its sample period. InputError names the line
-// of the first step that is not positive or deviates from the sample period by more than the tolerance.
+// of the first step that is not positive or deviates from the median step by more than the tolerance.
 TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_name, double tolerance = kDefaultTimeTolerance);
 
 }  // namespace jacobid::io

@@ -65,7 +65,8 @@ struct BankOutput {
     Vector position = Vector::Zero();
     Vector velocity = Vector::Zero();
     Vector acceleration = Vector::Zero();
-    Vector torque = Vector::Zero();  // raw torque delayed by the common delay
+    Vector torque = Vector::Zero();        // raw torque delayed by the common delay
+    Vector raw_position = Vector::Zero();  // raw measured position delayed by the common delay
     std::uint64_t sample_index = 0;  // index of the input sample these estimates refer to
     bool valid = false;              // false during warm-up, until every window is full
 };
@@ -138,6 +139,7 @@ public:
             out.velocity[j] = apply(ring, j, kVelocity);
             out.acceleration[j] = apply(ring, j, kAcceleration);
             out.torque[j] = torques_[j].at_lag(common_delay_);
+            out.raw_position[j] = ring.at_lag(common_delay_);
         }
         out.valid = ticks_ >= warmup_;
         out.sample_index = ticks_ > common_delay_ ? ticks_ - 1 - common_delay_ : 0;

@@ -144,6 +144,17 @@ TEST(CliDifferentiate, BadInputGivesOneLineErrorsWithLocation) {
         EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.name << " -> " << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     }
+    // A lost sample in a short log: the step check uses the median step, so the gap itself is named
+    // (samples 0-19 are lines 2-21, sample 21 follows the missing one on line 22), not some line whose step
+    // merely differs from a mean shifted by the gap.
+    std::string lost = "t,q1\n";
+    for (int i = 0; i < 40; ++i) {
+        if (i != 20) lost += std::to_string(i * 0.001) + "," + std::to_string(std::sin(i * 0.01)) + "\n";
+    }
+    write_file(dir / "missing.csv", lost);
+    const auto gap = run_command(kJacobid + " differentiate --in " + (dir / "missing.csv").string() + " --columns q1 --window 0.01");
+    EXPECT_EQ(gap.exit_code, 2);
+    EXPECT_NE(gap.err.find("missing.csv:22: column 't': time step 0.002 s"), std::string::npos) << gap.err;
     write_file(dir / "good.csv", good);
     const std::string base = kJacobid + " differentiate --in " + (dir / "good.csv").string();
     auto missing = run_command(base + " --columns q2 --window 0.02");
