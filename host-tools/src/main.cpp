@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     jacobid::cli::add_differentiate_command(app);
     jacobid::cli::add_paper_sines_command(app);
     jacobid::cli::add_record_command(app);
+    jacobid::cli::add_sim_can_command(app);
 
     try {
         app.parse(argc, argv);

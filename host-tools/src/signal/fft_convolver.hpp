@@ -14,9 +14,9 @@
 // Block size (fft_size N): the power of two nearest to 8 L (see default_fft_size). The cost per output is
 // about (two real FFTs of N + N/2 complex products) / (N - L + 1): with N = 2L half of every FFT is thrown
 // away; beyond ~8L the log2(N) growth of the FFT cost outweighs the shrinking overlap, and the working set
-// (about 24 N bytes) leaves the L1/L2 caches. Measured (docs/performance.md, fft_block_size): 2048 is best
-// for L = 211 (8L = 1688), 4096-8192 for L = 1101 (8L = 8808), while the next power of two above 8L
-// (16384) is 10-15 % slower there.
+// (about 24 N bytes) leaves the L1/L2 caches. Measured (docs/performance.md, "FFT block size"): 2048-4096
+// is best for L = 211 (8L = 1688), 4096-8192 for L = 1101 (8L = 8808); the rule is within 5 % of the best
+// in both builds, while the next power of two above 8L (16384 for 1101 taps) is 10-11 % slower than the best.
 //
 // Host side only: FFTW3 is GPL-2+, the real-time core (lib/) never links it.
 #include <cstddef>
@@ -27,15 +27,16 @@
 
 namespace jacobid::signal {
 
-// How FFTW chooses its algorithm. Estimate plans in microseconds from heuristics; Measure times candidate
-// algorithms (tens of milliseconds per plan here) for a few percent faster transforms. For a one-shot
-// 1e7-sample run Estimate is faster overall (docs/performance.md, "FFTW planning").
+// How FFTW chooses its algorithm. Estimate plans from heuristics (~50-200 us per convolver here, ~2 ms for
+// the first plan of a process); Measure times candidate algorithms (0.3-0.6 s per convolver here) for
+// transforms at most ~6 % faster. For a one-shot 1e7-sample run Estimate is far faster overall
+// (docs/performance.md, "FFTW planning"); Measure pays off only for a convolver reused over ~1e9 samples.
 enum class FftPlanning { Estimate, Measure };
 
 class FftConvolver {
 public:
     // Plans the transforms for `weights` (copied) and a block of `fft_size` samples (0: default_fft_size).
-    // An fft_size that is not larger than the kernel is raised to default_fft_size. Empty weights give a
+    // An fft_size smaller than the kernel is raised to default_fft_size. Empty weights give a
     // convolver whose correlate() returns EmptyKernel. Plan creation is serialized internally (FFTW's
     // planner is not thread-safe); correlate() may run concurrently on one convolver.
     explicit FftConvolver(Span<const double> weights, std::size_t fft_size = 0, FftPlanning planning = FftPlanning::Estimate);
@@ -64,8 +65,8 @@ private:
 // Kernel length from which differentiate_batch uses the FFT path: the measured crossover of the direct path
 // (whose speed depends on the SIMD width this file is compiled for) and the FFT path (FFTW picks its own
 // SIMD code at run time), docs/performance.md "Direct vs FFT crossover". -march=native on the AVX-512
-// machine: equal at ~96 taps; default x86-64 flags (SSE2, no FMA): equal at ~32 taps. AVX2 builds were not
-// measured and get the conservative (lower) value.
+// machine: equal between 64 and 96 taps (FFT 17 % faster at 96); default x86-64 flags (SSE2, no FMA): equal
+// at ~32 taps. AVX2-only builds were not measured; they get the lower value.
 #if defined(__AVX512F__)
 constexpr std::size_t kFftCrossoverTaps = 96;
 #else

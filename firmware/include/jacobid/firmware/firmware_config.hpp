@@ -1,0 +1,99 @@
+#pragma once
+// Configuration of the jacobid firmware (jacobid-fw): plain structs, separate from the cycle's state
+// (Moteus/Pinocchio style: the config is read once at start-up, FirmwareCycle only reads it).
+//
+// Parsing (YAML, with file:line:column errors) lives in firmware_config_yaml.hpp so that this header stays
+// free of yaml-cpp: the simulator side (jacobid sim-can) includes it for the profile defaults below, which
+// is what keeps `sim-can --profile mit` and a firmware joint written as `{profile: mit}` on the same wire
+// encoding.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "jacobid/hal/joint_decoder_set.hpp"
+#include "jacobid/kernel_params.hpp"
+
+namespace jacobid::firmware {
+
+// Compile-time bounds of the cycle (fixed-size storage, nothing allocated after start-up).
+constexpr std::size_t kMaxJoints = 8;
+// Taps of the longest Jacobi window: 0.5 s at 1 kHz.
+constexpr std::size_t kKernelCapacity = 512;
+// Frames one cycle may drain; more stay queued for the next cycle (and are counted as backlog).
+constexpr std::size_t kMaxFramesPerCycle = 64;
+
+enum class ProfileKind { Mit, Cia402, Odrive };
+const char* to_string(ProfileKind p) noexcept;
+
+struct JointConfig {
+    std::string name;
+    ProfileKind profile = ProfileKind::Mit;
+    hal::ProfileConfig decoder;  // the HAL decoder configuration, link-side mapping included
+};
+
+// The Jacobi differentiators of the streaming bank (one design for every joint).
+struct EstimatorConfig {
+    double position_window = 0.02;      // s, n = 0 (q^)
+    double velocity_window = 0.05;      // s, n = 1 (qd^)
+    double acceleration_window = 0.10;  // s, n = 2 (qdd^)
+    double kappa = 6.0, mu = 6.0;
+    int q = 2;
+    double xi = 0.0;  // 0: central (delayed by half the longest window), 1: causal
+    Discretization discretization = Discretization::Exact;
+};
+
+struct StreamConfig {
+    std::string host = "127.0.0.1";
+    std::uint16_t port = 5005;
+    std::string log;  // optional local copy: the datagrams back to back (each is self-delimiting)
+};
+
+struct GpioConfig {
+    bool enabled = false;  // no `gpio:` section: no safety I/O (the stream never carries the e-stop flag)
+    std::string chip = "gpiochip0";
+    unsigned estop_line = 0;
+    unsigned enable_line = 0;
+    unsigned sync_line = 0;
+    bool estop_active_low = true;
+    bool enable_active_low = false;
+};
+
+struct RealtimeConfig {
+    int priority = 80;           // SCHED_FIFO priority; 0: do not ask for SCHED_FIFO
+    int cpu = -1;                // CPU to pin the cycle thread to; -1: no affinity
+    bool lock_memory = true;     // mlockall(MCL_CURRENT | MCL_FUTURE)
+    double report_period = 10.0; // s between jitter/summary lines on stderr; 0: only at exit
+};
+
+struct FirmwareConfig {
+    std::string source = "<defaults>";
+    std::string can_interface = "can0";  // "virtual": in-process bus with no device (dry run)
+    double rate = 1000.0;                // Hz
+    std::uint32_t max_age = 0;           // cycles a joint value may be late before it is stale (0: every cycle)
+    std::vector<JointConfig> joints;
+    EstimatorConfig estimator;
+    StreamConfig stream;
+    GpioConfig gpio;
+    RealtimeConfig realtime;
+
+    double sample_period() const noexcept { return 1.0 / rate; }
+};
+
+// The kernel parameters of channel c (0 q^, 1 qd^, 2 qdd^) for a given estimator config and rate.
+KernelParams kernel_params(const EstimatorConfig& e, double sample_period, int channel) noexcept;
+
+// Defaults of a joint given only its profile and its index (0-based): the same on the firmware and the
+// simulator side. Chosen so that the link-side resolution is realistic for identification (see
+// docs/firmware.md, "Profiles and resolution"):
+//  - MIT: every motor replies on CAN id 0 with data[0] = index + 1 (8-byte replies); ranges +-12.5 rad,
+//    +-65 rad/s, +-30 N.m (motor side, effort = torque); gear ratio 4, so one position code is
+//    25 / 65535 / 4 = 9.5e-5 rad on the link (2^16 counts/rev is 9.6e-5) and one torque code
+//    60 / 4095 * 4 = 0.059 N.m on the link (+-120 N.m: the 2R robot's shoulder needs ~113). Small joints
+//    should narrow effort_range in fw.yaml (and sim-can --config takes the same file).
+//  - CiA 402: node index + 1, TPDO1 (0x180 + node), INT32 position with 2^16 counts per motor turn,
+//    torque actual value in per mille of a 2 N.m rated torque; gear ratio 4.
+//  - ODrive: node index + 1, encoder estimates (float turns) and Iq; Kt 0.083 N.m/A; gear ratio 4.
+hal::ProfileConfig default_profile_config(ProfileKind kind, std::size_t index) noexcept;
+
+}  // namespace jacobid::firmware

@@ -1,0 +1,282 @@
+#include "jacobid/firmware/firmware_cycle.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <variant>
+
+namespace jacobid::firmware {
+
+namespace {
+
+// Whether `f` is addressed to the joint configured by `p`: the same tests as the decoders' NotMine path
+// (hal/profiles/*.hpp), used only to attribute frames to joints for duplicate detection.
+bool claims(const hal::ProfileConfig& p, const hal::CanFrame& f) noexcept {
+    if (const auto* m = std::get_if<hal::mit::JointConfig>(&p)) {
+        return f.id == m->reply_can_id && f.extended() == m->extended_id && f.len >= 1 && f.data[0] == m->motor_id;
+    }
+    if (const auto* c = std::get_if<hal::cia402::JointConfig>(&p)) return !f.extended() && f.id == c->cob_id();
+    if (const auto* o = std::get_if<hal::odrive::JointConfig>(&p)) {
+        const std::uint8_t cmd = hal::odrive::command_of(f.id);
+        return !f.extended() && hal::odrive::node_of(f.id) == o->node_id &&
+               (cmd == hal::odrive::kGetEncoderEstimates || cmd == hal::odrive::kGetIq);
+    }
+    if (const auto* g = std::get_if<hal::generic::JointConfig>(&p)) {
+        return hal::generic::is_signal_frame(g->position, f) || (g->has_velocity && hal::generic::is_signal_frame(g->velocity, f)) ||
+               (g->has_effort && hal::generic::is_signal_frame(g->effort, f));
+    }
+    return false;
+}
+
+}  // namespace
+
+const char* to_string(ProfileKind p) noexcept {
+    switch (p) {
+        case ProfileKind::Mit: return "mit";
+        case ProfileKind::Cia402: return "cia402";
+        case ProfileKind::Odrive: return "odrive";
+    }
+    return "unknown";
+}
+
+KernelParams kernel_params(const EstimatorConfig& e, double sample_period, int channel) noexcept {
+    KernelParams p;
+    p.order = channel;
+    p.kappa = e.kappa;
+    p.mu = e.mu;
+    p.q = e.q;
+    p.window = channel == kPosition ? e.position_window : channel == kVelocity ? e.velocity_window : e.acceleration_window;
+    p.sample_period = sample_period;
+    p.xi = e.xi;
+    p.discretization = e.discretization;
+    return p;
+}
+
+hal::ProfileConfig default_profile_config(ProfileKind kind, std::size_t index) noexcept {
+    const auto id = static_cast<std::uint8_t>(index + 1);
+    hal::JointMapping mapping;
+    mapping.gear_ratio = 4.0;
+    switch (kind) {
+        case ProfileKind::Mit: {
+            hal::mit::JointConfig c;
+            c.reply_can_id = 0;
+            c.motor_id = id;
+            c.ranges = hal::mit::Ranges{-12.5, 12.5, -65.0, 65.0, -30.0, 30.0};
+            c.effort = hal::EffortKind::Torque;
+            c.require_status = true;
+            c.mapping = mapping;
+            return c;
+        }
+        case ProfileKind::Cia402: {
+            hal::cia402::JointConfig c;
+            c.node_id = id;
+            c.layout.effort = hal::cia402::EffortObject::TorqueActual;
+            c.counts_per_revolution = 65536.0;
+            c.rated_torque = 2.0;
+            c.mapping = mapping;
+            return c;
+        }
+        case ProfileKind::Odrive: {
+            hal::odrive::JointConfig c;
+            c.node_id = id;
+            mapping.torque_constant = 8.27 / 100.0;  // Kt = 8.27 / Kv with Kv = 100 rpm/V
+            c.mapping = mapping;
+            return c;
+        }
+    }
+    return hal::mit::JointConfig{};
+}
+
+FirmwareCycle::FirmwareCycle(hal::CanTransport& can, Publisher& publisher, hal::SafetyIo* safety) noexcept
+    : can_(can), publisher_(publisher), safety_(safety) {}
+
+std::string FirmwareCycle::configure(const FirmwareConfig& config) {
+    configured_ = false;
+    if (config.joints.empty()) return "no joints configured";
+    if (config.joints.size() > kMaxJoints) return "more than " + std::to_string(kMaxJoints) + " joints (kMaxJoints)";
+    if (!(config.rate > 0.0)) return "rate must be > 0 Hz";
+    joint_count_ = config.joints.size();
+    sample_period_ = config.sample_period();
+    for (std::size_t j = 0; j < joint_count_; ++j) profiles_[j] = config.joints[j].decoder;
+    const hal::DecoderSetConfigResult d =
+        decoders_.configure(Span<const hal::ProfileConfig>(profiles_.data(), joint_count_), config.max_age);
+    if (d.status != hal::ConfigStatus::Ok) {
+        return "joints[" + std::to_string(d.joint) + "]: " + hal::describe(d.status);
+    }
+    // Padding joints (joint_count_ .. kMaxJoints) get the same kernels and constant zero input: the bank's
+    // joint count is a compile-time size.
+    std::array<JointFilterConfig, kMaxJoints> filters{};
+    for (auto& f : filters) {
+        for (int c = 0; c < kChannelCount; ++c) f.params[static_cast<std::size_t>(c)] = kernel_params(config.estimator, sample_period_, c);
+    }
+    const BankConfigResult b = bank_.configure(filters);
+    if (b.status != BankStatus::Ok) {
+        static constexpr const char* kChannel[] = {"position_window", "velocity_window", "acceleration_window"};
+        std::string why = describe(b.status);
+        if (b.status == BankStatus::InvalidKernel) why += std::string(": ") + describe(b.kernel_status);
+        return std::string("estimator.") + kChannel[b.channel] + ": " + why;
+    }
+    if (bank_.delay_samples() + 1 > delay_line_.size()) return "estimator windows too long for the delay line";
+    position_.setZero();
+    torque_.setZero();
+    last_bad_tick_.fill(0);
+    ticks_ = 0;
+    sequence_ = 0;
+    restart_pending_ = true;
+    enable_request_ = false;
+    was_stopped_ = safety_ != nullptr && safety_->stopped();
+    counters_ = CycleCounters{};
+    datagram_ = Datagram{};
+    datagram_.joint_count = joint_count_;
+    datagram_.sample_period = sample_period_;
+    datagram_.delay_samples = static_cast<std::uint32_t>(bank_.delay_samples());
+    encoded_size_ = 0;
+    configured_ = true;
+    return {};
+}
+
+int FirmwareCycle::owner_of(const hal::CanFrame& f) const noexcept {
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+        if (claims(profiles_[j], f)) return static_cast<int>(j);
+    }
+    return -1;
+}
+
+// Frames of one CAN id twice in a cycle for the same joint: a retransmission or a bus-level duplicate.
+// An identical payload changes nothing (counted only); a different one means two measurements claim one
+// sample, so the sample is flagged as a decode error rather than silently taking the later one.
+void FirmwareCycle::note_decoded(int joint, const hal::CanFrame& f) noexcept {
+    JointCycle& jc = joint_cycle_[static_cast<std::size_t>(joint)];
+    JointCounters& c = counters_.joints[static_cast<std::size_t>(joint)];
+    const std::size_t len = std::min<std::size_t>(f.len, hal::kCanMaxDataLength);
+    for (std::size_t i = 0; i < jc.seen_count; ++i) {
+        SeenFrame& s = jc.seen[i];
+        if (s.id != f.id || s.extended != f.extended()) continue;
+        if (s.len == f.len && std::memcmp(s.data.data(), f.data.data(), len) == 0) {
+            ++c.duplicate_frames;
+            ++counters_.duplicate_frames;
+        } else {
+            ++c.conflicting_duplicates;
+            ++counters_.conflicting_duplicates;
+            jc.conflict = true;
+        }
+        return;
+    }
+    if (jc.seen_count == jc.seen.size()) return;
+    SeenFrame& s = jc.seen[jc.seen_count++];
+    s.id = f.id;
+    s.extended = f.extended();
+    s.len = f.len;
+    std::memcpy(s.data.data(), f.data.data(), len);
+}
+
+void FirmwareCycle::update_safety() noexcept {
+    if (safety_ == nullptr) return;
+    safety_->cycle(enable_request_);
+    // The drives are wanted on: the request rises after one low cycle (SafetyIo re-arms on a low request).
+    enable_request_ = true;
+    const bool stopped = safety_->stopped();
+    if (stopped && !was_stopped_) ++counters_.estop_events;
+    was_stopped_ = stopped;
+}
+
+bool FirmwareCycle::reset_estop() noexcept {
+    if (safety_ == nullptr) return false;
+    const bool cleared = safety_->reset_estop();
+    if (cleared) {
+        enable_request_ = false;
+        was_stopped_ = false;
+    }
+    return cleared;
+}
+
+void FirmwareCycle::stop() noexcept {
+    if (safety_ != nullptr) safety_->stop();
+}
+
+void FirmwareCycle::step(std::int64_t now_ns) noexcept {
+    if (!configured_) return;
+    ++counters_.cycles;
+    // Safety first: an e-stop drops the enable in this cycle whatever happens on the bus.
+    update_safety();
+
+    decoders_.begin_cycle();
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+        joint_cycle_[j].seen_count = 0;
+        joint_cycle_[j].conflict = false;
+    }
+    const hal::DrainResult drained = can_.drain(Span<hal::CanFrame>(frames_.data(), frames_.size()));
+    if (drained.status != hal::CanStatus::Ok) ++counters_.drain_errors;
+    if (drained.count == frames_.size()) ++counters_.backlog_cycles;
+    for (std::size_t i = 0; i < drained.count; ++i) {
+        const hal::CanFrame& f = frames_[i];
+        const int owner = owner_of(f);
+        if (decoders_.dispatch(f) == hal::DecodeStatus::Ok && owner >= 0) note_decoded(owner, f);
+    }
+    counters_.decode = decoders_.counters();
+    counters_.can = can_.counters();
+
+    ++ticks_;
+    SampleRecord& rec = delay_line_[ticks_ % delay_line_.size()];
+    rec.time_ns = now_ns;
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+        const hal::JointState& s = decoders_.state(j);
+        std::uint32_t flags = 0;
+        // A joint that did not deliver this cycle keeps its last value in the bank (a hold, never an
+        // extrapolation) and the sample is flagged; a joint never heard from pushes 0.
+        if (s.stale) flags |= stream::kJointStale;
+        if ((s.decode_error && !s.fresh()) || joint_cycle_[j].conflict) flags |= stream::kJointDecodeError;
+        JointCounters& c = counters_.joints[j];
+        if (flags & stream::kJointStale) ++c.stale_samples;
+        if (flags & stream::kJointDecodeError) ++c.decode_error_samples;
+        if (flags != 0) last_bad_tick_[j] = ticks_;
+        position_[static_cast<Eigen::Index>(j)] = s.position;
+        torque_[static_cast<Eigen::Index>(j)] = s.torque;
+        rec.q[j] = s.position;
+        rec.flags[j] = flags;
+    }
+    bank_.step(position_, torque_, out_);
+    // The first row is the first cycle whose aligned sample exists (tick d + 1).
+    if (ticks_ > bank_.delay_samples()) publish_row(out_);
+}
+
+void FirmwareCycle::publish_row(const Bank::Output& out) noexcept {
+    const std::uint64_t aligned_tick = ticks_ - bank_.delay_samples();
+    const SampleRecord& rec = delay_line_[aligned_tick % delay_line_.size()];
+    // Every sample the bank's windows read is among the newest warmup_samples() ticks.
+    const std::uint64_t window = bank_.warmup_samples();
+    Datagram& d = datagram_;
+    d.sequence = sequence_;
+    d.sample_index = out.sample_index;
+    d.timestamp_ns = rec.time_ns;
+    d.flags = 0;
+    if (restart_pending_) d.flags |= stream::kStreamRestart;
+    if (safety_ != nullptr && safety_->stopped()) d.flags |= stream::kStreamEstop;
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+        const auto i = static_cast<Eigen::Index>(j);
+        stream::JointEstimate& e = d.joints[j];
+        e.q = rec.q[j];
+        e.q_hat = out.position[i];
+        e.qd_hat = out.velocity[i];
+        e.qdd_hat = out.acceleration[i];
+        e.tau = out.torque[i];
+        e.flags = rec.flags[j];
+        if (!out.valid) e.flags |= stream::kJointWarmup;
+        if (last_bad_tick_[j] != 0 && last_bad_tick_[j] + window > ticks_) {
+            e.flags |= stream::kJointWindowStale;
+            ++counters_.joints[j].window_stale_rows;
+        }
+    }
+    if (!out.valid) ++counters_.warmup_rows;
+    if (d.flags & stream::kStreamEstop) ++counters_.estop_rows;
+    const stream::DatagramStatus st = stream::encode(d, Span<std::uint8_t>(encoded_.data(), encoded_.size()), encoded_size_);
+    ++sequence_;
+    if (st != stream::DatagramStatus::Ok) {
+        ++counters_.encode_failures;
+        return;
+    }
+    restart_pending_ = false;
+    if (publisher_.publish(Span<const std::uint8_t>(encoded_.data(), encoded_size_))) ++counters_.datagrams_published;
+    else ++counters_.publish_failures;
+}
+
+}  // namespace jacobid::firmware

@@ -1,0 +1,187 @@
+// The whole chain: closed-loop 2R simulator -> MIT frames on the virtual CAN bus (CanPlayer, the core of
+// `jacobid sim-can`) -> FirmwareCycle -> estimate datagrams -> the recorder of `jacobid record` -> CSV ->
+// `jacobid identify`. The expected values are the simulator's truth (the paper's Table II).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "firmware_test_support.hpp"
+#include "jacobid/firmware/runtime.hpp"
+#include "robot/planar2r_model.hpp"
+#include "robot/robot_description.hpp"
+#include "run_command.hpp"
+#include "scratch_directory.hpp"
+#include "sim/can_player.hpp"
+#include "sim/simulator.hpp"
+#include "stream/recorder.hpp"
+
+namespace {
+
+using namespace jacobid;
+using nlohmann::json;
+
+std::string path(const std::string& name) { return (test::scratch_directory() / name).string(); }
+
+Eigen::VectorXd table2(const robot::RobotModel& model) {
+    const auto* planar = dynamic_cast<const robot::Planar2RModel*>(&model);
+    const auto t = robot::paper_table2_parameters(*planar);
+    return Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
+}
+
+struct ChainResult {
+    std::uint64_t samples = 0;
+    firmware::CycleCounters counters;
+    std::size_t delay = 0;
+    sim::CanPlayerCounters player;
+};
+
+// Runs `seconds` of the simulated robot through the chain; every datagram goes to `publish`.
+// `pace` sleeps so that the datagrams leave at the given rate in wall time (0: as fast as possible).
+ChainResult run_chain(double seconds, firmware::Publisher& publisher, double pace_hz = 0.0) {
+    const robot::RobotDescription robot = robot::default_planar2r_description();
+    const auto model = robot::make_robot_model(robot);
+    sim::SimulationSettings settings;
+    settings.duration = seconds;
+    settings.seed = 7;
+    sim::MeasurementSettings ms;
+    ms.encoder_counts_per_rev = 0.0;  // the MIT position code is the encoder here
+    ms.torque_noise = {0.05, 0.01};
+    ms.seed = 8;
+    sim::MeasurementModel measurement(ms);
+
+    test::TestBus bus;
+    auto* fw_end = bus.attach();
+    auto* sim_end = bus.attach();
+    test::FakeInput estop;
+    test::FakeOutput enable, sync;
+    hal::SafetyIo safety(estop, enable, sync);
+    const firmware::FirmwareConfig config = test::chain_config();
+    auto cycle = std::make_unique<firmware::FirmwareCycle>(*fw_end, publisher, &safety);
+    EXPECT_EQ(cycle->configure(config), "");
+    EXPECT_TRUE(cycle->reset_estop());
+    sim::CanPlayer player(*sim_end, test::profiles_of(config));
+
+    ChainResult result;
+    const auto start = std::chrono::steady_clock::now();
+    sim::simulate(*model, table2(*model), robot.joints, settings, measurement, [&](const sim::SimulatedSample& s) {
+        const auto now = static_cast<std::int64_t>(result.samples) * 1'000'000;
+        bus.set_time_ns(now);
+        player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
+        cycle->step(now);
+        ++result.samples;
+        if (pace_hz > 0.0) {
+            std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(result.samples) / pace_hz));
+        }
+    });
+    result.counters = cycle->counters();
+    result.delay = cycle->delay_samples();
+    result.player = player.counters();
+    return result;
+}
+
+// Feeds the in-process recorder, exactly as `jacobid record` does with what it receives.
+class RecorderPublisher final : public firmware::Publisher {
+public:
+    explicit RecorderPublisher(stream::Recorder& r) : recorder_(r) { buffer_.reserve(65536); }
+    bool publish(Span<const std::uint8_t> d) noexcept override {
+        buffer_.assign(d.data(), d.data() + d.size());
+        recorder_.datagram(buffer_, d.size());
+        return true;
+    }
+
+private:
+    stream::Recorder& recorder_;
+    std::vector<std::uint8_t> buffer_;
+};
+
+double rel_error(const json& j, const std::string& name, double truth) {
+    return std::abs(j["parameters"][name]["value"].get<double>() - truth) / std::abs(truth);
+}
+
+TEST(Chain, SimCanFirmwareRecordIdentifyWithinTheIssueAccuracy) {
+    const std::string log = path("chain.csv");
+    stream::Recorder recorder({log, stream::GapPolicy::Error, true, 32});
+    RecorderPublisher publisher(recorder);
+    const ChainResult r = run_chain(30.0, publisher);
+    recorder.finish();
+
+    EXPECT_EQ(r.samples, 30001u);
+    EXPECT_EQ(r.player.send_failures, 0u);
+    const auto& c = r.counters;
+    EXPECT_EQ(c.datagrams_published, r.samples - r.delay);
+    EXPECT_EQ(c.publish_failures + c.encode_failures, 0u);
+    EXPECT_EQ(c.decode.decoded, 2 * r.samples);
+    EXPECT_EQ(c.decode.frames, c.decode.decoded) << "no frame rejected on a clean bus";
+    EXPECT_EQ(c.joints[0].stale_samples + c.joints[1].stale_samples, 0u);
+    // 0 lost datagrams, every one a row, nothing the recorder would call a hole.
+    EXPECT_EQ(recorder.received(), c.datagrams_published);
+    EXPECT_EQ(recorder.tracker().lost_count(), 0u);
+    EXPECT_EQ(recorder.malformed(), 0u);
+    EXPECT_EQ(recorder.rows_written(), c.datagrams_published);
+    EXPECT_TRUE(recorder.holes().empty());
+
+    std::ofstream(path("robot.yaml")) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
+    const test::CommandResult id = test::run_command(std::string(JACOBID_EXECUTABLE) + " identify --robot " + path("robot.yaml") +
+                                                     " --in " + log + " --method jacobi --format json --quiet");
+    ASSERT_EQ(id.exit_code, 0) << id.err;
+    const json j = json::parse(id.out);
+    std::printf("chain identification: ZZ1R %.4g ZZ2 %.4g MX2 %.4g FC1 %.4g FC2 %.4g, relative error norm %.4g\n",
+                j["parameters"]["ZZ1R"]["value"].get<double>(), j["parameters"]["ZZ2"]["value"].get<double>(),
+                j["parameters"]["MX2"]["value"].get<double>(), j["parameters"]["FC1"]["value"].get<double>(),
+                j["parameters"]["FC2"]["value"].get<double>(), j["relative_error_norm"].get<double>());
+    EXPECT_LT(rel_error(j, "ZZ1R", 3.496), 0.01);
+    EXPECT_LT(rel_error(j, "ZZ2", 0.059), 0.01);
+    EXPECT_LT(rel_error(j, "MX2", 0.124), 0.01);
+    EXPECT_LT(rel_error(j, "FC1", 0.431), 0.05);
+    EXPECT_LT(rel_error(j, "FC2", 0.1268), 0.05);
+    EXPECT_LT(j["relative_error_norm"].get<double>(), 0.02);
+    EXPECT_TRUE(j["settings"]["bandwidth_estimated"].get<bool>());
+}
+
+// The same chain over a real UDP socket into the `jacobid record` executable, paced at 1 kHz wall time
+// (3 s of robot), so the UdpPublisher and the recorder's socket path are part of it: 0 datagrams lost.
+TEST(Chain, UdpPublisherIntoJacobidRecordAtOneKilohertz) {
+    const std::string csv = path("udp.csv"), summary = path("udp.summary.json"), err = path("udp.err");
+    const std::uint16_t port = static_cast<std::uint16_t>(20000 + (::getpid() % 20000));
+    const std::string cmd = std::string(JACOBID_EXECUTABLE) + " record --quiet --udp 127.0.0.1:" + std::to_string(port) + " -o " + csv +
+                            " --summary " + summary + " --idle-timeout 1.5";
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        ::execl("/bin/sh", "sh", "-c", (cmd + " 2>" + err).c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    // Wait for "listening" before sending.
+    for (int i = 0; i < 200; ++i) {
+        std::ifstream e(err);
+        std::stringstream s;
+        s << e.rdbuf();
+        if (s.str().find("listening") != std::string::npos) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    firmware::UdpPublisher udp;
+    ASSERT_EQ(udp.open("127.0.0.1", port), "");
+    const ChainResult r = run_chain(3.0, udp, 1000.0);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    std::ifstream e(err);
+    std::stringstream err_text;
+    err_text << e.rdbuf();
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << err_text.str();
+    EXPECT_EQ(r.counters.publish_failures, 0u);
+    std::ifstream in(summary);
+    const json s = json::parse(in);
+    EXPECT_EQ(s["datagrams"]["received"].get<std::uint64_t>(), r.counters.datagrams_published) << s.dump(2);
+    EXPECT_EQ(s["rows"]["written"].get<std::uint64_t>(), r.counters.datagrams_published) << s.dump(2);
+    EXPECT_EQ(s["datagrams"]["lost"].get<std::uint64_t>(), 0u) << s.dump(2);
+}
+
+}  // namespace

@@ -1,0 +1,101 @@
+// fw.yaml errors: one line naming the file, line, column and the key, for each kind of mistake.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "firmware_test_support.hpp"
+
+namespace {
+
+using namespace jacobid;
+
+std::string error_of(const std::string& yaml) {
+    try {
+        firmware::parse_firmware_config(yaml, "fw.yaml");
+    } catch (const firmware::ConfigError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+const std::string kJoints =
+    "joints:\n"
+    "  - {profile: mit, motor_id: 1}\n"
+    "  - {profile: mit, motor_id: 2}\n";
+const std::string kCan = "can: {interface: can0}\n";
+const std::string kStream = "stream: {host: 127.0.0.1, port: 5005}\n";
+
+TEST(FirmwareConfig, ValidConfigAndDefaults) {
+    const firmware::FirmwareConfig c = test::chain_config(
+        "gpio: {chip: gpiochip0, estop_line: 4, enable_line: 5, sync_line: 6}\n"
+        "realtime: {priority: 70, cpu: 1, report_period: 5}\n");
+    EXPECT_EQ(c.can_interface, "virtual");
+    EXPECT_EQ(c.rate, 1000.0);
+    ASSERT_EQ(c.joints.size(), 2u);
+    EXPECT_EQ(c.joints[0].name, "shoulder");
+    const auto& m = std::get<hal::mit::JointConfig>(c.joints[1].decoder);
+    EXPECT_EQ(m.motor_id, 2);
+    EXPECT_EQ(m.mapping.gear_ratio, 4.0);
+    EXPECT_EQ(m.ranges.t_max, 2.0);
+    EXPECT_EQ(m.ranges.p_max, 12.5);  // default
+    EXPECT_TRUE(c.gpio.enabled);
+    EXPECT_EQ(c.gpio.sync_line, 6u);
+    EXPECT_EQ(c.realtime.priority, 70);
+    EXPECT_EQ(c.realtime.cpu, 1);
+    const firmware::FirmwareConfig d = firmware::parse_firmware_config(kCan + kJoints + kStream, "fw.yaml");
+    EXPECT_FALSE(d.gpio.enabled);
+    EXPECT_EQ(d.estimator.velocity_window, 0.05);
+    EXPECT_EQ(d.realtime.priority, 80);
+    const firmware::FirmwareConfig o = firmware::parse_firmware_config(
+        kCan + "joints:\n  - {profile: cia402, node_id: 3}\n  - {profile: odrive, node_id: 4, torque_constant: 0.1}\n" + kStream, "fw.yaml");
+    EXPECT_EQ(std::get<hal::cia402::JointConfig>(o.joints[0].decoder).cob_id(), 0x183u);
+    EXPECT_EQ(std::get<hal::odrive::JointConfig>(o.joints[1].decoder).mapping.torque_constant, 0.1);
+}
+
+TEST(FirmwareConfig, ErrorsNameTheKeyAndLine) {
+    EXPECT_EQ(error_of(kJoints + kStream), "fw.yaml:1:1: can: missing (required): can: {interface: can0}");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit}\n  - {profile: mit, gear_ratio: 0}\n" + kStream),
+              "fw.yaml:4:32: joints[1].gear_ratio: gear ratio must be finite and non-zero");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit, gear_ration: 4}\n" + kStream), "fw.yaml:3:20: joints[0].gear_ration: unknown key");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: canopen}\n" + kStream),
+              "fw.yaml:3:15: joints[0].profile: 'canopen' is not one of: mit, cia402, odrive");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {motor_id: 1}\n" + kStream),
+              "fw.yaml:3:5: joints[0].profile: missing (required): mit, cia402 or odrive");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit, effort_range: [8, -8]}\n" + kStream),
+              "fw.yaml:3:34: joints[0].effort_range: need finite min < max");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: cia402, node_id: 200}\n" + kStream),
+              "fw.yaml:3:32: joints[0].node_id: must be an integer in 1..127");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: cia402, effort: current, rated_current: 3}\n" + kStream),
+              "fw.yaml:3:5: joints[0].torque_constant: required (N.m/A) with effort: current");
+    EXPECT_EQ(error_of("rate: fast\n" + kCan + kJoints + kStream), "fw.yaml:1:7: rate: expected a number, got 'fast'");
+    EXPECT_EQ(error_of(kCan + kJoints + "stream: {host: 127.0.0.1, port: 70000}\n"),
+              "fw.yaml:5:33: stream.port: must be an integer in 1..65535");
+    EXPECT_EQ(error_of(kCan + kJoints + "stream: {host: 127.0.0.1}\n"), "fw.yaml:5:9: stream.port: missing (required)");
+    // An even number of samples per window puts a central estimate between two samples: not alignable.
+    EXPECT_EQ(error_of(kCan + kJoints + kStream + "estimator:\n  velocity_window: 0.051\n"),
+              "fw.yaml:7:20: estimator.velocity_window: kernel delays h(1-xi) must be whole numbers of samples to be aligned "
+              "(use an odd tap count for central kernels)");
+    EXPECT_EQ(error_of(kCan + kJoints + kStream + "estimator: {acceleration_window: 0.6}\n"),
+              "fw.yaml:6:34: estimator.acceleration_window: window has more taps (round(T/Ts)+1) than the kernel capacity "
+              "(at 1000 Hz; at most 512 taps)");
+    EXPECT_EQ(error_of(kCan + kJoints + kStream + "gpio: {chip: gpiochip0, estop_line: 4, enable_line: 4, sync_line: 6}\n"),
+              "fw.yaml:6:67: gpio.sync_line: estop_line, enable_line and sync_line must be different lines");
+    EXPECT_EQ(error_of(kCan + kJoints + kStream + "realtime: {priority: 120}\n"), "fw.yaml:6:22: realtime.priority: must be an integer in 0..99");
+    EXPECT_EQ(error_of(kCan + kJoints + kStream + "extra: 1\n"), "fw.yaml:6:1: extra: unknown key");
+    EXPECT_EQ(error_of("can: [\n"), "fw.yaml:2:1: invalid YAML: end of sequence flow not found");
+    EXPECT_EQ(error_of(""), "fw.yaml: empty configuration");
+    std::string nine = "joints:\n";
+    for (int i = 0; i < 9; ++i) nine += "  - {profile: mit}\n";
+    EXPECT_EQ(error_of(kCan + nine + kStream), "fw.yaml:3:3: joints: at most 8 joints");
+}
+
+TEST(FirmwareConfig, MissingFileIsNamed) {
+    try {
+        firmware::load_firmware_config("/nonexistent/fw.yaml");
+        FAIL();
+    } catch (const firmware::ConfigError& e) {
+        EXPECT_STREQ(e.what(), "/nonexistent/fw.yaml: cannot open the configuration file");
+    }
+}
+
+}  // namespace
