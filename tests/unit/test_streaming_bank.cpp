@@ -69,7 +69,7 @@ TEST(StreamingBank, EqualsBatchAfterTheCommonDelay) {
         EXPECT_EQ(out.valid, i + 1 >= bank.warmup_samples());
         if (!out.valid) continue;
         ++valid;
-        const std::size_t m = out.sample_index;
+        const auto m = static_cast<std::size_t>(out.sample_index);  // uint64_t; size_t is 32-bit on armhf
         ASSERT_EQ(m, i - 150);
         EXPECT_NEAR(out.position[0], batch[0][m - offset[0]], 1e-12);
         EXPECT_NEAR(out.velocity[0], batch[1][m - offset[1]], 1e-10);

@@ -15,9 +15,13 @@
 #include "identify/pipeline.hpp"
 #include "identify/report.hpp"
 #include "identify/validation.hpp"
+#include "io/candump_joints.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"
+#if JACOBID_WITH_FIRMWARE
+#include "jacobid/firmware/firmware_config_yaml.hpp"
+#endif
 
 namespace jacobid::cli {
 namespace {
@@ -39,12 +43,15 @@ struct IdentifyOptions {
     bool essential_flag = false;
     double rank_tolerance = 1e-7;
     bool quiet = false;
+    double time_tolerance = io::kDefaultTimeTolerance;
+    std::string can_config;
 };
 
-identify::LogColumns columns_of(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column) {
+identify::LogColumns columns_of(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
+                                double time_tolerance) {
     identify::LogColumns log;
     log.source = table.source();
-    const io::TimeAxis axis = io::check_uniform_time(table, time_column);
+    const io::TimeAxis axis = io::check_uniform_time(table, time_column, time_tolerance);
     log.sample_period = axis.sample_period;
     log.start_time = axis.start;
     for (const auto& j : robot.joints) {
@@ -56,6 +63,40 @@ identify::LogColumns columns_of(const io::CsvTable& table, const robot::RobotDes
         log.tau_names.push_back(j.torque_column);
     }
     return log;
+}
+
+// A CSV log, or with --can-config a candump capture decoded by the firmware's joint profiles.
+io::CsvTable read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
+    if (o.can_config.empty()) return io::read_csv(path);
+#if JACOBID_WITH_FIRMWARE
+    firmware::FirmwareConfig fw;
+    try {
+        fw = firmware::load_firmware_config(o.can_config);
+    } catch (const firmware::ConfigError& e) {
+        throw InputError(fmt::format("--can-config {}", e.what()));
+    }
+    if (fw.joints.size() != robot.joints.size()) {
+        throw InputError(fmt::format("--can-config {}: {} joints, but the robot description has {}", o.can_config, fw.joints.size(),
+                                     robot.joints.size()));
+    }
+    std::vector<hal::ProfileConfig> decoders;
+    std::vector<std::string> positions, torques;
+    for (std::size_t j = 0; j < fw.joints.size(); ++j) {
+        decoders.push_back(fw.joints[j].decoder);
+        positions.push_back(robot.joints[j].position_column);
+        torques.push_back(robot.joints[j].torque_column);
+    }
+    io::CandumpJointCounts counts;
+    io::CsvTable table = io::candump_joint_table(io::read_candump_log(path), decoders, positions, torques, o.time_column, path, &counts);
+    if (!o.quiet) {
+        fmt::print(stderr, "{}: {} samples from {} decoded frames ({} frames of other ids and {} error frames skipped)\n", path, counts.samples,
+                   counts.frames_decoded, counts.frames_other_ids, counts.error_frames);
+    }
+    return table;
+#else
+    (void)robot;
+    throw InputError(fmt::format("--can-config: this jacobid was built without the HAL/firmware (JACOBID_BUILD_HAL=OFF), cannot decode {}", path));
+#endif
 }
 
 std::map<std::string, double> read_truth(const std::string& path) {
@@ -81,8 +122,8 @@ void run(IdentifyOptions o) {
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const auto parse_start = Clock::now();
-    const io::CsvTable table = io::read_csv(o.in);
-    const identify::LogColumns log = columns_of(table, robot, o.time_column);
+    const io::CsvTable table = read_log(o.in, robot, o);
+    const identify::LogColumns log = columns_of(table, robot, o.time_column, o.time_tolerance);
     const double parse_seconds = std::chrono::duration<double>(Clock::now() - parse_start).count();
     o.pipeline.progress = !o.quiet && log.samples() > 500'000;
     if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", log.samples(), o.in, parse_seconds);
@@ -90,8 +131,8 @@ void run(IdentifyOptions o) {
     std::unique_ptr<io::CsvTable> validation_table;
     identify::LogColumns validation_log;
     if (!o.validate.empty()) {
-        validation_table = std::make_unique<io::CsvTable>(io::read_csv(o.validate));
-        validation_log = columns_of(*validation_table, robot, o.time_column);
+        validation_table = std::make_unique<io::CsvTable>(read_log(o.validate, robot, o));
+        validation_log = columns_of(*validation_table, robot, o.time_column, o.time_tolerance);
     }
 
     identify::ReportContext ctx;
@@ -174,6 +215,11 @@ void add_identify_command(CLI::App& app) {
     cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table");
     cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors");
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
+    cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
+        ->capture_default_str();
+    cmd->add_option("--can-config", o->can_config,
+                    "jacobid-fw config (YAML) whose joints' CAN profiles, ids, gear ratios and torque constants decode --in and "
+                    "--validate as candump -L captures instead of CSV");
     cmd->add_option("--bandwidth", o->pipeline.bandwidth, "motion bandwidth in Hz (default: estimated, 99 % of the velocity energy)");
     cmd->add_option("--cutoff", o->pipeline.differentiator_cutoff,
                     "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)");

@@ -12,6 +12,7 @@
 #include "cli/command.hpp"
 #include "robot/planar2r_model.hpp"
 #include "robot/robot_description.hpp"
+#include "io/candump_writer.hpp"
 #include "sim/can_player.hpp"
 #include "sim/simulator.hpp"
 
@@ -28,6 +29,7 @@ struct SimCanOptions {
     std::string profile = "mit";
     std::string config;
     std::string iface;
+    std::string candump;
     sim::SimulationSettings settings;
     std::vector<double> torque_noise{0.05, 0.01};
     std::uint64_t noise_seed = 2;
@@ -70,6 +72,32 @@ void run(SimCanOptions o) {
     if (o.torque_noise.size() != n) throw InputError(fmt::format("--torque-noise: expected 1 or {} values, got {}", n, o.torque_noise.size()));
     sim::validate(o.settings);
 
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(model->parameter_count());
+    if (const auto* planar = dynamic_cast<const robot::Planar2RModel*>(model.get())) {
+        const auto t = robot::paper_table2_parameters(*planar);
+        for (int c = 0; c < model->parameter_count(); ++c) x[c] = t[static_cast<std::size_t>(c)];
+    }
+    for (const auto& [name, value] : robot.parameters) x[model->parameter_index(name)] = value;
+    sim::MeasurementSettings ms;
+    ms.encoder_counts_per_rev = 0.0;  // the profile's position code is the quantization
+    ms.torque_noise = o.torque_noise;
+    ms.seed = o.noise_seed;
+    sim::MeasurementModel measurement(ms);
+    const double period_ns = 1e9 / o.settings.output_rate;
+    std::uint64_t k = 0;
+    if (!o.candump.empty()) {
+        // A capture file instead of a bus: simulated time stamps, no pacing (as fast as it computes).
+        io::CandumpWriter writer(o.candump, "can0");
+        sim::CanPlayer player(writer, joints);
+        constexpr std::int64_t kEpoch = 1'700'000'000'000'000'000;  // an arbitrary, realistic capture start
+        sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
+            writer.set_time_ns(kEpoch + static_cast<std::int64_t>(std::llround(static_cast<double>(k++) * period_ns)));
+            player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
+        });
+        if (!o.quiet) fmt::print(stderr, "sim-can: {} samples, {} frames written to {}\n", player.counters().samples, player.counters().frames_sent, o.candump);
+        if (player.counters().send_failures) throw InputError(fmt::format("{}: {} frames could not be written", o.candump, player.counters().send_failures));
+        return;
+    }
     hal::SocketCanTransport can;
     hal::SocketCanConfig sc;
     sc.interface = o.iface.c_str();
@@ -77,24 +105,8 @@ void run(SimCanOptions o) {
         throw InputError(fmt::format("--iface {}: {} (errno {}); the in-process chain test runs the same simulator on the virtual bus",
                                      o.iface, hal::describe(s), can.last_errno()));
     }
-
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(model->parameter_count());
-    if (const auto* planar = dynamic_cast<const robot::Planar2RModel*>(model.get())) {
-        const auto t = robot::paper_table2_parameters(*planar);
-        for (int c = 0; c < model->parameter_count(); ++c) x[c] = t[static_cast<std::size_t>(c)];
-    }
-    for (const auto& [name, value] : robot.parameters) x[model->parameter_index(name)] = value;
-
-    sim::MeasurementSettings ms;
-    ms.encoder_counts_per_rev = 0.0;  // the profile's position code is the quantization
-    ms.torque_noise = o.torque_noise;
-    ms.seed = o.noise_seed;
-    sim::MeasurementModel measurement(ms);
     sim::CanPlayer player(can, joints);
-
-    const double period_ns = 1e9 / o.settings.output_rate;
     const std::int64_t start = monotonic_ns() + 100'000'000;  // first frame 100 ms from now
-    std::uint64_t k = 0;
     if (!o.quiet) fmt::print(stderr, "sim-can: {} joints on {} ({}), {} s at {} Hz\n", n, o.iface, o.config.empty() ? o.profile : o.config,
                              o.settings.duration, o.settings.output_rate);
     sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
@@ -123,7 +135,14 @@ void add_sim_can_command(CLI::App& app) {
         ->check(CLI::IsMember({"mit", "cia402", "odrive"}))
         ->capture_default_str();
     cmd->add_option("--config", o->config, "take the joints' profiles, ids, ranges and gear ratios from this jacobid-fw config (overrides --profile)");
-    cmd->add_option("--iface", o->iface, "CAN interface, e.g. vcan0 or can0")->required();
+    auto* iface = cmd->add_option("--iface", o->iface, "CAN interface, e.g. vcan0 or can0");
+    auto* candump = cmd->add_option("--candump", o->candump,
+                                    "write the frames to this candump -L capture (simulated time stamps) instead of a CAN interface");
+    iface->excludes(candump);
+    cmd->callback([o, iface, candump] {
+        if (iface->count() + candump->count() != 1) throw InputError("sim-can: give exactly one of --iface and --candump");
+        run(*o);
+    });
     cmd->add_option("--duration", o->settings.duration, "simulated (and wall-clock) time in s")->capture_default_str();
     cmd->add_option("--rate", o->settings.output_rate, "frames per joint per second (Hz)")->capture_default_str();
     cmd->add_option("--seed", o->settings.seed, "seed of the random moves")->capture_default_str();
@@ -131,7 +150,6 @@ void add_sim_can_command(CLI::App& app) {
     cmd->add_option("--noise-seed", o->noise_seed, "seed of the torque noise")->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no start message");
     cmd->footer("Positions are quantized by the profile's own codes (MIT: 16 bit over the position range), not by an extra encoder model.");
-    cmd->callback([o] { run(*o); });
 }
 
 }  // namespace jacobid::cli

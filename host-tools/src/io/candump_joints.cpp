@@ -1,0 +1,125 @@
+#include "io/candump_joints.hpp"
+
+#include <fmt/core.h>
+
+#include "cli/command.hpp"
+
+namespace jacobid::io {
+namespace {
+
+using cli::InputError;
+
+// One single-joint decoder set per joint: dispatching to each tells which joint a frame belongs to, which
+// the multi-joint set does not report.
+using OneJoint = hal::JointDecoderSet<1>;
+
+}  // namespace
+
+CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const std::vector<hal::ProfileConfig>& joints,
+                             const std::vector<std::string>& position_columns, const std::vector<std::string>& torque_columns,
+                             const std::string& time_column, const std::string& source, CandumpJointCounts* counts) {
+    const std::size_t n = joints.size();
+    if (n == 0 || position_columns.size() != n || torque_columns.size() != n) {
+        throw InputError(fmt::format("{}: {} CAN joints but {} position and {} torque columns", source, n, position_columns.size(),
+                                     torque_columns.size()));
+    }
+    std::vector<OneJoint> decoders(n);
+    for (std::size_t j = 0; j < n; ++j) {
+        const hal::DecoderSetConfigResult r = decoders[j].configure(Span<const hal::ProfileConfig>(&joints[j], 1));
+        if (r.status != hal::ConfigStatus::Ok) throw InputError(fmt::format("{}: joint {}: {}", source, j + 1, hal::describe(r.status)));
+        decoders[j].begin_cycle();
+    }
+    std::vector<std::string> header{time_column};
+    header.insert(header.end(), position_columns.begin(), position_columns.end());
+    header.insert(header.end(), torque_columns.begin(), torque_columns.end());
+    CsvTable table(source, header);
+    CandumpJointCounts c;
+    std::vector<bool> has_position(n, false), has_torque(n, false);
+    std::vector<std::size_t> first_line(n, 0);
+    std::size_t complete = 0;
+    std::int64_t cycle_time = 0, first_time = 0;
+    bool cycle_open = false;
+    for (const CandumpRecord& rec : records) {
+        if (rec.frame.error()) {
+            ++c.error_frames;
+            continue;
+        }
+        std::size_t owner = n;
+        hal::DecodeStatus status = hal::DecodeStatus::UnknownId;
+        bool position_before = false, torque_before = false;
+        for (std::size_t j = 0; j < n && owner == n; ++j) {
+            position_before = decoders[j].state(0).position_fresh;
+            torque_before = decoders[j].state(0).torque_fresh;
+            const std::int64_t position_time = decoders[j].state(0).position_time_ns;
+            const std::int64_t torque_time = decoders[j].state(0).torque_time_ns;
+            status = decoders[j].dispatch(rec.frame);
+            if (status == hal::DecodeStatus::UnknownId) continue;
+            owner = j;
+            if (status != hal::DecodeStatus::Ok) {
+                throw InputError(fmt::format("{}:{}: frame 0x{:X} of joint {}: {}", source, rec.line, rec.frame.id, j + 1, hal::describe(status)));
+            }
+            const hal::JointState& s = decoders[j].state(0);
+            const bool position_now = s.position_fresh && (!position_before || s.position_time_ns != position_time);
+            const bool torque_now = s.torque_fresh && (!torque_before || s.torque_time_ns != torque_time);
+            if ((position_now && has_position[j]) || (torque_now && has_torque[j])) {
+                std::string missing;
+                for (std::size_t k = 0; k < n; ++k) {
+                    if (!(has_position[k] && has_torque[k])) missing += (missing.empty() ? "" : ", ") + std::to_string(k + 1);
+                }
+                throw InputError(fmt::format("{}:{}: joint {} sends again (its previous frame is on line {}) before joint(s) {} completed the "
+                                             "cycle: a frame was lost or the capture is incomplete",
+                                             source, rec.line, j + 1, first_line[j], missing));
+            }
+            if (!cycle_open) {
+                cycle_open = true;
+                cycle_time = rec.frame.timestamp_ns;
+            }
+            if (!has_position[j] && !has_torque[j]) first_line[j] = rec.line;
+            has_position[j] = has_position[j] || position_now;
+            has_torque[j] = has_torque[j] || torque_now;
+        }
+        if (owner == n) {
+            ++c.frames_other_ids;
+            continue;
+        }
+        ++c.frames_decoded;
+        complete = 0;
+        for (std::size_t j = 0; j < n; ++j) complete += (has_position[j] && has_torque[j]) ? 1 : 0;
+        if (complete < n) continue;
+        if (c.samples == 0) first_time = cycle_time;
+        table.mutable_column(0).push_back(static_cast<double>(cycle_time - first_time) * 1e-9);
+        for (std::size_t j = 0; j < n; ++j) {
+            table.mutable_column(1 + j).push_back(decoders[j].state(0).position);
+            table.mutable_column(1 + n + j).push_back(decoders[j].state(0).torque);
+            decoders[j].begin_cycle();
+            has_position[j] = has_torque[j] = false;
+        }
+        cycle_open = false;
+        ++c.samples;
+    }
+    if (cycle_open) {
+        // An incomplete last cycle (the capture stopped mid-cycle) is reported, not turned into a sample.
+        fmt::print(stderr, "{}: the last cycle is incomplete ({} of {} joints) and is not used\n", source, complete, n);
+    }
+    if (counts) *counts = c;
+    return table;
+}
+
+std::string format_candump_line(const hal::CanFrame& f, const std::string& interface) {
+    const std::int64_t seconds = f.timestamp_ns / 1'000'000'000;
+    const std::int64_t micros = (f.timestamp_ns % 1'000'000'000) / 1000;
+    std::string line = fmt::format("({}.{:06}) {} ", seconds, micros, interface);
+    line += f.extended() ? fmt::format("{:08X}", f.id) : fmt::format("{:03X}", f.id);
+    if (f.fd()) {
+        // candump's FD flags digit: bit 0 bit-rate switch, bit 1 error state indicator.
+        const int fd_flags = ((f.flags & hal::kCanBitRateSwitch) ? 1 : 0) | ((f.flags & hal::kCanErrorStateIndicator) ? 2 : 0);
+        line += fmt::format("##{:X}", fd_flags);
+    } else {
+        line += "#";
+    }
+    if (f.remote()) return line + "R";
+    for (std::size_t i = 0; i < f.len; ++i) line += fmt::format("{:02X}", f.data[i]);
+    return line;
+}
+
+}  // namespace jacobid::io

@@ -1,0 +1,232 @@
+#!/usr/bin/env python3
+"""Boots Debian's stock kernel under qemu (TCG, no KVM) with a busybox initramfs that holds the test
+binaries and one scenario script, and turns what the serial console says into an exit status:
+0 = the scenario printed PASS, 1 = it printed FAIL, 2 = no verdict (the VM did not boot, hung, or
+crashed: a failure too, bounded by --timeout).
+
+Assets (scripts/vm-deps.sh): <assets>/<arch>/vmlinuz, busybox (static), modules/ (the CAN modules).
+Scenario (tests/vm/scenarios/*.sh): a busybox sh script run by /init as root in /tmp, with header lines
+    # modules: can can-raw vcan        kernel modules to load, dependencies first (resolved as well)
+    # binaries: test_hal_vcan ...      names given with --bin NAME=PATH, installed as /bin/NAME
+Its exit status is the verdict. Binaries must be static (the image has no C library).
+"""
+import argparse
+import gzip
+import io
+import os
+import re
+import stat
+import subprocess
+import sys
+import threading
+import time
+
+QEMU = {
+    "x86_64": (["qemu-system-x86_64", "-accel", "tcg", "-cpu", "max"], "ttyS0"),
+    "aarch64": (["qemu-system-aarch64", "-M", "virt", "-cpu", "cortex-a72", "-accel", "tcg"], "ttyAMA0"),
+}
+MARK = "JACOBID-VM:"
+
+
+class Cpio:
+    """newc archive writer: device nodes and root ownership without being root."""
+
+    def __init__(self):
+        self.out = io.BytesIO()
+        self.ino = 1
+
+    def _entry(self, name, mode, data=b"", rdev=(0, 0)):
+        fields = [self.ino, mode, 0, 0, 1, 0, len(data), 0, 0, rdev[0], rdev[1], len(name) + 1, 0]
+        self.ino += 1
+        self.out.write(b"070701" + b"".join(b"%08X" % f for f in fields) + name.encode() + b"\0")
+        self.out.write(b"\0" * (-self.out.tell() % 4))
+        self.out.write(data)
+        self.out.write(b"\0" * (-self.out.tell() % 4))
+
+    def dir(self, name):
+        self._entry(name, stat.S_IFDIR | 0o755)
+
+    def file(self, name, data, mode=0o755):
+        self._entry(name, stat.S_IFREG | mode, data)
+
+    def symlink(self, name, target):
+        self._entry(name, stat.S_IFLNK | 0o777, target.encode())
+
+    def chardev(self, name, major, minor):
+        self._entry(name, stat.S_IFCHR | 0o600, rdev=(major, minor))
+
+    def finish(self):
+        self._entry("TRAILER!!!", 0)
+        return self.out.getvalue()
+
+
+INIT = r"""#!/bin/busybox sh
+/bin/busybox --install -s /bin
+export PATH=/bin HOME=/tmp
+mount -t proc proc /proc
+mount -t sysfs sys /sys
+mount -t devtmpfs dev /dev
+mount -t tmpfs tmp /tmp
+exec </dev/console >/dev/console 2>&1
+echo "MARK booted $(uname -r) $(uname -m) in $(cut -d' ' -f1 /proc/uptime) s"
+for m in $(cat /etc/modules-load); do
+  insmod "/lib/modules/$m" || echo "MARK insmod $m failed"
+done
+ip link set lo up
+cd /tmp
+sh /scenario.sh
+rc=$?
+if [ "$rc" -eq 0 ]; then echo "MARK PASS"; else echo "MARK FAIL (scenario exit $rc)"; fi
+echo "MARK finished at $(cut -d' ' -f1 /proc/uptime) s"
+sync
+poweroff -f
+""".replace("MARK", MARK)
+
+
+def scenario_header(text, key):
+    m = re.search(r"^#[ \t]*%s:[ \t]*(.*)$" % key, text, re.M)
+    return m.group(1).split() if m else []
+
+
+def module_depends(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    m = re.search(rb"(?:^|\0)depends=([^\0]*)\0", data)
+    return [d for d in m.group(1).decode().split(",") if d] if m else []
+
+
+def resolve_modules(moddir, names):
+    """Module files in load order (dependencies first)."""
+    index = {}
+    for dirpath, _, files in os.walk(moddir):
+        for f in files:
+            if f.endswith(".ko"):
+                index[f[:-3].replace("_", "-")] = os.path.join(dirpath, f)
+    order = []
+
+    def visit(name):
+        key = name.replace("_", "-")
+        if key not in index:
+            sys.exit(f"vm: module {name} not found in {moddir}")
+        if index[key] in order:
+            return
+        for dep in module_depends(index[key]):
+            visit(dep)
+        order.append(index[key])
+
+    for n in names:
+        visit(n)
+    return order
+
+
+def build_initramfs(args, scenario_text):
+    assets = os.path.join(args.assets, args.arch)
+    c = Cpio()
+    for d in ["bin", "dev", "etc", "lib", "lib/modules", "proc", "sys", "tmp", "run"]:
+        c.dir(d)
+    c.chardev("dev/console", 5, 1)
+    c.chardev("dev/null", 1, 3)
+    with open(os.path.join(assets, "busybox"), "rb") as f:
+        c.file("bin/busybox", f.read())
+    c.symlink("bin/sh", "busybox")
+    mods = resolve_modules(os.path.join(assets, "modules"), scenario_header(scenario_text, "modules"))
+    for path in mods:
+        with open(path, "rb") as f:
+            c.file("lib/modules/" + os.path.basename(path), f.read(), 0o644)
+    c.file("etc/modules-load", "".join(os.path.basename(p) + "\n" for p in mods).encode(), 0o644)
+    given = dict(b.split("=", 1) for b in args.bin)
+    for name in scenario_header(scenario_text, "binaries"):
+        if name not in given:
+            sys.exit(f"vm: the scenario needs --bin {name}=PATH")
+        with open(given[name], "rb") as f:
+            data = f.read()
+        machine = {"x86_64": 62, "aarch64": 183}[args.arch]
+        if data[:4] == b"\x7fELF" and int.from_bytes(data[18:20], "little") != machine:
+            sys.exit(f"vm: {given[name]} is not an {args.arch} executable")
+        if _is_dynamic(data):
+            sys.exit(f"vm: {given[name]} is dynamically linked; the VM image has no C library (link with -static)")
+        c.file("bin/" + name, data)
+    c.file("init", INIT.encode())
+    c.file("scenario.sh", scenario_text.encode())
+    return gzip.compress(c.finish(), compresslevel=1), [os.path.basename(p) for p in mods]
+
+
+def _is_dynamic(elf):
+    """True when the ELF has a PT_INTERP program header."""
+    import struct
+    if elf[:4] != b"\x7fELF":
+        return False
+    is64, little = elf[4] == 2, elf[5] == 1
+    e = "<" if little else ">"
+    if is64:
+        phoff, = struct.unpack_from(e + "Q", elf, 0x20)
+        phentsize, phnum = struct.unpack_from(e + "HH", elf, 0x36)
+    else:
+        phoff, = struct.unpack_from(e + "I", elf, 0x1C)
+        phentsize, phnum = struct.unpack_from(e + "HH", elf, 0x2A)
+    return any(struct.unpack_from(e + "I", elf, phoff + i * phentsize)[0] == 3 for i in range(phnum))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--arch", required=True, choices=sorted(QEMU))
+    p.add_argument("--assets", required=True)
+    p.add_argument("--scenario", required=True)
+    p.add_argument("--bin", action="append", default=[], metavar="NAME=PATH")
+    p.add_argument("--work", required=True, help="directory for the initramfs and the console log")
+    p.add_argument("--timeout", type=float, default=300.0, help="seconds from start to power-off")
+    p.add_argument("--memory", default="512")
+    p.add_argument("--smp", default="1")
+    p.add_argument("--quiet", action="store_true", help="print only the scenario's lines and the verdict")
+    args = p.parse_args()
+
+    assets = os.path.join(args.assets, args.arch)
+    if not os.path.exists(os.path.join(assets, "vmlinuz")):
+        print(f"vm: no kernel in {assets}: run scripts/vm-deps.sh first", file=sys.stderr)
+        return 2
+    with open(args.scenario) as f:
+        scenario_text = f.read()
+    name = os.path.splitext(os.path.basename(args.scenario))[0]
+    os.makedirs(args.work, exist_ok=True)
+    initrd = os.path.join(args.work, f"{args.arch}-{name}.cpio.gz")
+    log_path = os.path.join(args.work, f"{args.arch}-{name}.console.log")
+    image, mods = build_initramfs(args, scenario_text)
+    with open(initrd, "wb") as f:
+        f.write(image)
+
+    qemu, console = QEMU[args.arch]
+    cmd = qemu + ["-m", args.memory, "-smp", args.smp, "-nographic", "-no-reboot", "-monitor", "none",
+                  "-kernel", os.path.join(assets, "vmlinuz"), "-initrd", initrd,
+                  "-append", f"console={console} panic=-1 quiet loglevel=3"]
+    print(f"vm: {args.arch} {name}: {len(image) // 1024} KiB initramfs, modules {' '.join(mods) or '-'}; "
+          f"console log {log_path}", flush=True)
+    start = time.monotonic()
+    verdict = None
+    with open(log_path, "w") as log:
+        proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        timer = threading.Timer(args.timeout, proc.kill)
+        timer.start()
+        try:
+            for raw in proc.stdout:
+                line = raw.decode(errors="replace").rstrip("\r\n")
+                log.write(line + "\n")
+                if MARK in line:
+                    m = re.search(MARK + r" (PASS|FAIL.*)$", line)
+                    if m and verdict is None:
+                        verdict = m.group(1)
+                if not args.quiet or MARK in line or re.search(r"^\[ *(OK|FAILED|PASSED|SKIPPED) *\]|Failure|\.cpp:\d+", line):
+                    print(f"  [{args.arch} {time.monotonic() - start:6.1f}s] {line}", flush=True)
+        finally:
+            proc.wait()
+            timer.cancel()
+    elapsed = time.monotonic() - start
+    if verdict is None:
+        why = "timed out" if elapsed >= args.timeout else f"qemu exited with {proc.returncode}"
+        print(f"vm: {args.arch} {name}: NO VERDICT ({why} after {elapsed:.0f} s; did the VM boot?) - see {log_path}")
+        return 2
+    print(f"vm: {args.arch} {name}: {verdict} in {elapsed:.0f} s")
+    return 0 if verdict == "PASS" else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
