@@ -8,7 +8,13 @@ Assets (scripts/vm-deps.sh): <assets>/<arch>/vmlinuz, busybox (static), modules/
 Scenario (tests/vm/scenarios/*.sh): a busybox sh script run by /init as root in /tmp, with header lines
     # modules: can can-raw vcan        kernel modules to load, dependencies first (resolved as well)
     # binaries: test_hal_vcan ...      names given with --bin NAME=PATH, installed as /bin/NAME
-Its exit status is the verdict. Binaries must be static (the image has no C library).
+    # dynamic: jacobid jacobid-fw      the same, dynamically linked: installed with every shared library
+                                       `ldd` lists and the ELF interpreter, each at its build-machine path
+    # memory: 1024   # smp: 2          qemu -m / -smp unless given on the command line (default 512 / 1)
+    # qemu: -icount shift=1            more qemu options (after the harness's own)
+    # cmdline: preempt=full            more kernel command line
+Its exit status is the verdict. `binaries` must be static; `dynamic` ones must run on the build machine
+(ldd resolves their libraries there), i.e. a native build for the VM's architecture.
 """
 import argparse
 import gzip
@@ -144,11 +150,47 @@ def build_initramfs(args, scenario_text):
         if data[:4] == b"\x7fELF" and int.from_bytes(data[18:20], "little") != machine:
             sys.exit(f"vm: {given[name]} is not an {args.arch} executable")
         if _is_dynamic(data):
-            sys.exit(f"vm: {given[name]} is dynamically linked; the VM image has no C library (link with -static)")
+            sys.exit(f"vm: {given[name]} is dynamically linked; the VM image has no C library (link with -static, or list it under '# dynamic:')")
         c.file("bin/" + name, data)
+    dynamic = scenario_header(scenario_text, "dynamic")
+    made = {"bin", "dev", "etc", "lib", "lib/modules", "proc", "sys", "tmp", "run"}
+    for name in dynamic:
+        if name not in given:
+            sys.exit(f"vm: the scenario needs --bin {name}=PATH")
+        with open(given[name], "rb") as f:
+            data = f.read()
+        machine = {"x86_64": 62, "aarch64": 183}[args.arch]
+        if data[:4] != b"\x7fELF" or int.from_bytes(data[18:20], "little") != machine:
+            sys.exit(f"vm: {given[name]} is not an {args.arch} executable")
+        c.file("bin/" + name, data)
+    for lib in shared_libraries([given[n] for n in dynamic]):
+        parts = lib.strip("/").split("/")
+        for i in range(1, len(parts)):
+            d = "/".join(parts[:i])
+            if d not in made:
+                c.dir(d)
+                made.add(d)
+        with open(lib, "rb") as f:  # the file itself where the path is a symlink
+            c.file("/".join(parts), f.read())
     c.file("init", INIT.encode())
     c.file("scenario.sh", scenario_text.encode())
     return gzip.compress(c.finish(), compresslevel=1), [os.path.basename(p) for p in mods]
+
+
+def shared_libraries(executables):
+    """Every shared library and ELF interpreter the executables load, as `ldd` resolves them here."""
+    libs = []
+    for exe in executables:
+        r = subprocess.run(["ldd", exe], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        if r.returncode != 0 or "=>" not in r.stdout:
+            sys.exit(f"vm: ldd {exe} failed (static, or not runnable on this machine?):\n{r.stdout}")
+        for line in r.stdout.splitlines():
+            if "not found" in line:
+                sys.exit(f"vm: {exe}: shared library {line.split()[0]} not found")
+            m = re.match(r"\s*(?:\S+\s+=>\s+)?(/\S+)\s+\(0x", line)  # "libm.so.6 => /lib/.. (0x..)", "/lib64/ld-.. (0x..)"
+            if m and m.group(1) not in libs:
+                libs.append(m.group(1))
+    return libs
 
 
 def _is_dynamic(elf):
@@ -175,8 +217,8 @@ def main():
     p.add_argument("--bin", action="append", default=[], metavar="NAME=PATH")
     p.add_argument("--work", required=True, help="directory for the initramfs and the console log")
     p.add_argument("--timeout", type=float, default=300.0, help="seconds from start to power-off")
-    p.add_argument("--memory", default="512")
-    p.add_argument("--smp", default="1")
+    p.add_argument("--memory", help="MiB (default: the scenario's '# memory:' header, else 512)")
+    p.add_argument("--smp", help="CPUs (default: the scenario's '# smp:' header, else 1)")
     p.add_argument("--quiet", action="store_true", help="print only the scenario's lines and the verdict")
     args = p.parse_args()
 
@@ -186,6 +228,8 @@ def main():
         return 2
     with open(args.scenario) as f:
         scenario_text = f.read()
+    args.memory = args.memory or (scenario_header(scenario_text, "memory") or ["512"])[0]
+    args.smp = args.smp or (scenario_header(scenario_text, "smp") or ["1"])[0]
     name = os.path.splitext(os.path.basename(args.scenario))[0]
     os.makedirs(args.work, exist_ok=True)
     initrd = os.path.join(args.work, f"{args.arch}-{name}.cpio.gz")
@@ -197,7 +241,7 @@ def main():
     qemu, console = QEMU[args.arch]
     cmd = qemu + ["-m", args.memory, "-smp", args.smp, "-nographic", "-no-reboot", "-monitor", "none",
                   "-kernel", os.path.join(assets, "vmlinuz"), "-initrd", initrd,
-                  "-append", f"console={console} panic=-1 quiet loglevel=3"]
+                  "-append", " ".join([f"console={console} panic=-1 quiet loglevel=3"] + scenario_header(scenario_text, "cmdline"))] + scenario_header(scenario_text, "qemu")
     print(f"vm: {args.arch} {name}: {len(image) // 1024} KiB initramfs, modules {' '.join(mods) or '-'}; "
           f"console log {log_path}", flush=True)
     start = time.monotonic()
