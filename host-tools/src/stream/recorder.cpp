@@ -143,6 +143,7 @@ void Recorder::open_segment(const HostDatagram& first) {
     }
     header += ",seq,stream_flags";
     for (std::size_t j = 1; j <= n; ++j) header += fmt::format(",flags{}", j);
+    header += ",t_wake";
     *out_ << header << '\n';
 }
 
@@ -185,9 +186,15 @@ void Recorder::row(const HostDatagram& d) {
     if (!time_origin_set_) {
         time_origin_set_ = true;
         time_origin_ns_ = d.timestamp_ns;
+        time_origin_index_ = d.sample_index;
     }
     if (!out_) open_segment(d);
-    std::string line = relative_seconds(d.timestamp_ns - time_origin_ns_);
+    // t is the nominal sample time, sample index x sample period: the controller samples once per cycle and
+    // the identifier models uniform sampling; the measured wake-up time of the cycle (jitter of tens of us,
+    // more than the identifier's 1 % step tolerance at 1 kHz) is kept in t_wake at the end of the row.
+    // A skipped controller cycle still shows as a gap in t.
+    const auto index = static_cast<double>(static_cast<std::int64_t>(d.sample_index - time_origin_index_));
+    std::string line = fmt::format("{:.17g}", index * d.sample_period);
     const std::size_t n = d.joint_count;
     for (std::size_t j = 0; j < n; ++j) line += fmt::format(",{:.17g}", d.joints[j].q);
     for (std::size_t j = 0; j < n; ++j) line += fmt::format(",{:.17g}", d.joints[j].tau);
@@ -198,6 +205,7 @@ void Recorder::row(const HostDatagram& d) {
     }
     line += fmt::format(",{},{}", d.sequence, d.flags);
     for (std::size_t j = 0; j < n; ++j) line += fmt::format(",{}", d.joints[j].flags);
+    line += "," + relative_seconds(d.timestamp_ns - time_origin_ns_);
     *out_ << line << '\n';
     ++rows_written_;
     ++files_.back().rows;

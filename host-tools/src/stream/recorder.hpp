@@ -88,6 +88,7 @@ private:
     std::uint32_t delay_samples_ = 0;
     bool time_origin_set_ = false;
     std::int64_t time_origin_ns_ = 0;
+    std::uint64_t time_origin_index_ = 0;  // controller sample index of the first row
 
     std::uint64_t received_ = 0;
     std::uint64_t malformed_total_ = 0;

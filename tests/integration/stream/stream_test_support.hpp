@@ -31,11 +31,15 @@ constexpr std::int64_t kPeriodNs = 1000000;              // 1 kHz
 inline double q_of(std::uint64_t seq, std::size_t j) { return std::sin(0.001 * static_cast<double>(seq) + static_cast<double>(j)); }
 inline double tau_of(std::uint64_t seq, std::size_t j) { return 0.5 * std::cos(0.002 * static_cast<double>(seq)) - static_cast<double>(j); }
 
+// Wake-up jitter of the controller cycle that stamped the datagram: up to 78 us, as on a real loop; the
+// recorder's t must not see it (nominal sample time), its t_wake must.
+inline std::int64_t wake_jitter_ns(std::uint64_t seq) { return static_cast<std::int64_t>(seq % 7) * 13'000; }
+
 inline Datagram make_datagram(std::uint64_t seq, std::size_t joints = 2) {
     Datagram d;
     d.sequence = seq;
     d.sample_index = 5000 + seq;
-    d.timestamp_ns = kStartNs + static_cast<std::int64_t>(seq) * kPeriodNs;
+    d.timestamp_ns = kStartNs + static_cast<std::int64_t>(seq) * kPeriodNs + wake_jitter_ns(seq);
     d.sample_period = 1e-3;
     d.delay_samples = 100;
     d.joint_count = joints;

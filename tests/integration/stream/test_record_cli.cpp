@@ -71,7 +71,10 @@ void expect_rows_match_datagrams(const jacobid::io::CsvTable& t, std::uint64_t f
     for (std::size_t r = 0; r < t.rows(); ++r) {
         const std::uint64_t s = seq[r];
         SCOPED_TRACE("row with seq " + std::to_string(s));
-        EXPECT_NEAR(t.column("t")[r], 1e-3 * static_cast<double>(s - first_seq), 1e-12);
+        EXPECT_NEAR(t.column("t")[r], 1e-3 * static_cast<double>(s - first_seq), 1e-12);  // nominal: sample index x Ts
+        const double wake = 1e-3 * static_cast<double>(s - first_seq) +
+                            1e-9 * static_cast<double>(jacobid::test::wake_jitter_ns(s) - jacobid::test::wake_jitter_ns(first_seq));
+        EXPECT_NEAR(t.column("t_wake")[r], wake, 1e-12);  // the datagrams' own stamps, relative to the first row
         for (std::size_t j = 0; j < 2; ++j) {
             EXPECT_EQ(t.column("q" + std::to_string(j + 1))[r], jacobid::test::q_of(s, j));
             EXPECT_EQ(t.column("tau" + std::to_string(j + 1))[r], jacobid::test::tau_of(s, j));
@@ -202,7 +205,7 @@ TEST(RecordCli, CompleteStreamWithEstimatesEstopAndWarmup) {
     EXPECT_NE(r.err.find("7 row(s) recorded while the e-stop was active"), std::string::npos) << r.err;
     const auto table = jacobid::io::read_csv(path("estimates.csv"));
     const std::vector<std::string> header = {"t", "q1", "q2", "tau1", "tau2", "q1_hat", "q2_hat", "qd1_hat", "qd2_hat", "qdd1_hat",
-                                             "qdd2_hat", "seq", "stream_flags", "flags1", "flags2"};
+                                             "qdd2_hat", "seq", "stream_flags", "flags1", "flags2", "t_wake"};
     EXPECT_EQ(table.header(), header);
     expect_rows_match_datagrams(table, 7);
     for (std::size_t row = 0; row < table.rows(); ++row) {
