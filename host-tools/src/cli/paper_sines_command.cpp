@@ -86,7 +86,7 @@ void run(const PaperSinesOptions& o) {
         k.discretization = o.discretization;
         const KernelParams p = to_kernel_params(k);
         jacobi_weights[d] = design_kernel_or_throw(p);
-        methods[0].estimates[d] = signal::jacobi_estimate(p, x, "paper-sines signal");
+        methods[0].estimates[d] = signal::jacobi_estimate(p, jacobi_weights[d], x, "paper-sines signal");
         // Both methods are compared on the common interior (below), which the Jacobi half windows set;
         // the Butterworth filter runs over the whole record with scipy's odd padding at the ends.
         methods[1].estimates[d] = signal::butterworth_euler_estimate(sos, d + 1, o.ts, x, 0, "paper-sines signal");

@@ -9,6 +9,7 @@
 #include "jacobid/baseline/filtfilt.hpp"
 #include "jacobid/batch_differentiate.hpp"
 #include "jacobid/kernel_design.hpp"
+#include "signal/fft_convolver.hpp"
 
 namespace jacobid::signal {
 
@@ -16,13 +17,18 @@ Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& 
     std::vector<double> weights(tap_count(params));
     const KernelStatus ks = design_kernel(params, Span<double>(weights));
     if (ks != KernelStatus::Ok) throw cli::InputError(fmt::format("{}: {}", what, describe(ks)));
+    return jacobi_estimate(params, weights, x, what);
+}
+
+Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& weights, const std::vector<double>& x,
+                         const std::string& what) {
     if (x.size() < weights.size()) {
         throw cli::InputError(fmt::format("{}: {} samples, shorter than the differentiator window of {} taps ({} s)", what, x.size(),
                                           weights.size(), static_cast<double>(weights.size() - 1) * params.sample_period));
     }
     Estimate e;
     e.values.resize(batch_output_size(x.size(), weights.size()));
-    const BatchStatus bs = differentiate_direct(Span<const double>(weights), Span<const double>(x), Span<double>(e.values));
+    const BatchStatus bs = differentiate_batch(Span<const double>(weights), Span<const double>(x), Span<double>(e.values));
     if (bs != BatchStatus::Ok) throw cli::InputError(fmt::format("{}: {}", what, describe(bs)));
     e.first_index = batch_offset_samples(weights.size(), params.xi);
     return e;

@@ -17,8 +17,11 @@ struct Estimate {
 };
 
 // Jacobi estimate of x^(n) with the kernel of `params`; throws InputError naming `what` when x is shorter
-// than the window.
+// than the window. Long kernels go through the FFT path (differentiate_batch).
 Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& x, const std::string& what);
+// The same with weights already designed from `params` (oldest sample first).
+Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& weights, const std::vector<double>& x,
+                         const std::string& what);
 
 // Forward-backward Butterworth, then the central Euler difference of `order` (0, 1 or 2). The first and
 // last `crop` samples (the filter's end transients) and the ends without a central difference are dropped.
