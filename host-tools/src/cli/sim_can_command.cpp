@@ -10,7 +10,6 @@
 #include <memory>
 
 #include "cli/command.hpp"
-#include "robot/planar2r_model.hpp"
 #include "robot/robot_description.hpp"
 #include "io/candump_writer.hpp"
 #include "sim/can_player.hpp"
@@ -72,12 +71,7 @@ void run(SimCanOptions o) {
     if (o.torque_noise.size() != n) throw InputError(fmt::format("--torque-noise: expected 1 or {} values, got {}", n, o.torque_noise.size()));
     sim::validate(o.settings);
 
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(model->parameter_count());
-    if (const auto* planar = dynamic_cast<const robot::Planar2RModel*>(model.get())) {
-        const auto t = robot::paper_table2_parameters(*planar);
-        for (int c = 0; c < model->parameter_count(); ++c) x[c] = t[static_cast<std::size_t>(c)];
-    }
-    for (const auto& [name, value] : robot.parameters) x[model->parameter_index(name)] = value;
+    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
     sim::MeasurementSettings ms;
     ms.encoder_counts_per_rev = 0.0;  // the profile's position code is the quantization
     ms.torque_noise = o.torque_noise;

@@ -10,7 +10,6 @@
 
 #include "cli/command.hpp"
 #include "cli/output_file.hpp"
-#include "robot/planar2r_model.hpp"
 #include "robot/robot_description.hpp"
 #include "sim/simulator.hpp"
 
@@ -78,15 +77,8 @@ void run(SimulateOptions o) {
     const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
-    // Truth: the paper's Table II unless the description lists parameters (missing ones stay at Table II).
-    Eigen::VectorXd x(model->parameter_count());
-    if (const auto* planar = dynamic_cast<const robot::Planar2RModel*>(model.get())) {
-        const auto table = robot::paper_table2_parameters(*planar);
-        for (int c = 0; c < model->parameter_count(); ++c) x[c] = table[static_cast<std::size_t>(c)];
-    } else {
-        x.setZero();
-    }
-    for (const auto& [name, value] : robot.parameters) x[model->parameter_index(name)] = value;
+    // Truth: the model's reference values (Table II for planar2r) unless the description lists parameters.
+    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
 
     auto per_joint = [&](std::vector<double> v, const char* option) {
         if (v.empty()) return std::vector<double>(static_cast<std::size_t>(n), 0.0);

@@ -172,6 +172,20 @@ std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
     throw InputError(fmt::format("{}: unknown model '{}' (known models: planar2r)", d.source, d.model));
 }
 
+Eigen::VectorXd true_parameters(const RobotDescription& d, const RobotModel& model) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
+    if (const auto* planar = dynamic_cast<const Planar2RModel*>(&model)) {
+        const auto table = paper_table2_parameters(*planar);
+        for (int c = 0; c < model.parameter_count(); ++c) x[c] = table[static_cast<std::size_t>(c)];
+    }
+    for (const auto& [name, value] : d.parameters) {
+        const int index = model.parameter_index(name);
+        if (index < 0) throw InputError(fmt::format("{}: parameters: model {} has no parameter '{}'", d.source, model.model_name(), name));
+        x[index] = value;
+    }
+    return x;
+}
+
 std::string to_yaml(const RobotDescription& d) {
     std::string s = fmt::format("model: {}\nL1: {}\njoints:\n", d.model, d.L1);
     for (const auto& j : d.joints) {

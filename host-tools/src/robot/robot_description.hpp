@@ -14,6 +14,7 @@
 //   parameters: {ZZ1R: 3.496, ...}  # optional: true values, used by `jacobid simulate`
 //
 // Errors are InputError "file:line:column: message" naming the key.
+#include <Eigen/Core>
 #include <map>
 #include <memory>
 #include <string>
@@ -50,6 +51,10 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
 
 // The model the description names. InputError for an unknown model.
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& description);
+
+// True parameter values for simulation, in model order: the model's reference values (the paper's Table II
+// for planar2r), overridden by the description's `parameters`.
+Eigen::VectorXd true_parameters(const RobotDescription& description, const RobotModel& model);
 
 // The description as YAML (round-trips through parse_robot_description).
 std::string to_yaml(const RobotDescription& description);

@@ -1,0 +1,1 @@
+# Model-discrepancy diagnosis (`jacobid diagnose`, included by host-tools/CMakeLists.txt).

@@ -1,0 +1,7 @@
+# Closed-loop simulation (included by host-tools/CMakeLists.txt).
+target_sources(jacobid_host PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/quintic_trajectory.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/measurement.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/simulator.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/can_player.cpp
+)
