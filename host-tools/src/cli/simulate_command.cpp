@@ -11,6 +11,8 @@
 #include "cli/command.hpp"
 #include "cli/output_file.hpp"
 #include "robot/robot_description.hpp"
+#include "sim/augmented_model.hpp"
+#include "sim/effect_spec.hpp"
 #include "sim/simulator.hpp"
 
 namespace jacobid::cli {
@@ -28,6 +30,8 @@ struct SimulateOptions {
     double ripple_periods = 50.0;
     std::uint64_t noise_seed = 2;
     std::vector<double> move_duration{0.6, 1.6};
+    std::vector<std::string> effects;  // --effect tokens
+    std::string effects_file;
     bool quiet = false;
 };
 
@@ -100,6 +104,31 @@ void run(SimulateOptions o) {
     o.settings.moves.min_duration = o.move_duration[0];
     o.settings.moves.max_duration = o.move_duration[1];
     sim::validate(o.settings);
+
+    // Hidden effects: the truth is the nominal model plus the effects' columns with the injected
+    // coefficients; a torque delay acts in the measurement instead.
+    std::vector<sim::EffectSpec> effects;
+    if (!o.effects_file.empty()) effects = sim::load_effects_file(o.effects_file, n);
+    for (const auto& token : o.effects) effects.push_back(sim::parse_effect(token, n));
+    std::vector<sim::EffectTerm> terms;
+    std::vector<Eigen::VectorXd> coefficients;
+    for (const auto& e : effects) {
+        if (e.kind == sim::EffectKind::TorqueDelay) {
+            ms.torque_delay += e.value;
+            continue;
+        }
+        const sim::EffectTerm term = sim::term_of(e);
+        std::string why_not;
+        if (!sim::term_applicable(term, {model->model_name(), n, robot.coulomb}, &why_not)) throw InputError("--effect " + why_not);
+        terms.push_back(term);
+        coefficients.push_back(sim::injected_coefficients(e, *model, x));
+    }
+    const sim::AugmentedModel truth_model(*model, {model->model_name(), n, robot.coulomb}, terms);
+    Eigen::VectorXd x_truth(truth_model.parameter_count());
+    x_truth.head(model->parameter_count()) = x;
+    for (std::size_t t = 0; t < terms.size(); ++t) {
+        x_truth.segment(truth_model.term_column(t), terms[t].column_count()) = coefficients[t];
+    }
     sim::MeasurementModel measurement(ms);
 
     std::string header = "t";
@@ -120,7 +149,9 @@ void run(SimulateOptions o) {
     std::size_t emitted = 0;
     // t is printed from the sample index so that the time column is exactly uniform in decimal.
     const double period = 1.0 / o.settings.output_rate;
-    sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
+    // Without effects the nominal model itself is integrated, exactly as before effects existed.
+    const bool hidden = !terms.empty();
+    sim::simulate(hidden ? static_cast<const robot::RobotModel&>(truth_model) : *model, hidden ? x_truth : x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
         auto& b = log.buffer();
         const double t = static_cast<double>(emitted) * period;
         fmt::format_to(std::back_inserter(b), "{:.6f}", t);
@@ -160,7 +191,10 @@ void run(SimulateOptions o) {
                            {"dwell", o.settings.moves.max_dwell}};
     truth["measurement"] = {{"encoder_counts_per_rev", ms.encoder_counts_per_rev}, {"torque_noise", ms.torque_noise},
                             {"ripple_amplitude", ms.ripple_amplitude},           {"ripple_periods_per_rev", ms.ripple_periods_per_rev},
-                            {"seed", ms.seed}};
+                            {"seed", ms.seed},
+                            {"torque_delay", ms.torque_delay}};
+    truth["effects"] = nlohmann::json::array();
+    for (const auto& e : effects) truth["effects"].push_back(sim::to_json(e));
     write_output(o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth, truth.dump(2) + "\n");
 }
 
@@ -191,6 +225,15 @@ void add_simulate_command(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--ripple-periods", o->ripple_periods, "ripple periods per revolution")->capture_default_str();
     cmd->add_option("--noise-seed", o->noise_seed, "seed of the torque noise")->capture_default_str();
+    cmd->add_option("--effect", o->effects,
+                    "inject an effect the nominal model lacks (repeatable): NAME:key=value,... e.g. "
+                    "coulomb_offset:joint=1,value=0.3 | coulomb_asymmetry:joint=1,value=0.1 | "
+                    "stribeck:joint=1,value=0.3,velocity=0.1 | viscous_nonlinear:joint=2,value=0.05 | "
+                    "gravity:tilt=3,direction=0,mx1=1.5 | cogging:joint=2,amplitude=0.2,order=6,phase=0 | "
+                    "rotor_inertia:joint=2,value=0.1 | torque_delay:value=0.003 (joints 1-based, SI units, "
+                    "angles in degrees; see docs/diagnose.md)")
+        ->take_all();
+    cmd->add_option("--effects", o->effects_file, "YAML file of effects to inject: effects: [{name: cogging, joint: 2, amplitude: 0.2, order: 6}, ...]");
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] { run(*o); });
 }

@@ -1,7 +1,8 @@
 #pragma once
 // What the log records instead of the truth: encoder quantization of the positions, Gaussian noise on the
 // torques (per joint) and an optional position-dependent torque ripple (cogging-like: amplitude *
-// sin(periods * q)), which is a real drive effect the rigid-body model does not contain.
+// sin(periods * q)), which is a real drive effect the rigid-body model does not contain, and an optional
+// delay of the torque channel against the position channel (applied by the simulator, torque_delay_line.hpp).
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -13,6 +14,7 @@ struct MeasurementSettings {
     std::vector<double> torque_noise;         // N.m standard deviation per joint; empty: none
     std::vector<double> ripple_amplitude;     // N.m per joint; empty: none
     double ripple_periods_per_rev = 50.0;
+    double torque_delay = 0.0;  // s: the logged torque lags the positions (torque_delay effect); 0: none
     std::uint64_t seed = 2;
 };
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cli/command.hpp"
+#include "sim/torque_delay_line.hpp"
 
 namespace jacobid::sim {
 namespace {
@@ -95,6 +96,8 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
         dynamics.accelerations(qs.data(), qds.data(), tau_stage.data(), dqd.data());
     };
 
+    const double delay = measurement.settings().torque_delay;
+    TorqueDelayLine delay_line(delay, 1.0 / settings.output_rate);
     SimulatedSample sample;
     sample.q.resize(n);
     sample.qd.resize(n);
@@ -121,9 +124,10 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
             sample.qd = qd;
             sample.tau = tau;
             dynamics.accelerations(q.data(), qd.data(), tau.data(), sample.qdd.data());
+            const Eigen::VectorXd& logged_tau = delay > 0.0 ? delay_line.push(tau) : tau;
             for (int j = 0; j < n; ++j) {
                 sample.q_measured[j] = measurement.position(q[j]);
-                sample.tau_measured[j] = measurement.torque(static_cast<std::size_t>(j), tau[j], q[j]);
+                sample.tau_measured[j] = measurement.torque(static_cast<std::size_t>(j), logged_tau[j], q[j]);
             }
             sink(sample);
         }

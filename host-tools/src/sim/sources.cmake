@@ -4,4 +4,8 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/measurement.cpp
   ${CMAKE_CURRENT_LIST_DIR}/simulator.cpp
   ${CMAKE_CURRENT_LIST_DIR}/can_player.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/effect_terms.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/effect_spec.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/augmented_model.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/torque_delay_line.cpp
 )

@@ -1,0 +1,26 @@
+#pragma once
+// The candidate effects the diagnosis tries, each with its hyper-parameter on a grid: Stribeck velocities
+// (a geometric grid, 0.02-0.5 rad/s), cogging orders 2..max (order 1 on joint 1 is what a tilted base does,
+// and the gravity candidate covers it), one term per joint for the others, gravity once. torque_delay has
+// no columns: the selection searches it by shifting the torque channel.
+#include <string>
+#include <vector>
+
+#include "sim/effect_terms.hpp"
+
+namespace jacobid::diagnose {
+
+struct CatalogueSettings {
+    std::vector<double> stribeck_velocities{0.02, 0.025, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.1, 0.12, 0.14, 0.17, 0.2, 0.25, 0.3, 0.4, 0.5};
+    int max_cogging_order = 30;
+    bool torque_delay = true;
+};
+
+struct Catalogue {
+    std::vector<sim::EffectTerm> terms;
+    std::vector<std::string> notes;  // effects that do not apply to this robot, and why
+};
+
+Catalogue candidate_catalogue(const sim::EffectContext& context, const CatalogueSettings& settings);
+
+}  // namespace jacobid::diagnose

@@ -1,0 +1,44 @@
+#pragma once
+// The identification's decimated, filtered rows (Y_j and W_j per joint, exactly as `jacobid identify` builds
+// them: run_pipeline keeps them when plot_rows is unlimited), plus what the diagnosis needs beside them:
+// the estimated state at each row (for binning residuals by velocity, position, acceleration) and the
+// full-rate filtered torque F_p(tau), from which Y is re-sampled when the torque channel is shifted in time.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "identify/pipeline.hpp"
+#include "robot/robot_model.hpp"
+
+namespace jacobid::diagnose {
+
+struct DecimatedRows {
+    identify::PipelineInfo info;
+    std::vector<std::string> names;   // regressor columns
+    std::vector<double> t;            // s
+    std::vector<std::size_t> sample;  // full-rate sample index of each row
+    std::vector<Eigen::MatrixXd> w;   // per joint: rows x columns
+    std::vector<Eigen::VectorXd> y;   // per joint: measured torque through F_p
+    std::vector<Eigen::MatrixXd> state;  // per joint: rows x 3 (q, qd, qdd estimates, unfiltered)
+    std::vector<std::vector<double>> tau_filtered;  // per joint, full rate
+    double sample_period = 0.0;
+
+    std::size_t rows() const { return t.size(); }
+    int joints() const { return static_cast<int>(y.size()); }
+    // Y of `joint` for the torque channel read `delay` seconds later (undoes a lag of `delay`).
+    Eigen::VectorXd shifted_y(int joint, double delay) const;
+    // Y of every joint for that delay (y itself for 0).
+    std::vector<Eigen::VectorXd> shifted_ys(double delay) const;
+};
+
+DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::LogColumns& log, const identify::PipelineSettings& settings);
+
+// Torque columns of `log` read `delay` seconds later (linear interpolation, held at the end), and a view
+// of the log that uses them.
+struct ShiftedTorques {
+    std::vector<std::vector<double>> tau;
+    identify::LogColumns log;
+};
+ShiftedTorques shift_torques(const identify::LogColumns& log, double delay);
+
+}  // namespace jacobid::diagnose

@@ -1,0 +1,183 @@
+#include "diagnose/diagnosis.hpp"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "diagnose/blocked_grams.hpp"
+#include "diagnose/decimated_rows.hpp"
+#include "diagnose/heldout.hpp"
+#include "diagnose/statistics.hpp"
+#include "sim/augmented_model.hpp"
+
+namespace jacobid::diagnose {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Validation settings as `jacobid identify --validate` uses them: the identification log's bandwidth,
+// windows and cutoffs, so both logs go through the same filters.
+identify::PipelineSettings validation_settings(const identify::PipelineSettings& s, const identify::PipelineInfo& info) {
+    identify::PipelineSettings v = s;
+    v.bandwidth = info.bandwidth;
+    v.velocity_window = info.velocity_window;
+    v.acceleration_window = info.acceleration_window;
+    v.differentiator_cutoff = info.differentiator_cutoff;
+    v.decimation_cutoff = info.decimation_cutoff;
+    v.progress = false;
+    return v;
+}
+
+// Catalogue columns of a model's parameters (matched by name).
+std::vector<int> catalogue_columns(const robot::RobotModel& model, const DecimatedRows& rows) {
+    std::vector<int> cols;
+    for (const auto& name : model.parameter_names()) {
+        const auto it = std::find(rows.names.begin(), rows.names.end(), name);
+        if (it == rows.names.end()) throw std::logic_error("diagnose: column " + name + " missing from the catalogue");
+        cols.push_back(static_cast<int>(it - rows.names.begin()));
+    }
+    return cols;
+}
+
+// The identification of `model` on `log` (torque channel read `delay` later), measured against the data.
+ModelSnapshot measure(const robot::RobotModel& model, const identify::LogColumns& log, double delay, const DecimatedRows& train,
+                      const DecimatedRows* validation, const identify::LogColumns& horizon_log, const DiagnoseSettings& s,
+                      const std::vector<double>& weight2) {
+    ModelSnapshot m;
+    const ShiftedTorques shifted = shift_torques(log, delay);
+    identify::PipelineSettings ps = s.pipeline;
+    ps.progress = false;
+    const identify::PipelineOutput out = identify::run_pipeline(model, delay == 0.0 ? log : shifted.log, ps);
+    m.solution = identify::solve_least_squares(out.factors, model.parameter_names());
+    m.residual_rms = m.solution.joint_residual_rms;
+    const Eigen::VectorXd x = m.solution.x.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+
+    const std::vector<int> cols = catalogue_columns(model, train);
+    const auto y = train.shifted_ys(delay);
+    for (int j = 0; j < train.joints(); ++j) {
+        m.residual.push_back(y[static_cast<std::size_t>(j)] - train.w[static_cast<std::size_t>(j)](Eigen::all, cols) * x);
+        m.analysis.push_back(analyse_residual(m.residual.back(), train.state[static_cast<std::size_t>(j)], train.t));
+    }
+    BlockedGrams grams(train, s.selection.folds);
+    grams.set_y(y);
+    std::unique_ptr<BlockedGrams> vgrams;
+    if (validation) {
+        vgrams = std::make_unique<BlockedGrams>(*validation, 1);
+        vgrams->set_y(validation->shifted_ys(delay));
+    }
+    const HeldOut heldout(grams, vgrams.get(), weight2);
+    for (int j = 0; j < train.joints(); ++j) m.heldout_rms.push_back(heldout.rms(cols, j));
+    m.heldout_weighted = heldout.rms(cols);
+
+    identify::PipelineInfo info = identify::plan_pipeline(horizon_log, validation_settings(ps, train.info));
+    const identify::StateEstimates states = identify::estimate_states(horizon_log, validation_settings(ps, train.info), info);
+    m.horizon = simulate_horizons(model, x, horizon_log, states, delay, s.horizon);
+    return m;
+}
+
+}  // namespace
+
+Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectContext& context, const identify::LogColumns& log,
+                        const identify::LogColumns* validation, const DiagnoseSettings& s, const Progress& progress) {
+    const auto start = Clock::now();
+    auto say = [&](const std::string& text) {
+        if (progress) progress(fmt::format("[{:5.1f} s] {}", std::chrono::duration<double>(Clock::now() - start).count(), text));
+    };
+    Diagnosis d;
+    d.log_source = log.source;
+    d.validation_source = validation ? validation->source : "";
+    d.model_name = nominal.model_name();
+
+    const Catalogue catalogue = candidate_catalogue(context, s.catalogue);
+    d.notes = catalogue.notes;
+    const sim::AugmentedModel cat(nominal, context, catalogue.terms);
+    d.catalogue_columns = static_cast<std::size_t>(cat.parameter_count());
+    say(fmt::format("regressor of the nominal model ({} parameters) and {} candidate terms ({} columns) on {} samples of {}",
+                    nominal.parameter_count(), catalogue.terms.size(), cat.parameter_count() - nominal.parameter_count(), log.samples(),
+                    log.source));
+    const DecimatedRows train = decimated_rows(cat, log, s.pipeline);
+    d.info = train.info;
+    d.state = train.state;
+    d.t = train.t;
+    std::unique_ptr<DecimatedRows> vrows;
+    if (validation) {
+        say(fmt::format("same regressor on the validation log {}", validation->source));
+        vrows = std::make_unique<DecimatedRows>(decimated_rows(cat, *validation, validation_settings(s.pipeline, train.info)));
+    }
+    say(fmt::format("{} decimated rows per joint (decimation {}, F_p {:.3g} Hz); stepwise selection", train.rows(), train.info.decimation,
+                    train.info.decimation_cutoff));
+    d.selection = select_effects(cat, train, vrows.get(), s.selection, [&](const std::string& m) { say(m); });
+    d.delay = d.selection.delay;
+    std::vector<double> weight2;
+    for (double sj : d.selection.joint_sigma) weight2.push_back(1.0 / (sj * sj));
+
+    say("re-identifying with the augmented model; short-horizon simulations before and after");
+    const identify::LogColumns& horizon_log = validation ? *validation : log;
+    d.before = measure(nominal, log, 0.0, train, vrows.get(), horizon_log, s, weight2);
+    const sim::AugmentedModel augmented(nominal, context, d.selection.terms);
+    d.after = measure(augmented, log, d.delay, train, vrows.get(), horizon_log, s, weight2);
+
+    // Effect values and honest standard deviations: the weighted LS of the final model on the identification
+    // rows, covariance scaled by n / n_eff of its residual.
+    const std::vector<int> cols = catalogue_columns(augmented, train);
+    BlockedGrams grams(train, 1);
+    grams.set_y(train.shifted_ys(d.delay));
+    const SubsetFit fit = solve_subset(grams.sum(cols, weight2, -1, false));
+    double rows = 0.0, n_eff = 0.0, wrss = 0.0;
+    for (int j = 0; j < train.joints(); ++j) {
+        const auto& r = d.after.residual[static_cast<std::size_t>(j)];
+        rows += static_cast<double>(r.size());
+        n_eff += effective_sample_size(r);
+    }
+    wrss = fit.ok ? fit.rss : 0.0;
+    const double sigma2 = wrss / std::max(1.0, rows - static_cast<double>(cols.size()));
+    for (const auto& accepted : d.selection.accepted) {
+        EffectEstimate e;
+        e.term = accepted.term;
+        e.test = accepted;
+        if (accepted.term.kind == sim::EffectKind::TorqueDelay) {
+            e.value = accepted.delay;
+            e.std = accepted.std;
+        } else if (fit.ok) {
+            std::size_t t = 0;
+            while (t < augmented.terms().size() && !(augmented.terms()[t].kind == e.term.kind && augmented.terms()[t].joint == e.term.joint &&
+                                                      augmented.terms()[t].order == e.term.order && augmented.terms()[t].velocity == e.term.velocity)) {
+                ++t;
+            }
+            const Eigen::Index first = augmented.term_column(t), k = e.term.column_count();
+            e.coefficients = fit.x.segment(first, k);
+            const Eigen::MatrixXd cov = sigma2 * (rows / n_eff) * fit.inverse.block(first, first, k, k);
+            e.value = sim::term_value(e.term, e.coefficients);
+            e.std = sim::term_value_std(e.term, e.coefficients, cov);
+        }
+        d.effects.push_back(e);
+    }
+    if (d.effects.empty()) {
+        const auto& step = d.selection.steps.front();
+        if (step.top.empty()) {
+            d.verdict = "no effect named: no candidate could be tested";
+        } else {
+            const CandidateTest& b = step.top.front();
+            std::string floor;
+            for (std::size_t j = 0; j < d.before.residual_rms.size(); ++j) {
+                floor += fmt::format("{}{:.3g}", j ? " / " : "", d.before.residual_rms[j]);
+            }
+            d.verdict = fmt::format(
+                "no effect named: the data are explained by the nominal model to the noise floor (residual RMS {} N.m per joint). "
+                "Strongest candidate {} "
+                "(estimate {:.3g} +- {:.2g} {}): {}; held-out error {:+.1f} % ({} needed)",
+                floor, b.label(), b.value, b.std, sim::effect_unit(b.term.kind),
+                b.significant ? "significant" : fmt::format("not significant (adjusted p = {:.2g} >= {:g})", b.adjusted_p, s.selection.alpha),
+                -100.0 * b.gain, fmt::format("-{:g} %", 100.0 * s.selection.min_gain));
+        }
+    } else {
+        d.verdict = fmt::format("{} effect{} named", d.effects.size(), d.effects.size() > 1 ? "s" : "");
+    }
+    d.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    say(fmt::format("done: {}", d.verdict));
+    return d;
+}
+
+}  // namespace jacobid::diagnose

@@ -1,0 +1,74 @@
+#include "diagnose/horizon_simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace jacobid::diagnose {
+
+HorizonResult simulate_horizons(const robot::RobotModel& model, const Eigen::VectorXd& x_in, const identify::LogColumns& log,
+                                const identify::StateEstimates& e, double delay, const HorizonSettings& s) {
+    const Eigen::VectorXd x = x_in.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+    robot::ForwardDynamics dynamics(model, x);
+    const int n = model.joint_count();
+    const auto nj = static_cast<std::size_t>(n);
+    const double h = log.sample_period;
+    const auto length = static_cast<std::size_t>(std::llround(s.horizon / h));
+    const auto spacing = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(s.spacing / h)));
+    HorizonResult r;
+    r.rms_error.assign(nj, 0.0);
+    r.end_error.assign(nj, 0.0);
+    std::size_t compared = 0;
+    // Measured torque at time index `at` (fractional), read `delay` later.
+    Eigen::VectorXd tau(n);
+    auto torque = [&](double at) {
+        at += delay / h;
+        const double clamped = std::clamp(at, 0.0, static_cast<double>(log.samples() - 1));
+        const auto i = static_cast<std::size_t>(std::floor(clamped));
+        const std::size_t i1 = std::min(i + 1, log.samples() - 1);
+        const double f = clamped - static_cast<double>(i);
+        for (std::size_t j = 0; j < nj; ++j) tau[static_cast<Eigen::Index>(j)] = (1.0 - f) * (*log.tau[j])[i] + f * (*log.tau[j])[i1];
+    };
+    Eigen::VectorXd q(n), qd(n), kq[4], kv[4], qs(n), vs(n);
+    for (auto& k : kq) k.resize(n);
+    for (auto& k : kv) k.resize(n);
+    auto derivative = [&](double at, const Eigen::VectorXd& qq, const Eigen::VectorXd& vv, Eigen::VectorXd& dq, Eigen::VectorXd& dv) {
+        torque(at);
+        dq = vv;
+        dynamics.accelerations(qq.data(), vv.data(), tau.data(), dv.data());
+    };
+    for (std::size_t k0 = e.first; k0 + length < e.last; k0 += spacing) {
+        for (std::size_t j = 0; j < nj; ++j) {
+            q[static_cast<Eigen::Index>(j)] = (*log.q[j])[k0];
+            qd[static_cast<Eigen::Index>(j)] = e.qd[j][k0];
+        }
+        for (std::size_t step = 0; step < length; ++step) {
+            const double at = static_cast<double>(k0 + step);
+            derivative(at, q, qd, kq[0], kv[0]);
+            qs = q + 0.5 * h * kq[0];
+            vs = qd + 0.5 * h * kv[0];
+            derivative(at + 0.5, qs, vs, kq[1], kv[1]);
+            qs = q + 0.5 * h * kq[1];
+            vs = qd + 0.5 * h * kv[1];
+            derivative(at + 0.5, qs, vs, kq[2], kv[2]);
+            qs = q + h * kq[2];
+            vs = qd + h * kv[2];
+            derivative(at + 1.0, qs, vs, kq[3], kv[3]);
+            q += h / 6.0 * (kq[0] + 2.0 * kq[1] + 2.0 * kq[2] + kq[3]);
+            qd += h / 6.0 * (kv[0] + 2.0 * kv[1] + 2.0 * kv[2] + kv[3]);
+            for (std::size_t j = 0; j < nj; ++j) {
+                const double err = q[static_cast<Eigen::Index>(j)] - (*log.q[j])[k0 + step + 1];
+                r.rms_error[j] += err * err;
+                if (step + 1 == length) r.end_error[j] += err * err;
+            }
+        }
+        compared += length;
+        ++r.segments;
+    }
+    for (std::size_t j = 0; j < nj; ++j) {
+        r.rms_error[j] = compared ? std::sqrt(r.rms_error[j] / static_cast<double>(compared)) : 0.0;
+        r.end_error[j] = r.segments ? std::sqrt(r.end_error[j] / static_cast<double>(r.segments)) : 0.0;
+    }
+    return r;
+}
+
+}  // namespace jacobid::diagnose

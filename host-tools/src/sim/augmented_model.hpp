@@ -1,0 +1,36 @@
+#pragma once
+// A RobotModel decorator: the nominal model's regressor followed by the columns of extra effect terms.
+// Everything that works on a RobotModel (ForwardDynamics, the identification pipeline, validation) then
+// works on the augmented model unchanged: the simulator integrates the truth with hidden effects, the
+// diagnosis identifies nominal and candidate parameters together.
+#include <vector>
+
+#include "robot/robot_model.hpp"
+#include "sim/effect_terms.hpp"
+
+namespace jacobid::sim {
+
+class AugmentedModel final : public robot::RobotModel {
+public:
+    // `nominal` must outlive this model. Terms without columns (torque_delay) are ignored.
+    AugmentedModel(const robot::RobotModel& nominal, EffectContext context, std::vector<EffectTerm> terms);
+    std::string model_name() const override { return nominal_.model_name(); }
+    int joint_count() const override { return nominal_.joint_count(); }
+    int parameter_count() const override { return static_cast<int>(names_.size()); }
+    const std::vector<std::string>& parameter_names() const override { return names_; }
+    void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
+
+    const robot::RobotModel& nominal() const { return nominal_; }
+    const std::vector<EffectTerm>& terms() const { return terms_; }
+    // First column of term t in D.
+    int term_column(std::size_t t) const { return first_column_[t]; }
+
+private:
+    const robot::RobotModel& nominal_;
+    EffectContext context_;
+    std::vector<EffectTerm> terms_;
+    std::vector<int> first_column_;
+    std::vector<std::string> names_;
+};
+
+}  // namespace jacobid::sim

@@ -1,0 +1,78 @@
+#pragma once
+// Physical effects that a nominal rigid-body model misses, each written as regressor columns that are linear
+// in the effect's magnitude once its hyper-parameter (Stribeck velocity, cogging order) is fixed. The same
+// columns serve the simulator (truth dynamics = nominal model + effect columns with the injected values) and
+// `jacobid diagnose` (candidate columns appended to the nominal regressor), so the two cannot disagree on
+// what an effect is.
+//
+// Per joint j (one row of the regressor, the other rows 0):
+//   coulomb_offset     1                                   value: offset, N.m
+//   coulomb_asymmetry  |s(qd_j)|                           value: half the difference of the Coulomb levels
+//                                                          per direction (FC+ = FC + a, FC- = FC - a), N.m
+//   stribeck           s(qd_j) exp(-(qd_j / vs)^2)         value: static minus Coulomb friction FS - FC, N.m
+//   viscous_nonlinear  qd_j |qd_j|                         value: N.m s^2 / rad^2
+//   cogging            sin(k q_j), cos(k q_j)              value: amplitude, N.m (k = order, harmonics per rev)
+//   rotor_inertia      qdd_j                               value: kg m^2
+// Whole robot:
+//   gravity            planar2r only: a tilted base puts g sin(tilt) into the plane of motion. With
+//                      U = -(a1 cos q1 + b1 sin q1 + a2 cos q12 + b2 sin q12) the columns are
+//                      [s1; 0], [-c1; 0], [s12; s12], [-c12; -c12]; value: sqrt(a1^2 + b1^2), the peak
+//                      gravity torque of link 1 (and the mass it carries) on joint 1, N.m
+//   torque_delay       not a column: the torque channel lags the position channel, value: delay, s
+// s() is the Coulomb sign function of the robot description (exact or smoothed), so an effect reads the
+// velocity exactly as the nominal friction does.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "jacobid/robot/coulomb_sign.hpp"
+
+namespace jacobid::sim {
+
+enum class EffectKind { CoulombOffset, CoulombAsymmetry, Stribeck, ViscousNonlinear, Gravity, Cogging, RotorInertia, TorqueDelay };
+
+constexpr EffectKind kAllEffects[] = {EffectKind::CoulombOffset, EffectKind::CoulombAsymmetry, EffectKind::Stribeck,
+                                      EffectKind::ViscousNonlinear, EffectKind::Gravity,         EffectKind::Cogging,
+                                      EffectKind::RotorInertia,     EffectKind::TorqueDelay};
+
+const char* effect_name(EffectKind kind);
+std::optional<EffectKind> effect_kind(const std::string& name);
+// Unit of an effect's value, e.g. "N.m".
+const char* effect_unit(EffectKind kind);
+// Effects that act on one joint (all but gravity and torque_delay).
+bool effect_has_joint(EffectKind kind);
+
+// What the columns need to know about the robot.
+struct EffectContext {
+    std::string model_name;
+    int joints = 0;
+    robot::CoulombSign coulomb{};
+};
+
+// One effect with its hyper-parameter fixed: a block of columns.
+struct EffectTerm {
+    EffectKind kind = EffectKind::CoulombOffset;
+    int joint = -1;        // 0-based; -1 for whole-robot effects
+    double velocity = 0;   // stribeck: vs in rad/s
+    int order = 0;         // cogging: harmonic order per revolution
+    int column_count() const;
+    // A readable label, e.g. "cogging j2 k=6" (joints 1-based).
+    std::string label() const;
+    // Column names for parameter lists, e.g. "cogging2_k6_sin".
+    std::vector<std::string> column_names() const;
+};
+
+// Whether the term exists for this robot (gravity needs the planar kinematics of planar2r).
+bool term_applicable(const EffectTerm& term, const EffectContext& context, std::string* why_not = nullptr);
+
+// Fills the term's columns (joints x column_count) at one state.
+void term_columns(const EffectTerm& term, const EffectContext& context, const double* q, const double* qd, const double* qdd,
+                  Eigen::Ref<Eigen::MatrixXd> columns);
+
+// The effect's scalar value from the term's coefficients (amplitude for cogging and gravity), and its
+// standard deviation from their covariance (delta method).
+double term_value(const EffectTerm& term, const Eigen::VectorXd& coefficients);
+double term_value_std(const EffectTerm& term, const Eigen::VectorXd& coefficients, const Eigen::MatrixXd& covariance);
+
+}  // namespace jacobid::sim
