@@ -29,14 +29,10 @@ linux_target() {  # $1 = aarch64 | armhf
   esac
   local b="$root/build-cross-$name" tc="$root/toolchains/$toolchain.cmake"
   start=$(now)
-  if [ ! -e "$b/googletest-install/lib/cmake/GTest/GTestConfig.cmake" ]; then
-    cmake -S /usr/src/googletest -B "$b/googletest" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$tc" \
-      -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$b/googletest-install" >/dev/null
-    cmake --build "$b/googletest" -j "$jobs" >/dev/null
-    cmake --install "$b/googletest" >/dev/null
-  fi
+  local gtest_dir
+  gtest_dir="$(bash "$root/scripts/cross-gtest.sh" "$name")"
   cmake -S "$root" -B "$b" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$tc" -DCMAKE_BUILD_TYPE=Release \
-    -DJACOBID_TARGET_SYSROOT="$sysroots/$debarch" -DGTest_DIR="$b/googletest-install/lib/cmake/GTest" \
+    -DJACOBID_TARGET_SYSROOT="$sysroots/$debarch" -DGTest_DIR="$gtest_dir" \
     -DJACOBID_BUILD_HOST_TOOLS=OFF -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_FIRMWARE=OFF \
     -DJACOBID_VM_TESTS=ON ${JACOBID_CROSS_CMAKE_ARGS:-} >/dev/null
   cmake --build "$b" -j "$jobs"

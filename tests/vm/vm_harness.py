@@ -9,12 +9,16 @@ Scenario (tests/vm/scenarios/*.sh): a busybox sh script run by /init as root in 
     # modules: can can-raw vcan        kernel modules to load, dependencies first (resolved as well)
     # binaries: test_hal_vcan ...      names given with --bin NAME=PATH, installed as /bin/NAME
     # dynamic: jacobid jacobid-fw      the same, dynamically linked: installed with every shared library
-                                       `ldd` lists and the ELF interpreter, each at its build-machine path
+                                       they load and the ELF interpreter (see below)
+    # include: chain-lib.sh            files beside the scenario, installed as /scenario-lib/NAME (to source)
     # memory: 1024   # smp: 2          qemu -m / -smp unless given on the command line (default 512 / 1)
     # qemu: -icount shift=1            more qemu options (after the harness's own)
     # cmdline: preempt=full            more kernel command line
-Its exit status is the verdict. `binaries` must be static; `dynamic` ones must run on the build machine
-(ldd resolves their libraries there), i.e. a native build for the VM's architecture.
+Its exit status is the verdict. `binaries` must be static. `dynamic` ones: without --libdir (a native
+build for the VM's architecture) `ldd` resolves their libraries on the build machine and each goes to the
+same path in the VM; with --libdir DIR... (a cross build: the target's sysroot and cross C library) the
+DT_NEEDED entries are resolved recursively in those directories (readelf), the libraries go to
+/usr/lib/jacobid-vm (on LD_LIBRARY_PATH in the VM) and the interpreter to its PT_INTERP path.
 """
 import argparse
 import gzip
@@ -68,7 +72,7 @@ class Cpio:
 
 INIT = r"""#!/bin/busybox sh
 /bin/busybox --install -s /bin
-export PATH=/bin HOME=/tmp
+export PATH=/bin HOME=/tmp LD_LIBRARY_PATH=/usr/lib/jacobid-vm
 mount -t proc proc /proc
 mount -t sysfs sys /sys
 mount -t devtmpfs dev /dev
@@ -163,8 +167,10 @@ def build_initramfs(args, scenario_text):
         if data[:4] != b"\x7fELF" or int.from_bytes(data[18:20], "little") != machine:
             sys.exit(f"vm: {given[name]} is not an {args.arch} executable")
         c.file("bin/" + name, data)
-    for lib in shared_libraries([given[n] for n in dynamic]):
-        parts = lib.strip("/").split("/")
+    executables = [given[n] for n in dynamic]
+    libs = target_libraries(executables, args.libdir) if args.libdir else [(p, p) for p in shared_libraries(executables)]
+    for lib, dest in libs:
+        parts = dest.strip("/").split("/")
         for i in range(1, len(parts)):
             d = "/".join(parts[:i])
             if d not in made:
@@ -172,6 +178,12 @@ def build_initramfs(args, scenario_text):
                 made.add(d)
         with open(lib, "rb") as f:  # the file itself where the path is a symlink
             c.file("/".join(parts), f.read())
+    includes = scenario_header(scenario_text, "include")
+    if includes:
+        c.dir("scenario-lib")
+    for name in includes:
+        with open(os.path.join(os.path.dirname(os.path.abspath(args.scenario)), name), "rb") as f:
+            c.file("scenario-lib/" + name, f.read(), 0o644)
     c.file("init", INIT.encode())
     c.file("scenario.sh", scenario_text.encode())
     return gzip.compress(c.finish(), compresslevel=1), [os.path.basename(p) for p in mods]
@@ -190,6 +202,36 @@ def shared_libraries(executables):
             m = re.match(r"\s*(?:\S+\s+=>\s+)?(/\S+)\s+\(0x", line)  # "libm.so.6 => /lib/.. (0x..)", "/lib64/ld-.. (0x..)"
             if m and m.group(1) not in libs:
                 libs.append(m.group(1))
+    return libs
+
+
+def target_libraries(executables, libdirs):
+    """(source, VM path) of every library and the interpreter the executables load, resolved in libdirs
+    from the ELF's DT_NEEDED entries (no ldd: a cross build's executables do not run here)."""
+    found, todo, interp = {}, list(executables), None
+    while todo:
+        elf = todo.pop()
+        dyn = subprocess.run(["readelf", "-d", "-l", "-W", elf], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        if dyn.returncode != 0:
+            sys.exit(f"vm: readelf {elf} failed:\n{dyn.stdout}")
+        m = re.search(r"Requesting program interpreter: (/[^\]]+)\]", dyn.stdout)
+        if m and interp is None:
+            interp = m.group(1)
+        for soname in re.findall(r"\(NEEDED\)\s+Shared library: \[([^\]]+)\]", dyn.stdout):
+            if soname in found:
+                continue
+            path = next((os.path.join(d, soname) for d in libdirs if os.path.exists(os.path.join(d, soname))), None)
+            if path is None:
+                sys.exit(f"vm: {elf}: shared library {soname} not found in {' '.join(libdirs)}")
+            found[soname] = os.path.realpath(path)
+            todo.append(found[soname])
+    libs = [(path, "/usr/lib/jacobid-vm/" + soname) for soname, path in sorted(found.items())]
+    if interp:
+        name = os.path.basename(interp)
+        path = next((os.path.join(d, name) for d in libdirs if os.path.exists(os.path.join(d, name))), None)
+        if path is None:
+            sys.exit(f"vm: the ELF interpreter {interp} is not in {' '.join(libdirs)}")
+        libs.append((os.path.realpath(path), interp))
     return libs
 
 
@@ -215,6 +257,8 @@ def main():
     p.add_argument("--assets", required=True)
     p.add_argument("--scenario", required=True)
     p.add_argument("--bin", action="append", default=[], metavar="NAME=PATH")
+    p.add_argument("--libdir", action="append", default=[], metavar="DIR",
+                   help="target library directory for '# dynamic:' executables of a cross build (repeatable)")
     p.add_argument("--work", required=True, help="directory for the initramfs and the console log")
     p.add_argument("--timeout", type=float, default=300.0, help="seconds from start to power-off")
     p.add_argument("--memory", help="MiB (default: the scenario's '# memory:' header, else 512)")
