@@ -18,6 +18,7 @@
 #include "io/candump_joints.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
+#include "robot/base_parameter_report.hpp"
 #include "robot/robot_description.hpp"
 #if JACOBID_WITH_FIRMWARE
 #include "jacobid/firmware/firmware_config_yaml.hpp"
@@ -39,6 +40,7 @@ struct IdentifyOptions {
     std::string discretization = "exact";
     identify::PipelineSettings pipeline;
     bool weighted = false;
+    bool print_base = false;
     double essential = 0.0;  // threshold in %; 0: off
     bool essential_flag = false;
     double rank_tolerance = 1e-7;
@@ -121,6 +123,12 @@ void run(IdentifyOptions o) {
     using Clock = std::chrono::steady_clock;
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
+    if (o.print_base) {
+        // The model alone: base parameters, regrouping relations and true values; no log needed.
+        write_output(o.output, o.format == "json" ? robot::base_parameter_json(robot, *model).dump(2) + "\n" : robot::base_parameter_text(robot, *model));
+        return;
+    }
+    if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
     const auto parse_start = Clock::now();
     const io::CsvTable table = read_log(o.in, robot, o);
     const identify::LogColumns log = columns_of(table, robot, o.time_column, o.time_tolerance);
@@ -205,7 +213,10 @@ void add_identify_command(CLI::App& app) {
                                        "identify base dynamic parameters from a log (t, positions, torques) by least squares on the "
                                        "decimated inverse dynamic model; prints the paper's Table II");
     cmd->add_option("--robot", o->robot, "robot description (YAML, e.g. 'model: planar2r')")->required();
-    cmd->add_option("--in", o->in, "log (CSV with a header: time column, the joints' position and torque columns)")->required();
+    cmd->add_option("--in", o->in, "log (CSV with a header: time column, the joints' position and torque columns)");
+    cmd->add_flag("--print-base", o->print_base,
+                  "print the robot's base parameters with their regrouping relations (e.g. ZZ1R = ZZ1 + IA1 + 0.25*M2) and true values, "
+                  "then exit (no --in needed)");
     cmd->add_option("--method", o->method, "jacobi, butterworth, or both side by side")
         ->check(CLI::IsMember({"jacobi", "butterworth", "both"}))
         ->capture_default_str();

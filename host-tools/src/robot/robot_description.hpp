@@ -1,8 +1,8 @@
 #pragma once
 // Robot description file (YAML), e.g.
 //
-//   model: planar2r          # the only model so far; a later issue adds serial chains from MDH/URDF
-//   L1: 0.5                  # m
+//   model: planar2r          # planar2r | mdh | urdf
+//   L1: 0.5                  # m (planar2r only)
 //   joints:                  # optional; defaults: names j1, j2, columns q1, q2 and tau1, tau2
 //     - {name: shoulder, position: q1, torque: tau1, limits: [-2.5, 2.5]}
 //     - {name: elbow,    position: q2, torque: tau2, limits: [-2.5, 2.5]}
@@ -13,6 +13,18 @@
 //   rotor_inertia: false     # separate rotor inertia of joint 2 (IA2)
 //   parameters: {ZZ1R: 3.496, ...}  # optional: true values, used by `jacobid simulate`
 //
+// Serial robots (docs/robots.md):
+//
+//   model: mdh               # modified DH (Khalil-Kleinfinger), one row per joint
+//   gravity: [0, 0, -9.81]   # m/s^2 in the base frame (mdh and urdf; default shown)
+//   joints:
+//     - {name: j1, sigma: 0, alpha: 0, d: 0, theta: 0, r: 0, antecedent: 0, limits: [-2.5, 2.5], position: q1, torque: tau1}
+//   parameters: {ZZ1: 1.2, M2: 3.0, FV1: 0.2, ...}   # STANDARD parameters (XXj ... Mj, IAj, FVj, FCj, FOFFj)
+//
+//   model: urdf
+//   urdf: arm.urdf           # relative to this file; inertials and <dynamics> give default parameters
+//   joints: [...]            # optional: names/columns/limits, one per movable URDF joint
+//
 // Errors are InputError "file:line:column: message" naming the key.
 #include <Eigen/Core>
 #include <map>
@@ -21,6 +33,8 @@
 #include <vector>
 
 #include "jacobid/robot/coulomb_sign.hpp"
+#include "jacobid/robot/kinematic_chain.hpp"
+#include "jacobid/robot/mdh_joint.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::robot {
@@ -42,6 +56,12 @@ struct RobotDescription {
     bool friction_offset = false;
     bool rotor_inertia = false;
     std::vector<std::pair<std::string, double>> parameters;  // in file order; empty: not given
+    // Serial robots (model mdh or urdf).
+    Eigen::Vector3d gravity{0.0, 0.0, -9.81};  // m/s^2, base frame
+    std::vector<MdhJoint> mdh;                 // model mdh: the table as written
+    std::string urdf;                          // model urdf: resolved path of the URDF file
+    std::vector<ChainJoint> chain;             // mdh and urdf: the kinematic chain
+    std::vector<std::pair<std::string, double>> model_parameters;  // urdf: standard values from the file
 };
 
 // The paper-like default: planar2r, L1 = 0.5 m, smoothed Coulomb friction (alpha = 100), joints j1, j2.
@@ -53,7 +73,9 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& description);
 
 // True parameter values for simulation, in model order: the model's reference values (the paper's Table II
-// for planar2r), overridden by the description's `parameters`.
+// for planar2r), overridden by the description's `parameters`. Serial models: the description's standard
+// parameters (URDF inertials, overridden by `parameters`, others 0) mapped to base parameters by the
+// regrouping.
 Eigen::VectorXd true_parameters(const RobotDescription& description, const RobotModel& model);
 
 // The description as YAML (round-trips through parse_robot_description).

@@ -23,16 +23,20 @@ ForwardDynamics::ForwardDynamics(const RobotModel& model, Eigen::VectorXd parame
       base_(model.joint_count()),
       llt_(model.joint_count()) {}
 
+void ForwardDynamics::evaluate(const double* q, const double* qd, const double* qdd, Eigen::VectorXd& out) {
+    if (model_.inverse_dynamics(q, qd, qdd, parameters_, out.data())) return;
+    model_.regressor(q, qd, qdd, D_);
+    out.noalias() = D_ * parameters_;
+}
+
 const Eigen::MatrixXd& ForwardDynamics::inertia(const double* q) {
     const Eigen::Index n = model_.joint_count();
-    model_.regressor(q, zero_.data(), zero_.data(), D_);
-    base_.noalias() = D_ * parameters_;  // friction offsets and anything else that does not depend on motion
+    evaluate(q, zero_.data(), zero_.data(), base_);  // gravity, friction offsets: everything that does not depend on qdd
     for (Eigen::Index j = 0; j < n; ++j) {
         unit_.setZero();
         unit_[j] = 1.0;
-        model_.regressor(q, zero_.data(), unit_.data(), D_);
-        M_.col(j).noalias() = D_ * parameters_;
-        M_.col(j) -= base_;
+        evaluate(q, zero_.data(), unit_.data(), rhs_);
+        M_.col(j) = rhs_ - base_;
     }
     return M_;
 }
@@ -40,8 +44,7 @@ const Eigen::MatrixXd& ForwardDynamics::inertia(const double* q) {
 void ForwardDynamics::accelerations(const double* q, const double* qd, const double* tau, double* qdd) {
     const Eigen::Index n = model_.joint_count();
     inertia(q);
-    model_.regressor(q, qd, zero_.data(), D_);
-    bias_.noalias() = D_ * parameters_;
+    evaluate(q, qd, zero_.data(), bias_);
     for (Eigen::Index j = 0; j < n; ++j) rhs_[j] = tau[j] - bias_[j];
     llt_.compute(M_);
     rhs_ = llt_.solve(rhs_);
@@ -49,8 +52,7 @@ void ForwardDynamics::accelerations(const double* q, const double* qd, const dou
 }
 
 void ForwardDynamics::torques(const double* q, const double* qd, const double* qdd, double* tau) {
-    model_.regressor(q, qd, qdd, D_);
-    rhs_.noalias() = D_ * parameters_;
+    evaluate(q, qd, qdd, rhs_);
     for (Eigen::Index j = 0; j < model_.joint_count(); ++j) tau[j] = rhs_[j];
 }
 

@@ -20,6 +20,13 @@ public:
     // D (joint_count x parameter_count) such that tau = D X. q, qd, qdd have joint_count entries.
     virtual void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const = 0;
 
+    // tau = D(q, qd, qdd) X by a route faster than the regressor, if the model has one (it then returns
+    // true); the default has none and returns false, and callers use the regressor.
+    virtual bool inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const {
+        (void)q, (void)qd, (void)qdd, (void)X, (void)tau;
+        return false;
+    }
+
     // Index of a parameter by name, -1 if the model has none of that name.
     int parameter_index(const std::string& name) const;
 };
@@ -27,7 +34,9 @@ public:
 // Rigid-body forward dynamics from the regressor alone (valid for every model linear in its parameters):
 //   h(q, qd) = D(q, qd, 0) X,  M(q) e_j = D(q, 0, e_j) X - D(q, 0, 0) X,  qdd = M^-1 (tau - h).
 // The column trick needs no model-specific code, so a new model is simulated as soon as its regressor
-// exists. Workspace is preallocated in the constructor; accelerations() does not allocate.
+// exists; a model with a direct inverse dynamics (RobotModel::inverse_dynamics) is evaluated through it
+// instead, the same n + 2 evaluations at a fraction of the cost. Workspace is preallocated in the
+// constructor; accelerations() does not allocate.
 class ForwardDynamics {
 public:
     ForwardDynamics(const RobotModel& model, Eigen::VectorXd parameters);
@@ -40,6 +49,9 @@ public:
     void torques(const double* q, const double* qd, const double* qdd, double* tau);
 
 private:
+    // out = D(q, qd, qdd) X.
+    void evaluate(const double* q, const double* qd, const double* qdd, Eigen::VectorXd& out);
+
     const RobotModel& model_;
     Eigen::VectorXd parameters_;
     Eigen::MatrixXd D_;

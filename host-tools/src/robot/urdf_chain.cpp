@@ -1,0 +1,164 @@
+#include "robot/urdf_chain.hpp"
+
+#include <fmt/core.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "cli/command.hpp"
+
+namespace jacobid::robot {
+namespace {
+
+using cli::InputError;
+
+struct Transform {
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    Transform then(const Transform& next) const { return {R * next.R, p + R * next.p}; }
+};
+
+Transform to_transform(const urdf::Pose& pose) {
+    double x = 0, y = 0, z = 0, w = 1;
+    pose.rotation.getQuaternion(x, y, z, w);
+    Transform t;
+    t.R = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+    t.p = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+    return t;
+}
+
+// Inertial parameters of one body about a frame origin: XX XY XZ YY YZ ZZ MX MY MZ M.
+using Inertial10 = std::array<double, 10>;
+
+// The link's inertial expressed in the frame `to_link` maps from (link frame -> body frame).
+Inertial10 inertial_in(const urdf::Inertial& in, const Transform& body_to_link) {
+    const Transform inertial = body_to_link.then(to_transform(in.origin));
+    Eigen::Matrix3d Ig;
+    Ig << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    const Eigen::Vector3d c = inertial.p;
+    const Eigen::Matrix3d I = inertial.R * Ig * inertial.R.transpose() + in.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    const Eigen::Vector3d ms = in.mass * c;
+    return {I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2), ms.x(), ms.y(), ms.z(), in.mass};
+}
+
+class Converter {
+public:
+    Converter(std::string source) : source_(std::move(source)) {}
+
+    UrdfChain convert(const urdf::ModelInterface& model) {
+        const auto root = model.getRoot();
+        if (!root) throw InputError(fmt::format("{}: the URDF has no root link", source_));
+        visit(*root, -1, Transform{});
+        if (chain_.joints.empty()) throw InputError(fmt::format("{}: element <robot name='{}'>: no revolute, continuous or prismatic joint", source_, model.getName()));
+        static const char* kNames[10] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
+        for (std::size_t j = 0; j < inertials_.size(); ++j) {
+            for (int k = 0; k < 10; ++k) chain_.standard_parameters.emplace_back(fmt::format("{}{}", kNames[k], j + 1), inertials_[j][static_cast<std::size_t>(k)]);
+            chain_.standard_parameters.emplace_back(fmt::format("FV{}", j + 1), damping_[j]);
+            chain_.standard_parameters.emplace_back(fmt::format("FC{}", j + 1), friction_[j]);
+        }
+        return std::move(chain_);
+    }
+
+private:
+    std::string element(const urdf::Joint& joint) const { return fmt::format("{}: element <joint name='{}'>", source_, joint.name); }
+
+    void add_inertial(int body, const urdf::Link& link, const Transform& body_to_link) {
+        if (body < 0 || !link.inertial) return;  // the base (or a link fixed to it) does not move
+        const Inertial10 p = inertial_in(*link.inertial, body_to_link);
+        for (double v : p) {
+            if (!std::isfinite(v)) throw InputError(fmt::format("{}: element <link name='{}'>: <inertial> must be finite numbers", source_, link.name));
+        }
+        for (std::size_t k = 0; k < p.size(); ++k) inertials_[static_cast<std::size_t>(body)][k] += p[k];
+    }
+
+    // `link` belongs to the moving body `body` (-1: base); `body_to_link` maps link coordinates to body coordinates.
+    void visit(const urdf::Link& link, int body, const Transform& body_to_link) {
+        add_inertial(body, link, body_to_link);
+        for (const auto& joint_ptr : link.child_joints) {
+            const urdf::Joint& joint = *joint_ptr;
+            const auto child = link.child_links.empty() ? nullptr : find_child(link, joint.child_link_name);
+            if (!child) throw InputError(fmt::format("{}: child link '{}' not found", element(joint), joint.child_link_name));
+            const Transform origin = body_to_link.then(to_transform(joint.parent_to_joint_origin_transform));
+            if (joint.type == urdf::Joint::FIXED) {
+                visit(*child, body, origin);
+                continue;
+            }
+            if (joint.type != urdf::Joint::REVOLUTE && joint.type != urdf::Joint::CONTINUOUS && joint.type != urdf::Joint::PRISMATIC) {
+                throw InputError(fmt::format("{}: joint type is not supported (expected revolute, continuous, prismatic or fixed)", element(joint)));
+            }
+            if (joint.mimic) throw InputError(fmt::format("{}: mimic joints are not supported", element(joint)));
+            ChainJoint c;
+            c.type = joint.type == urdf::Joint::PRISMATIC ? JointType::Prismatic : JointType::Revolute;
+            c.antecedent = body;
+            c.rotation = origin.R;
+            c.position = origin.p;
+            c.axis = Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z);
+            if (!c.rotation.allFinite() || !c.position.allFinite() || !c.axis.allFinite()) {
+                throw InputError(fmt::format("{}: <origin> and <axis> must be finite numbers", element(joint)));
+            }
+            if (!(c.axis.norm() > 1e-9)) throw InputError(fmt::format("{}: <axis xyz> must not be zero", element(joint)));
+            c.axis.normalize();
+            double lower = -M_PI, upper = M_PI;
+            if (joint.type != urdf::Joint::CONTINUOUS && joint.limits && joint.limits->upper > joint.limits->lower) {
+                lower = joint.limits->lower;
+                upper = joint.limits->upper;
+            } else if (joint.type == urdf::Joint::PRISMATIC) {
+                throw InputError(fmt::format("{}: a prismatic joint needs <limit lower upper> with lower < upper", element(joint)));
+            }
+            const int index = static_cast<int>(chain_.joints.size());
+            chain_.joints.push_back(c);
+            chain_.names.push_back(joint.name);
+            chain_.limits.emplace_back(lower, upper);
+            inertials_.push_back({});
+            if (joint.dynamics && (!std::isfinite(joint.dynamics->damping) || !std::isfinite(joint.dynamics->friction))) {
+                throw InputError(fmt::format("{}: <dynamics damping friction> must be finite numbers", element(joint)));
+            }
+            damping_.push_back(joint.dynamics ? joint.dynamics->damping : 0.0);
+            friction_.push_back(joint.dynamics ? joint.dynamics->friction : 0.0);
+            visit(*child, index, Transform{});
+        }
+    }
+
+    static const urdf::Link* find_child(const urdf::Link& link, const std::string& name) {
+        for (const auto& child : link.child_links) {
+            if (child && child->name == name) return child.get();
+        }
+        return nullptr;
+    }
+
+    std::string source_;
+    UrdfChain chain_;
+    std::vector<Inertial10> inertials_;
+    std::vector<double> damping_, friction_;
+};
+
+}  // namespace
+
+UrdfChain parse_urdf_chain(const std::string& xml, const std::string& source) {
+    urdf::ModelInterfaceSharedPtr model;
+    try {
+        model = urdf::parseURDF(xml);
+    } catch (const std::exception& e) {
+        throw InputError(fmt::format("{}: invalid URDF: {}", source, e.what()));
+    }
+    if (!model) {
+        throw InputError(fmt::format("{}: invalid URDF (urdfdom rejected it: malformed XML, a missing <robot>, a joint without "
+                                     "parent/child, a link named twice or a number that does not parse)",
+                                     source));
+    }
+    return Converter(source).convert(*model);
+}
+
+UrdfChain load_urdf_chain(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(fmt::format("{}: cannot open URDF", path));
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    return parse_urdf_chain(buffer.str(), path);
+}
+
+}  // namespace jacobid::robot

@@ -1,0 +1,28 @@
+#pragma once
+// A URDF (through urdfdom) as a kinematic chain: every revolute, continuous or prismatic joint becomes a
+// ChainJoint whose fixed transform is the joint origin (composed with the origins of any fixed joints
+// between it and its moving antecedent) and whose axis is the URDF axis; the child link frame is the joint
+// frame. Link inertials (mass, centre of mass, central inertia in the inertial frame) become the standard
+// parameters of the moving body that carries them (fixed links are merged), about the link frame origin:
+//   M = m, MS = m c, I_O = R I_G R^T + m (|c|^2 E - c c^T);
+// <dynamics damping friction> become FVj and FCj. Errors: InputError "file: element <joint name='x'>: ...".
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "jacobid/robot/kinematic_chain.hpp"
+
+namespace jacobid::robot {
+
+struct UrdfChain {
+    std::vector<ChainJoint> joints;   // moving joints in topological order
+    std::vector<std::string> names;   // URDF joint names
+    std::vector<std::pair<double, double>> limits;  // [lower, upper]; continuous joints: [-pi, pi]
+    std::vector<std::pair<std::string, double>> standard_parameters;  // XX1 ... M_n, FVj, FCj from the file
+};
+
+// xml: the URDF text; source names it in error messages (the file path, or e.g. "<fuzz>").
+UrdfChain parse_urdf_chain(const std::string& xml, const std::string& source);
+UrdfChain load_urdf_chain(const std::string& path);
+
+}  // namespace jacobid::robot

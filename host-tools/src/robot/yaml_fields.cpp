@@ -1,0 +1,61 @@
+#include "robot/yaml_fields.hpp"
+
+#include <fmt/core.h>
+
+#include <cmath>
+
+#include "cli/command.hpp"
+
+namespace jacobid::robot::yaml_fields {
+
+using cli::InputError;
+
+std::string where(const std::string& source, const YAML::Node& node) {
+    const YAML::Mark m = node.Mark();
+    if (m.is_null()) return source;
+    return fmt::format("{}:{}:{}", source, m.line + 1, m.column + 1);
+}
+
+double number(const std::string& source, const YAML::Node& node, const std::string& key) {
+    try {
+        const double v = node.as<double>();
+        if (!std::isfinite(v)) throw YAML::Exception(node.Mark(), "not finite");
+        return v;
+    } catch (const YAML::Exception&) {
+        throw InputError(fmt::format("{}: '{}' must be a finite number", where(source, node), key));
+    }
+}
+
+int integer(const std::string& source, const YAML::Node& node, const std::string& key) {
+    try {
+        return node.as<int>();
+    } catch (const YAML::Exception&) {
+        throw InputError(fmt::format("{}: '{}' must be an integer", where(source, node), key));
+    }
+}
+
+bool boolean(const std::string& source, const YAML::Node& node, const std::string& key) {
+    try {
+        return node.as<bool>();
+    } catch (const YAML::Exception&) {
+        throw InputError(fmt::format("{}: '{}' must be true or false", where(source, node), key));
+    }
+}
+
+std::string text(const std::string& source, const YAML::Node& node, const std::string& key) {
+    if (!node.IsScalar()) throw InputError(fmt::format("{}: '{}' must be a string", where(source, node), key));
+    return node.as<std::string>();
+}
+
+void check_keys(const std::string& source, const YAML::Node& map, const std::set<std::string>& known, const std::string& what) {
+    for (const auto& entry : map) {
+        const std::string key = entry.first.as<std::string>();
+        if (!known.count(key)) {
+            std::string list;
+            for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+            throw InputError(fmt::format("{}: unknown key '{}' in {} (known: {})", where(source, entry.first), key, what, list));
+        }
+    }
+}
+
+}  // namespace jacobid::robot::yaml_fields

@@ -1,0 +1,23 @@
+#pragma once
+// Loading the published example robots (examples/robots/) for the serial-robot tests.
+#include <string>
+
+#include "robot/robot_description.hpp"
+#include "robot/serial_robot_model.hpp"
+
+namespace jacobid::test {
+
+inline std::string example_robot(const std::string& name) { return std::string(JACOBID_TESTS_DIR) + "/../examples/robots/" + name; }
+
+inline robot::SerialRobotConfig serial_config(const robot::RobotDescription& d) {
+    robot::SerialRobotConfig config;
+    config.name = d.model;
+    config.joints = d.chain;
+    config.gravity = d.gravity;
+    config.options.coulomb = d.coulomb;
+    config.options.rotor_inertia = d.rotor_inertia;
+    config.options.friction_offset = d.friction_offset;
+    return config;
+}
+
+}  // namespace jacobid::test
