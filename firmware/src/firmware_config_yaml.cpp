@@ -106,7 +106,9 @@ public:
     // Call after reading every known key.
     void reject_unknown() const {
         for (const auto& kv : node_) {
-            const std::string key = kv.first.as<std::string>();
+            // A list or map in key position ("{[a, b]: 1}") has no name to report or compare.
+            if (!kv.first.IsScalar()) fail(kv.first, "", "expected a key name, found a list or map used as a key");
+            const std::string key = kv.first.Scalar();
             bool known = false;
             for (const auto& u : used_) known = known || u == key;
             if (!known) fail(kv.first, key, "unknown key");
@@ -230,16 +232,7 @@ void read_estimator(Section& s, EstimatorConfig& e, double rate) {
     }
 }
 
-}  // namespace
-
-FirmwareConfig parse_firmware_config(const std::string& yaml_text, const std::string& source) {
-    YAML::Node root;
-    try {
-        root = YAML::Load(yaml_text);
-    } catch (const YAML::ParserException& e) {
-        throw ConfigError(fmt::format("{}:{}:{}: invalid YAML: {}", source, e.mark.line + 1, e.mark.column + 1, e.msg));
-    }
-    if (!root.IsDefined() || root.IsNull()) throw ConfigError(fmt::format("{}: empty configuration", source));
+FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     FirmwareConfig c;
     c.source = source;
     Section top(source, root, "");
@@ -308,6 +301,26 @@ FirmwareConfig parse_firmware_config(const std::string& yaml_text, const std::st
     }
     top.reject_unknown();
     return c;
+}
+
+}  // namespace
+
+FirmwareConfig parse_firmware_config(const std::string& yaml_text, const std::string& source) {
+    YAML::Node root;
+    try {
+        root = YAML::Load(yaml_text);
+    } catch (const YAML::ParserException& e) {
+        throw ConfigError(fmt::format("{}:{}:{}: invalid YAML: {}", source, e.mark.line + 1, e.mark.column + 1, e.msg));
+    }
+    if (!root.IsDefined() || root.IsNull()) throw ConfigError(fmt::format("{}: empty configuration", source));
+    try {
+        return read_config(root, source);
+    } catch (const YAML::Exception& e) {
+        // yaml-cpp throws where a node is not of the kind an accessor assumed. Every such case the fuzzer
+        // found has its own message above (e.g. a list used as a key); this keeps any other a ConfigError.
+        const std::string where = e.mark.is_null() ? source : fmt::format("{}:{}:{}", source, e.mark.line + 1, e.mark.column + 1);
+        throw ConfigError(fmt::format("{}: unexpected YAML structure: {}", where, e.msg));
+    }
 }
 
 FirmwareConfig load_firmware_config(const std::string& path) {

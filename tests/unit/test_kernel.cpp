@@ -224,9 +224,13 @@ TEST(Kernel, InvalidParametersAreRejected) {
     auto p = ok; p.order = 4; check(p, KernelStatus::InvalidOrder);
     p = ok; p.order = -1; check(p, KernelStatus::InvalidOrder);
     p = ok; p.kappa = -1.0; check(p, KernelStatus::InvalidKappa);
+    // Exponents beyond 300 would overflow the design (NaN weights with an Ok status, before the bound).
+    p = ok; p.kappa = 301.0; check(p, KernelStatus::InvalidKappa);
+    p = ok; p.mu = 544.0; check(p, KernelStatus::InvalidMu);
     p = ok; p.mu = std::nan(""); check(p, KernelStatus::InvalidMu);
     p = ok; p.q = -1; check(p, KernelStatus::InvalidTruncation);
     p = ok; p.sample_period = 0; check(p, KernelStatus::InvalidSamplePeriod);
+    p = ok; p.sample_period = 1e-100; p.window = 1e-98; check(p, KernelStatus::InvalidSamplePeriod);
     p = ok; p.window = 1.5e-3; check(p, KernelStatus::WindowTooShort);
     p = ok; p.xi = 1.0001; check(p, KernelStatus::InvalidXi);
     p = ok; p.window = 0.064; check(p, KernelStatus::TooManyTaps);  // 65 taps > 64

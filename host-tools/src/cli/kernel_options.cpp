@@ -18,8 +18,8 @@ constexpr std::size_t kMaxHostTaps = 10'000'000;
 
 void add_kernel_options(CLI::App* command, KernelOptions& o, bool with_order, bool with_ts) {
     if (with_order) command->add_option("--order,-n", o.order, "derivative order n (0, 1, 2 or 3)")->capture_default_str();
-    command->add_option("--kappa", o.kappa, "Jacobi weight exponent kappa > -1 of (1 + tau), the oldest end")->capture_default_str();
-    command->add_option("--mu", o.mu, "Jacobi weight exponent mu > -1 of (1 - tau), the newest end")->capture_default_str();
+    command->add_option("--kappa", o.kappa, "Jacobi weight exponent kappa in (-1, 300] of (1 + tau), the oldest end")->capture_default_str();
+    command->add_option("--mu", o.mu, "Jacobi weight exponent mu in (-1, 300] of (1 - tau), the newest end")->capture_default_str();
     command->add_option("--q", o.q, "truncation order q >= 0 (polynomial degree q + n)")->capture_default_str();
     command->add_option("--window,-T", o.window, "window length T in seconds (taps = round(T/Ts) + 1)");
     if (with_ts) command->add_option("--ts", o.ts, "sample period Ts in seconds")->required();

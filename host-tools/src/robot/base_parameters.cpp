@@ -41,6 +41,11 @@ BaseParameterSet compute_base_parameters(int n, const std::vector<std::string>& 
     const int states = settings.states > 0 ? settings.states : std::max(20, (3 * p + n - 1) / n);
     Eigen::MatrixXd W = random_regressor(n, p, prismatic, regressor, states, settings.seed);
 
+    // A description with absurd numbers (a length of 1e84 m, say) gives an infinite or NaN regressor; the
+    // rank decisions below would then be meaningless, so refuse it here with a message the user can act on.
+    if (!W.allFinite()) {
+        throw std::invalid_argument("the regressor is not finite for random joint states: check the lengths, offsets and axes of the description");
+    }
     BaseParameterSet base;
     const Eigen::VectorXd norms = W.colwise().norm();
     const double largest = norms.maxCoeff();
@@ -54,6 +59,7 @@ BaseParameterSet compute_base_parameters(int n, const std::vector<std::string>& 
         }
     }
 
+    if (nonzero.empty()) throw std::invalid_argument("no parameter has any effect on the joint torques: the description has no moving joint");
     // Rank of the nonzero columns by QR with column pivoting.
     Eigen::MatrixXd Wn(W.rows(), static_cast<Eigen::Index>(nonzero.size()));
     for (std::size_t k = 0; k < nonzero.size(); ++k) Wn.col(static_cast<Eigen::Index>(k)) = W.col(nonzero[k]);

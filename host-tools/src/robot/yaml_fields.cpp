@@ -49,7 +49,10 @@ std::string text(const std::string& source, const YAML::Node& node, const std::s
 
 void check_keys(const std::string& source, const YAML::Node& map, const std::set<std::string>& known, const std::string& what) {
     for (const auto& entry : map) {
-        const std::string key = entry.first.as<std::string>();
+        if (!entry.first.IsScalar()) {
+            throw InputError(fmt::format("{}: expected a key name in {}, found a list or map used as a key", where(source, entry.first), what));
+        }
+        const std::string key = entry.first.Scalar();
         if (!known.count(key)) {
             std::string list;
             for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;

@@ -26,10 +26,12 @@ std::uint64_t total(const std::vector<SequenceRange>& ranges) {
     return n;
 }
 
-// Seconds relative to the origin with exact nanoseconds (a double of epoch seconds would round to 0.24 us).
-std::string relative_seconds(std::int64_t ns) {
-    const bool negative = ns < 0;
-    const std::uint64_t magnitude = negative ? 0 - static_cast<std::uint64_t>(ns) : static_cast<std::uint64_t>(ns);
+// Seconds relative to the origin with exact nanoseconds (a double of epoch seconds would round to 0.24 us). The difference of two int64 time stamps can exceed int64 (a corrupt
+// or foreign sender's clock), so it is taken as a sign and an unsigned magnitude: no overflow.
+std::string relative_seconds(std::int64_t ns, std::int64_t origin_ns) {
+    const bool negative = ns < origin_ns;
+    const auto a = static_cast<std::uint64_t>(ns), b = static_cast<std::uint64_t>(origin_ns);
+    const std::uint64_t magnitude = negative ? b - a : a - b;
     return fmt::format("{}{}.{:09d}", negative ? "-" : "", magnitude / 1000000000u, magnitude % 1000000000u);
 }
 
@@ -205,7 +207,7 @@ void Recorder::row(const HostDatagram& d) {
     }
     line += fmt::format(",{},{}", d.sequence, d.flags);
     for (std::size_t j = 0; j < n; ++j) line += fmt::format(",{}", d.joints[j].flags);
-    line += "," + relative_seconds(d.timestamp_ns - time_origin_ns_);
+    line += "," + relative_seconds(d.timestamp_ns, time_origin_ns_);
     *out_ << line << '\n';
     ++rows_written_;
     ++files_.back().rows;

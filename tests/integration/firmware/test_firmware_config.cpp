@@ -98,4 +98,20 @@ TEST(FirmwareConfig, MissingFileIsNamed) {
     }
 }
 
+// Fuzzing (fuzz/targets/fuzz_firmware_config.cpp) found this input, here byte for byte: a flow list in key
+// position ("mit,[ motor_id: 1, ...]") made the unknown-key check throw yaml-cpp's bad conversion instead
+// of a ConfigError. The error now points at the '[' (line 4, column 35).
+TEST(FirmwareConfig, FuzzRegressionListUsedAsAKeyIsAConfigError) {
+    const std::string input =
+        "can: {interface: virtual}\nrate: 1000\njoints:\n"
+        "  - {name: shoulder, profile: mit,[ motor_id: 1, gear_ratio: 4, velocity_range: [-65, 65], efforequire_status, 30]}\n"
+        "  - {name: elbow, profile: mit, motor_id:elbow, profile: mit, motor_id: 2, gear_ratio: 4, velocityp0, estop_line: 4, enab 70, "
+        "cpu: 1, report.02, velocitdow: 0.05, acceleration_window: 0.1}\n"
+        "stream: {host: 127.0.0.1, port:\xff\xff" "can\xff*5}\n:gpio";
+    ASSERT_EQ(input.size(), 396u);
+    EXPECT_EQ(error_of(input), "fw.yaml:4:35: joints[0]: expected a key name, found a list or map used as a key");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit, {a: 1}: 2}\n" + kStream),
+              "fw.yaml:3:20: joints[0]: expected a key name, found a list or map used as a key");
+}
+
 }  // namespace

@@ -14,6 +14,7 @@
 #include "io/time_axis.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
+#include "stream/recorder.hpp"
 #include "stream_test_support.hpp"
 
 namespace {
@@ -268,6 +269,29 @@ TEST(RecordCli, BadEndpointIsAnInputError) {
     const auto help = jacobid::test::run_command(std::string(JACOBID_EXECUTABLE) + " record --help");
     EXPECT_EQ(help.exit_code, 0);
     EXPECT_NE(help.out.find("--on-gap"), std::string::npos);
+}
+
+// Fuzzing (fuzz/targets/fuzz_stream_recorder.cpp) found that t_wake subtracted two int64 time stamps:
+// from a sender whose clock jumps from 9.2e18 ns to -9.2e18 ns that overflowed (UBSan). The column is
+// now exact for any pair: -(9208677939247041483 + 9166008540424582197) ns = -18374686479.671623680 s.
+TEST(RecordCli, FuzzRegressionTimeStampsFurtherApartThanInt64AreExact) {
+    jacobid::stream::RecorderOptions options;
+    options.output = path("fuzz_regression_timestamps.csv");
+    options.policy = jacobid::stream::GapPolicy::Mark;
+    {
+        jacobid::stream::Recorder recorder(options);
+        auto d = make_datagram(0);
+        d.timestamp_ns = 9208677939247041483;
+        recorder.datagram(jacobid::test::encode_bytes(d), jacobid::stream::datagram_size(d.joint_count));
+        d = make_datagram(1);
+        d.timestamp_ns = -9166008540424582197;
+        recorder.datagram(jacobid::test::encode_bytes(d), jacobid::stream::datagram_size(d.joint_count));
+        recorder.finish();
+        ASSERT_EQ(recorder.rows_written(), 2u);
+    }
+    const std::string text = jacobid::test::slurp_file(options.output);
+    const std::string last_line = text.substr(text.rfind('\n', text.size() - 2) + 1);
+    EXPECT_EQ(last_line.substr(last_line.rfind(',') + 1), "-18374686479.671623680\n");
 }
 
 }  // namespace

@@ -136,4 +136,32 @@ TEST(HalCia402, ValidatesConfiguration) {
     EXPECT_EQ(cia402::validate(c), ConfigStatus::InvalidLayout);
 }
 
+// Fuzzing (fuzz/targets/fuzz_profile_cia402.cpp) found this; the frame is the fuzzer's bytes.
+TEST(HalCia402, FuzzRegressionOverflowingTorqueConstantIsOutOfRangeNotInfinite) {
+    cia402::JointConfig c = drive(0x14);  // COB-ID 0x194
+    c.mapping.gear_ratio = 1.0;
+    c.mapping.torque_constant = 1.7976857124591637e+308;
+    c.max_abs_per_mille = 32767;
+    cia402::JointDecoder d;
+    ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
+    JointState s;
+    // -17734 per mille of 2 A times Kt = 1.8e308 N.m/A is -inf N.m.
+    EXPECT_EQ(d.decode(frame(0x194, {0xBA, 0xBA, 0xBA, 0xBA, 0xBA, 0xBA}), s), DecodeStatus::OutOfRange);
+    EXPECT_EQ(s.torque, 0.0);
+    EXPECT_FALSE(s.position_fresh);
+}
+
+TEST(HalCia402, FuzzRegressionPositionOverflowIsRejectedWithoutMovingTheUnwrapper) {
+    cia402::JointConfig c = drive(5);
+    c.layout.effort = cia402::EffortObject::None;
+    c.counts_per_revolution = 1e-310;  // finite and non-zero, but counts / it overflow
+    cia402::JointDecoder d;
+    ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
+    JointState s;
+    EXPECT_EQ(d.decode(frame(0x185, {0x01, 0x00, 0x00, 0x00}), s), DecodeStatus::OutOfRange);
+    EXPECT_FALSE(s.position_fresh);
+    EXPECT_EQ(d.decode(frame(0x185, {0x00, 0x00, 0x00, 0x00}), s), DecodeStatus::Ok);  // 0 counts: 0 rad
+    EXPECT_EQ(s.position, 0.0);
+}
+
 }  // namespace

@@ -134,4 +134,29 @@ TEST(HalGeneric, ValidatesLayouts) {
     EXPECT_EQ(generic::validate(c), ConfigStatus::InvalidLayout);
 }
 
+// Fuzzing (fuzz/targets/fuzz_profile_generic.cpp): a finite field times a large (valid) scale overflows.
+TEST(HalGeneric, FuzzRegressionOverflowingScaleIsOutOfRangeAndChangesNothing) {
+    generic::JointConfig c = sensor();
+    c.position.scale = 1e305;
+    c.effort.scale = 1e305;
+    generic::JointDecoder d;
+    ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
+    JointState s;
+    // Torque 1 count = 1e305 N.m, 4e305 on the link, is finite; 0x7FFF counts are inf.
+    ASSERT_EQ(d.decode(frame(0x321, {0x01, 0x00, 0x00, 0x00, 0x00}), s), DecodeStatus::Ok);
+    EXPECT_DOUBLE_EQ(s.torque, 4e305);
+    const double torque = s.torque;
+    EXPECT_EQ(d.decode(frame(0x321, {0xFF, 0x7F, 0x00, 0x00, 0x00}), s), DecodeStatus::OutOfRange);
+    EXPECT_EQ(s.torque, torque);
+    // Position 0x7FFFFF counts x 1e305 rad is inf as well.
+    c.effort.scale = 0.01;
+    ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
+    EXPECT_EQ(d.decode(frame(0x321, {0x00, 0x00, 0x7F, 0xFF, 0xFF}), s), DecodeStatus::OutOfRange);
+    EXPECT_EQ(s.torque, torque);
+    // A classic frame cannot carry more than 8 bytes.
+    CanFrame f = frame(0x321, {0x00, 0x00, 0x00, 0x00, 0x00});
+    f.len = 9;
+    EXPECT_EQ(d.decode(f, s), DecodeStatus::Malformed);
+}
+
 }  // namespace

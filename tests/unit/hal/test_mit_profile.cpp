@@ -185,4 +185,41 @@ TEST(HalMit, ValidatesConfiguration) {
     EXPECT_EQ(mit::validate(c), ConfigStatus::InvalidDirection);
 }
 
+// Fuzzing (fuzz/targets/fuzz_profile_mit.cpp) found these; the frames are the fuzzer's bytes.
+TEST(HalMit, FuzzRegressionOverflowingScaleIsOutOfRangeNotInfinite) {
+    // Gear ratio -1.797e308 (finite, so valid) times 18 N.m is -inf: with the default infinite limits the
+    // old check |tau| <= inf let it through as a decoded torque.
+    mit::JointConfig c = ak80(0xFF, -1.7976930280580734e+308);
+    c.reply_can_id = 0x73B;
+    c.extended_id = true;
+    c.mapping.direction = -1.0;
+    mit::JointDecoder d;
+    ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
+    JointState s;
+    CanFrame f = frame(0x73B, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x00}, kCanExtended);
+    EXPECT_EQ(d.decode(f, s), DecodeStatus::OutOfRange);
+    EXPECT_EQ(s.torque, 0.0);
+    EXPECT_FALSE(s.position_fresh || s.torque_fresh);
+    // The same bytes with the length byte the fuzzer gave them (253): no transport delivers that.
+    f.len = 253;
+    EXPECT_EQ(d.decode(f, s), DecodeStatus::Malformed);
+}
+
+TEST(HalMit, FuzzRegressionRangeSpanMustBeFinite) {
+    mit::JointConfig c = ak80(1);
+    c.ranges.p_min = -1.7e308;
+    c.ranges.p_max = 1.7e308;  // p_max - p_min overflows: every position would be inf or NaN
+    EXPECT_EQ(mit::validate(c), ConfigStatus::InvalidRange);
+}
+
+TEST(HalMit, FuzzRegressionAnyTemperatureOffsetIsClampedWithoutOverflow) {
+    mit::JointConfig c = ak80(1);
+    c.temperature_offset = -2147483647 - 1;  // raw - offset overflowed int (UBSan), now clamps
+    mit::JointDecoder d;
+    ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
+    JointState s;
+    ASSERT_EQ(d.decode(kFrameA, s), DecodeStatus::Ok);
+    EXPECT_EQ(s.temperature_c, 32767);
+}
+
 }  // namespace

@@ -94,4 +94,18 @@ TEST(HalOdrive, RejectsShortNonFiniteAndForeignFrames) {
     EXPECT_EQ(odrive::validate(axis(64)), ConfigStatus::InvalidNodeId);
 }
 
+// Fuzzing (fuzz/targets/fuzz_profile_odrive.cpp) found this; the frame is the fuzzer's bytes.
+TEST(HalOdrive, FuzzRegressionOverflowingGearRatioIsOutOfRangeNotInfinite) {
+    odrive::JointConfig c = axis(21);  // Iq of node 21: 21 << 5 | 0x14 = 0x2B4
+    c.mapping.gear_ratio = -4.2133432848332276e+307;
+    c.mapping.torque_constant = 0.083;
+    odrive::JointDecoder d;
+    ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
+    JointState s;
+    // Iq measured = float D7D7D7D7 = -4.7e14 A: times Kt and the gear ratio it overflows to inf.
+    EXPECT_EQ(d.decode(frame(0x2B4, {0xD7, 0xD7, 0xD7, 0xD7, 0xD7, 0xD7, 0xD7, 0xD7}), s), DecodeStatus::OutOfRange);
+    EXPECT_EQ(s.torque, 0.0);
+    EXPECT_FALSE(s.torque_fresh);
+}
+
 }  // namespace

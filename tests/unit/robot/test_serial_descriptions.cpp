@@ -50,6 +50,22 @@ TEST(MdhDescription, MalformedTablesNameFileLineAndField) {
     EXPECT_EQ(error_of("model: scara\n"), "r.yaml:1:8: unknown model 'scara' (known models: planar2r, mdh, urdf)");
 }
 
+// Fuzzer findings (fuzz/findings, docs/reliability.md): a list used as a key, and numbers so large that the
+// regressor overflows, are input errors naming the file, not crashes.
+TEST(MdhDescription, ListAsKeyIsAnInputError) {
+    EXPECT_EQ(error_of("model: planar2r\n[a, b]: 1\n"), "r.yaml:2:1: expected a key name in the robot description, found a list or map used as a key");
+}
+
+TEST(MdhDescription, OverflowingGeometryIsRejectedByTheModel) {
+    const auto d = robot::parse_robot_description("model: mdh\njoints:\n  - {sigma: 0}\n  - {sigma: 0, d: 1e200}\n", "r.yaml");
+    try {
+        robot::make_robot_model(d);
+        ADD_FAILURE() << "a 1e200 m link was accepted";
+    } catch (const cli::InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("r.yaml: the regressor is not finite", 0), 0u) << e.what();
+    }
+}
+
 // A 2-link arm: joint 1 about z at the base, joint 2 about y at 0.3 m up and 0.1 m out, a fixed tool
 // link on link 2 (merged into link 2's inertia).
 const char* kArm = R"(<robot name="arm">

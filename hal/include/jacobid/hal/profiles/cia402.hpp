@@ -17,6 +17,7 @@
 #include "jacobid/hal/byte_codec.hpp"
 #include "jacobid/hal/can_frame.hpp"
 #include "jacobid/hal/joint_state.hpp"
+#include "jacobid/hal/profiles/plausibility.hpp"
 #include "jacobid/hal/unwrap.hpp"
 
 namespace jacobid::hal::cia402 {
@@ -132,7 +133,7 @@ public:
             if (std::abs(static_cast<int>(r.effort_per_mille)) > config_.max_abs_per_mille) return DecodeStatus::OutOfRange;
             const double rated = config_.effort_kind() == EffortKind::Current ? config_.rated_current : config_.rated_torque;
             tau = link_torque(m, config_.effort_kind(), static_cast<double>(r.effort_per_mille) / 1000.0 * rated);
-            if (!(std::abs(tau) <= m.max_abs_torque)) return DecodeStatus::OutOfRange;
+            if (!plausible(tau, m.max_abs_torque)) return DecodeStatus::OutOfRange;
         }
         // A modulo range reports 0..modulus-1: reading the field as signed would put the first sample a
         // period off, so sign extension is only right for the full INT32 range.
@@ -141,8 +142,11 @@ public:
                                      : static_cast<std::int64_t>(static_cast<std::uint32_t>(r.position));
         if (config_.position_modulus != (1ull << 32) && static_cast<std::uint64_t>(raw) >= config_.position_modulus)
             return DecodeStatus::OutOfRange;
-        const std::int64_t counts = unwrap_.update(raw);
-        s.position = link_position(m, kTwoPi * static_cast<double>(counts) / config_.counts_per_revolution);
+        CountUnwrapper next = unwrap_;  // moved only by a frame that passes every check
+        const double position = link_position(m, kTwoPi * static_cast<double>(next.update(raw)) / config_.counts_per_revolution);
+        if (!std::isfinite(position)) return DecodeStatus::OutOfRange;
+        unwrap_ = next;
+        s.position = position;
         mark_position(s, f.timestamp_ns);
         if (has_effort) {
             s.torque = tau;

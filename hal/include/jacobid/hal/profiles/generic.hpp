@@ -15,6 +15,7 @@
 #include "jacobid/hal/byte_codec.hpp"
 #include "jacobid/hal/can_frame.hpp"
 #include "jacobid/hal/joint_state.hpp"
+#include "jacobid/hal/profiles/plausibility.hpp"
 #include "jacobid/hal/unwrap.hpp"
 
 namespace jacobid::hal::generic {
@@ -52,7 +53,7 @@ inline bool is_signal_frame(const Signal& s, const CanFrame& f) noexcept {
 
 // Raw value of the field (id not checked). Short when the frame ends before the field.
 inline DecodeStatus extract_raw(const Signal& s, const CanFrame& f, std::int64_t& raw) noexcept {
-    if (f.remote() || f.error()) return DecodeStatus::Malformed;
+    if (f.remote() || f.error() || f.len > (f.fd() ? kCanFdMaxDataLength : kCanMaxDataLength)) return DecodeStatus::Malformed;
     if (f.len < s.byte_offset + s.byte_count()) return DecodeStatus::Short;
     const std::uint64_t word = load_uint(&f.data[s.byte_offset], s.byte_count(), s.order) >> s.bit_shift;
     raw = s.is_signed ? sign_extend(word, s.bit_width) : static_cast<std::int64_t>(word & low_bits_mask(s.bit_width));
@@ -136,16 +137,20 @@ public:
         if (vel) {
             if (const DecodeStatus st = extract_raw(c.velocity, f, raw_v); st != DecodeStatus::Ok) return st;
             v = link_velocity(m, to_physical(c.velocity, raw_v));
-            if (!(std::abs(v) <= m.max_abs_velocity)) return DecodeStatus::OutOfRange;
+            if (!plausible(v, m.max_abs_velocity)) return DecodeStatus::OutOfRange;
         }
         if (eff) {
             if (const DecodeStatus st = extract_raw(c.effort, f, raw_e); st != DecodeStatus::Ok) return st;
             tau = link_torque(m, c.effort_kind, to_physical(c.effort, raw_e));
-            if (!(std::abs(tau) <= m.max_abs_torque)) return DecodeStatus::OutOfRange;
+            if (!plausible(tau, m.max_abs_torque)) return DecodeStatus::OutOfRange;
         }
         if (pos) {
-            const std::int64_t counts = c.unwrap_position ? unwrap_.update(raw_p) : raw_p;
-            s.position = link_position(m, to_physical(c.position, counts));
+            CountUnwrapper next = unwrap_;  // moved only by a frame that passes every check
+            const std::int64_t counts = c.unwrap_position ? next.update(raw_p) : raw_p;
+            const double position = link_position(m, to_physical(c.position, counts));
+            if (!std::isfinite(position)) return DecodeStatus::OutOfRange;
+            unwrap_ = next;
+            s.position = position;
             mark_position(s, f.timestamp_ns);
         }
         if (vel) s.velocity = v;

@@ -20,6 +20,7 @@
 
 #include "jacobid/hal/can_frame.hpp"
 #include "jacobid/hal/joint_state.hpp"
+#include "jacobid/hal/profiles/plausibility.hpp"
 #include "jacobid/hal/unwrap.hpp"
 
 namespace jacobid::hal::mit {
@@ -40,7 +41,8 @@ constexpr Ranges kAk80_9{-12.5, 12.5, -50.0, 50.0, -18.0, 18.0};
 constexpr Ranges kMiniCheetah{-12.5, 12.5, -65.0, 65.0, -18.0, 18.0};  // v/t: per-build firmware constants
 
 inline ConfigStatus validate(const Ranges& r) noexcept {
-    auto ok = [](double lo, double hi) { return std::isfinite(lo) && std::isfinite(hi) && lo < hi; };
+    // The span hi - lo must be finite too: it scales every code (-1e308..1e308 would overflow it).
+    auto ok = [](double lo, double hi) { return std::isfinite(lo) && std::isfinite(hi) && lo < hi && std::isfinite(hi - lo); };
     return ok(r.p_min, r.p_max) && ok(r.v_min, r.v_max) && ok(r.t_min, r.t_max) ? ConfigStatus::Ok : ConfigStatus::InvalidRange;
 }
 
@@ -77,7 +79,7 @@ struct RawReply {
 
 // Layout only: checks the frame type and length. Does not look at the CAN id.
 inline DecodeStatus unpack_reply(const CanFrame& f, RawReply& out) noexcept {
-    if (f.remote() || f.fd() || f.error()) return DecodeStatus::Malformed;
+    if (f.remote() || f.fd() || f.error() || f.len > kCanMaxDataLength) return DecodeStatus::Malformed;
     if (f.len < kShortReplyLength) return DecodeStatus::Short;
     const auto* d = f.data.data();
     out.motor_id = d[0];
@@ -152,15 +154,21 @@ public:
         const Ranges& g = config_.ranges;
         const double v = link_velocity(m, code_to_value(r.velocity, g.v_min, g.v_max, kVelocityBits));
         const double tau = link_torque(m, config_.effort, code_to_value(r.effort, g.t_min, g.t_max, kEffortBits));
-        if (!(std::abs(v) <= m.max_abs_velocity) || !(std::abs(tau) <= m.max_abs_torque)) return DecodeStatus::OutOfRange;
+        if (!plausible(v, m.max_abs_velocity) || !plausible(tau, m.max_abs_torque)) return DecodeStatus::OutOfRange;
         // Only a frame that passed every check moves the unwrapper: a rejected one must not count a turn.
-        const std::int64_t code = unwrap_.update(r.position);
+        CountUnwrapper next = unwrap_;
+        const std::int64_t code = next.update(r.position);
         const double motor_p = g.p_min + static_cast<double>(code) * (g.p_max - g.p_min) / 65535.0;
-        s.position = link_position(m, motor_p);
+        const double position = link_position(m, motor_p);
+        if (!std::isfinite(position)) return DecodeStatus::OutOfRange;
+        unwrap_ = next;
+        s.position = position;
         s.velocity = v;
         s.torque = tau;
         if (r.has_status) {
-            s.temperature_c = static_cast<std::int16_t>(static_cast<int>(r.temperature) - config_.temperature_offset);
+            // In 64 bits and clamped: any int offset is accepted, and raw - offset must not overflow.
+            const std::int64_t t = static_cast<std::int64_t>(r.temperature) - config_.temperature_offset;
+            s.temperature_c = static_cast<std::int16_t>(t < INT16_MIN ? INT16_MIN : (t > INT16_MAX ? INT16_MAX : t));
             s.device_error = r.error;
         }
         mark_position(s, f.timestamp_ns);

@@ -15,6 +15,7 @@
 #include "jacobid/hal/byte_codec.hpp"
 #include "jacobid/hal/can_frame.hpp"
 #include "jacobid/hal/joint_state.hpp"
+#include "jacobid/hal/profiles/plausibility.hpp"
 #include "jacobid/hal/unwrap.hpp"
 
 namespace jacobid::hal::odrive {
@@ -41,7 +42,7 @@ struct Iq {
 // Two float32 fields: shared layout check of both messages. Non-finite values are rejected: ODrive
 // never sends them for valid estimates, so they mean corruption or an uncalibrated axis.
 inline DecodeStatus unpack_two_floats(const CanFrame& f, float& a, float& b) noexcept {
-    if (f.remote() || f.fd() || f.error() || f.extended()) return DecodeStatus::Malformed;
+    if (f.remote() || f.fd() || f.error() || f.extended() || f.len > kCanMaxDataLength) return DecodeStatus::Malformed;
     if (f.len < 8) return DecodeStatus::Short;
     a = load_float32_le(&f.data[0]);
     b = load_float32_le(&f.data[4]);
@@ -102,9 +103,12 @@ public:
             EncoderEstimates e;
             if (const DecodeStatus st = unpack_encoder_estimates(f, e); st != DecodeStatus::Ok) return st;
             const double v = link_velocity(m, kTwoPi * static_cast<double>(e.velocity_turns_s));
-            if (!(std::abs(v) <= m.max_abs_velocity)) return DecodeStatus::OutOfRange;
-            const double turns = unwrap_.update(static_cast<double>(e.position_turns));
-            s.position = link_position(m, kTwoPi * turns);
+            if (!plausible(v, m.max_abs_velocity)) return DecodeStatus::OutOfRange;
+            PeriodUnwrapper next = unwrap_;  // moved only by a frame that passes every check
+            const double position = link_position(m, kTwoPi * next.update(static_cast<double>(e.position_turns)));
+            if (!std::isfinite(position)) return DecodeStatus::OutOfRange;
+            unwrap_ = next;
+            s.position = position;
             s.velocity = v;
             mark_position(s, f.timestamp_ns);
             return DecodeStatus::Ok;
@@ -112,7 +116,7 @@ public:
         Iq iq;
         if (const DecodeStatus st = unpack_iq(f, iq); st != DecodeStatus::Ok) return st;
         const double tau = link_torque(m, EffortKind::Current, static_cast<double>(iq.measured));
-        if (!(std::abs(tau) <= m.max_abs_torque)) return DecodeStatus::OutOfRange;
+        if (!plausible(tau, m.max_abs_torque)) return DecodeStatus::OutOfRange;
         s.torque = tau;
         mark_torque(s, f.timestamp_ns);
         return DecodeStatus::Ok;
