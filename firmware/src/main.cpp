@@ -156,10 +156,7 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
     const auto report_every = static_cast<std::int64_t>(config.realtime.report_period * 1e9);
     const std::int64_t start = monotonic_ns();
     const std::int64_t end = duration > 0.0 ? start + static_cast<std::int64_t>(duration * 1e9) : 0;
-    // Cycles fall on multiples of the period of CLOCK_MONOTONIC, not on an arbitrary start phase: another
-    // process on the controller (a drive simulator, a logger) can then phase-lock to the loop without a
-    // handshake, e.g. `jacobid sim-can` sends its frames half a period after each cycle.
-    std::int64_t next = (start / period + 1) * period;
+    std::int64_t next = start + period;
     std::int64_t next_report = report_every > 0 ? start + report_every : 0;
     std::uint64_t overruns = 0;
     std::int64_t max_cost = 0;

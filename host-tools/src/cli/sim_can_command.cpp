@@ -32,7 +32,6 @@ struct SimCanOptions {
     sim::SimulationSettings settings;
     std::vector<double> torque_noise{0.05, 0.01};
     std::uint64_t noise_seed = 2;
-    double phase = 0.5;  // of a period, after the CLOCK_MONOTONIC period grid
     bool quiet = false;
 };
 
@@ -101,12 +100,7 @@ void run(SimCanOptions o) {
                                      o.iface, hal::describe(s), can.last_errno()));
     }
     sim::CanPlayer player(can, joints);
-    // First frame about 100 ms from now, on the grid of multiples of the period of CLOCK_MONOTONIC (the grid
-    // jacobid-fw cycles on) shifted by --phase: each sample then reaches the firmware a fixed fraction of a
-    // cycle before it reads the bus, never racing the read.
-    const auto period_grid = static_cast<std::int64_t>(std::llround(period_ns));
-    const std::int64_t start = ((monotonic_ns() + 100'000'000) / period_grid + 1) * period_grid +
-                               static_cast<std::int64_t>(std::llround(o.phase * period_ns));
+    const std::int64_t start = monotonic_ns() + 100'000'000;  // first frame 100 ms from now
     if (!o.quiet) fmt::print(stderr, "sim-can: {} joints on {} ({}), {} s at {} Hz\n", n, o.iface, o.config.empty() ? o.profile : o.config,
                              o.settings.duration, o.settings.output_rate);
     sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
@@ -145,11 +139,6 @@ void add_sim_can_command(CLI::App& app) {
     });
     cmd->add_option("--duration", o->settings.duration, "simulated (and wall-clock) time in s")->capture_default_str();
     cmd->add_option("--rate", o->settings.output_rate, "frames per joint per second (Hz)")->capture_default_str();
-    cmd->add_option("--phase", o->phase,
-                    "when each frame is sent, as a fraction of a period after a multiple of the period of CLOCK_MONOTONIC "
-                    "(jacobid-fw cycles on those multiples): 0.5 puts the frames mid-way between the firmware's bus reads")
-        ->check(CLI::Range(0.0, 1.0))
-        ->capture_default_str();
     cmd->add_option("--seed", o->settings.seed, "seed of the random moves")->capture_default_str();
     cmd->add_option("--torque-noise", o->torque_noise, "torque noise standard deviation in N.m, one value or one per joint")->delimiter(',');
     cmd->add_option("--noise-seed", o->noise_seed, "seed of the torque noise")->capture_default_str();
