@@ -3,8 +3,8 @@
 # vcan0 (20 s at 1 kHz), jacobid-fw reads vcan0, drives the enable and cycle-sync outputs of the board's
 # PL061 GPIO chip through libgpiod (e-stop input on a third line) and streams estimate datagrams over UDP
 # on the loopback, jacobid record writes the CSV, jacobid identify compares with the Table II truth.
-# Gated: the chain (chain-lib.sh gate_chain: every frame decoded, 0 datagrams lost/late/malformed, a clean
-# log, the identification bars) and the GPIO lines driven (enable high and sync toggling while running, as
+# Gated: the chain (chain-lib.sh gate_chain: every frame decoded, 0 datagrams lost/late/malformed, no firmware
+# overrun, the identification bars; rows with holes are reported) and the GPIO lines driven (enable high and sync toggling while running, as
 # debugfs' gpiolib view reads them back from the chip; no e-stop event; released at exit).
 # -icount shift=1,sleep=off: the guest's clock follows its executed instructions, idle time included, so
 # the host's load cannot delay a guest timer.

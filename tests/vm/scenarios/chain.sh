@@ -3,7 +3,7 @@
 # estimate datagrams over UDP on the loopback, jacobid record writes the CSV, jacobid identify compares with
 # the Table II truth. jacobid and jacobid-fw are build-vm's dynamically linked executables (`# dynamic:`).
 # Gated (chain-lib.sh gate_chain): every frame decoded, 0 datagrams lost/late/malformed, the processes' exit
-# codes, a clean log covering the run, the identification bars. The aarch64 board (board.sh) runs the same
+# codes, a log covering the run without overruns, the identification bars (holes reported). The aarch64 board (board.sh) runs the same
 # chain with the GPIO lines on top.
 # -icount shift=1,sleep=off: the guest's clock follows its executed instructions, idle time included, so
 # the host's load cannot delay a guest timer; preempt=full: the SCHED_FIFO firmware preempts the other
