@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "identify/log_columns.hpp"
 #include "cli/output_file.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_report.hpp"
@@ -27,22 +28,6 @@ struct DiagnoseOptions {
     bool quiet = false;
 };
 
-// The joints' position and torque columns of a CSV log, as the robot description names them.
-identify::LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription& robot, const DiagnoseOptions& o) {
-    identify::LogColumns log;
-    log.source = table.source();
-    const io::TimeAxis axis = io::check_uniform_time(table, o.time_column, o.time_tolerance);
-    log.sample_period = axis.sample_period;
-    log.start_time = axis.start;
-    for (const auto& j : robot.joints) {
-        log.q.push_back(&table.column(j.position_column));
-        log.q_names.push_back(j.position_column);
-        log.tau.push_back(&table.column(j.torque_column));
-        log.tau_names.push_back(j.torque_column);
-    }
-    return log;
-}
-
 void check(const DiagnoseOptions& o) {
     const auto& s = o.settings.selection;
     if (!(s.alpha > 0.0 && s.alpha < 1.0)) throw InputError("--alpha must be in (0, 1)");
@@ -59,12 +44,12 @@ void run(DiagnoseOptions o) {
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const io::CsvTable table = io::read_csv(o.in);
-    const identify::LogColumns log = log_columns(table, robot, o);
+    const identify::LogColumns log = identify::log_columns(table, robot, o.time_column, o.time_tolerance);
     std::unique_ptr<io::CsvTable> vtable;
     identify::LogColumns vlog;
     if (!o.validate.empty()) {
         vtable = std::make_unique<io::CsvTable>(io::read_csv(o.validate));
-        vlog = log_columns(*vtable, robot, o);
+        vlog = identify::log_columns(*vtable, robot, o.time_column, o.time_tolerance);
         if (std::abs(vlog.sample_period - log.sample_period) > 1e-9 * log.sample_period) {
             throw InputError(fmt::format("--validate {}: sample period {} s differs from {} s of --in", o.validate, vlog.sample_period, log.sample_period));
         }

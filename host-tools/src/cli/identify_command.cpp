@@ -12,6 +12,7 @@
 #include "cli/command.hpp"
 #include "cli/output_file.hpp"
 #include "identify/least_squares.hpp"
+#include "identify/log_columns.hpp"
 #include "identify/pipeline.hpp"
 #include "identify/report.hpp"
 #include "identify/validation.hpp"
@@ -48,24 +49,6 @@ struct IdentifyOptions {
     double time_tolerance = io::kDefaultTimeTolerance;
     std::string can_config;
 };
-
-identify::LogColumns columns_of(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
-                                double time_tolerance) {
-    identify::LogColumns log;
-    log.source = table.source();
-    const io::TimeAxis axis = io::check_uniform_time(table, time_column, time_tolerance);
-    log.sample_period = axis.sample_period;
-    log.start_time = axis.start;
-    for (const auto& j : robot.joints) {
-        log.q.push_back(&table.column(j.position_column));  // InputError names the file and the columns it has
-        log.q_names.push_back(j.position_column);
-    }
-    for (const auto& j : robot.joints) {
-        log.tau.push_back(&table.column(j.torque_column));
-        log.tau_names.push_back(j.torque_column);
-    }
-    return log;
-}
 
 // A CSV log, or with --can-config a candump capture decoded by the firmware's joint profiles.
 io::CsvTable read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
@@ -131,7 +114,7 @@ void run(IdentifyOptions o) {
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
     const auto parse_start = Clock::now();
     const io::CsvTable table = read_log(o.in, robot, o);
-    const identify::LogColumns log = columns_of(table, robot, o.time_column, o.time_tolerance);
+    const identify::LogColumns log = identify::log_columns(table, robot, o.time_column, o.time_tolerance);
     const double parse_seconds = std::chrono::duration<double>(Clock::now() - parse_start).count();
     o.pipeline.progress = !o.quiet && log.samples() > 500'000;
     if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", log.samples(), o.in, parse_seconds);
@@ -140,7 +123,7 @@ void run(IdentifyOptions o) {
     identify::LogColumns validation_log;
     if (!o.validate.empty()) {
         validation_table = std::make_unique<io::CsvTable>(read_log(o.validate, robot, o));
-        validation_log = columns_of(*validation_table, robot, o.time_column, o.time_tolerance);
+        validation_log = identify::log_columns(*validation_table, robot, o.time_column, o.time_tolerance);
     }
 
     identify::ReportContext ctx;
