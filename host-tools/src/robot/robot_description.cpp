@@ -299,31 +299,47 @@ Eigen::VectorXd true_parameters(const RobotDescription& d, const RobotModel& mod
     return x;
 }
 
+// Written with yaml-cpp's emitter, not by hand: names, column names and paths are free text (a ':' or a
+// '#' in a joint name must be quoted to read back), and the emitter knows YAML's quoting rules.
 std::string to_yaml(const RobotDescription& d) {
-    std::string s = fmt::format("model: {}\n", d.model);
-    if (d.model == "planar2r") s += fmt::format("L1: {}\n", d.L1);
-    if (d.model == "urdf") s += fmt::format("urdf: {}\n", d.urdf);
-    if (is_serial(d.model)) s += fmt::format("gravity: [{:.17g}, {:.17g}, {:.17g}]\n", d.gravity.x(), d.gravity.y(), d.gravity.z());
-    s += "joints:\n";
+    YAML::Emitter out;
+    out.SetDoublePrecision(17);  // every double reads back bit for bit
+    out << YAML::BeginMap;
+    out << YAML::Key << "model" << YAML::Value << d.model;
+    if (d.model == "planar2r") out << YAML::Key << "L1" << YAML::Value << d.L1;
+    if (d.model == "urdf") out << YAML::Key << "urdf" << YAML::Value << d.urdf;
+    if (is_serial(d.model)) {
+        out << YAML::Key << "gravity" << YAML::Value << YAML::Flow << YAML::BeginSeq << d.gravity.x() << d.gravity.y() << d.gravity.z()
+            << YAML::EndSeq;
+    }
+    out << YAML::Key << "joints" << YAML::Value << YAML::BeginSeq;
     for (std::size_t k = 0; k < d.joints.size(); ++k) {
         const auto& j = d.joints[k];
-        std::string row;
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << j.name;
         if (d.model == "mdh") {
             const MdhJoint& m = d.mdh[k];
-            row = fmt::format("sigma: {}, alpha: {:.17g}, d: {:.17g}, theta: {:.17g}, r: {:.17g}, antecedent: {}, ", m.type == JointType::Prismatic ? 1 : 0,
-                              m.alpha, m.d, m.theta, m.r, m.antecedent + 1);
+            out << YAML::Key << "sigma" << YAML::Value << (m.type == JointType::Prismatic ? 1 : 0);
+            out << YAML::Key << "alpha" << YAML::Value << m.alpha << YAML::Key << "d" << YAML::Value << m.d;
+            out << YAML::Key << "theta" << YAML::Value << m.theta << YAML::Key << "r" << YAML::Value << m.r;
+            out << YAML::Key << "antecedent" << YAML::Value << m.antecedent + 1;
         }
-        s += fmt::format("  - {{name: {}, {}position: {}, torque: {}, limits: [{}, {}]}}\n", j.name, row, j.position_column, j.torque_column,
-                         j.lower_limit, j.upper_limit);
+        out << YAML::Key << "position" << YAML::Value << j.position_column << YAML::Key << "torque" << YAML::Value << j.torque_column;
+        out << YAML::Key << "limits" << YAML::Value << YAML::Flow << YAML::BeginSeq << j.lower_limit << j.upper_limit << YAML::EndSeq;
+        out << YAML::EndMap;
     }
-    s += fmt::format("friction:\n  coulomb: {}\n  alpha: {}\n  offset: {}\n", d.coulomb.model == CoulombModel::Sign ? "sign" : "smooth",
-                     d.coulomb.alpha, d.friction_offset ? "true" : "false");
-    s += fmt::format("rotor_inertia: {}\n", d.rotor_inertia ? "true" : "false");
+    out << YAML::EndSeq;
+    out << YAML::Key << "friction" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "coulomb" << YAML::Value << (d.coulomb.model == CoulombModel::Sign ? "sign" : "smooth");
+    out << YAML::Key << "alpha" << YAML::Value << d.coulomb.alpha;
+    out << YAML::Key << "offset" << YAML::Value << d.friction_offset << YAML::EndMap;
+    out << YAML::Key << "rotor_inertia" << YAML::Value << d.rotor_inertia;
     if (!d.parameters.empty()) {
-        s += "parameters:\n";
-        for (const auto& [name, value] : d.parameters) s += fmt::format("  {}: {:.17g}\n", name, value);
+        out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
+        for (const auto& [name, value] : d.parameters) out << YAML::Key << name << YAML::Value << value;
+        out << YAML::EndMap;
     }
-    return s;
+    out << YAML::EndMap;
+    return std::string(out.c_str()) + "\n";
 }
 
 }  // namespace jacobid::robot

@@ -168,6 +168,31 @@ TEST(MdhDescription, RoundTripsThroughToYaml) {
     EXPECT_EQ(robot::true_parameters(again, *robot::make_robot_model(again)), robot::true_parameters(d, *model));
 }
 
+// Found by fuzz_robot_description: to_yaml wrote names unquoted, so a joint or column name that YAML
+// reads as syntax (': ', ',', '#', '{', a leading '- ' or quote) did not read back.
+TEST(MdhDescription, NamesThatLookLikeYamlSyntaxRoundTrip) {
+    const std::string text = R"(model: mdh
+joints:
+  - {name: "a: b", sigma: 0, alpha: 0, d: 0, theta: 0, r: 0, position: "q1, raw", torque: "#tau1"}
+  - {name: "{x}", sigma: 0, alpha: 1.5707963267948966, d: 0.1, theta: 0, r: 0, position: "- q2", torque: "'t2"}
+parameters:
+  ZZ1: 0.25
+)";
+    const auto d = robot::parse_robot_description(text, "names.yaml");
+    ASSERT_EQ(d.joints.size(), 2u);
+    const auto again = robot::parse_robot_description(robot::to_yaml(d), "again.yaml");
+    ASSERT_EQ(again.joints.size(), 2u);
+    for (std::size_t j = 0; j < 2; ++j) {
+        EXPECT_EQ(again.joints[j].name, d.joints[j].name);
+        EXPECT_EQ(again.joints[j].position_column, d.joints[j].position_column);
+        EXPECT_EQ(again.joints[j].torque_column, d.joints[j].torque_column);
+    }
+    EXPECT_EQ(again.joints[0].name, "a: b");
+    EXPECT_EQ(again.joints[1].torque_column, "'t2");
+    EXPECT_EQ(again.mdh[1].alpha, d.mdh[1].alpha);
+    EXPECT_EQ(again.parameters, d.parameters);
+}
+
 TEST(UrdfChain, MalformedUrdfNamesTheElement) {
     std::string floating = kArm;
     floating.replace(floating.find("type=\"continuous\""), 17, "type=\"floating\"");
