@@ -244,6 +244,7 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     Section can(source, top.get("can"), "can");
     c.can_interface = can.required_text("interface");
     if (c.can_interface.empty()) can.fail("interface", "must not be empty");
+    if (can.has("sync_id")) c.sync_id = static_cast<std::int32_t>(can.integer("sync_id", 0x80, 1, hal::kCanStandardIdMask));
     can.reject_unknown();
 
     top.mark_used("joints");

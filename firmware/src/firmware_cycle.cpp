@@ -116,6 +116,10 @@ std::string FirmwareCycle::configure(const FirmwareConfig& config) {
         return std::string("estimator.") + kChannel[b.channel] + ": " + why;
     }
     if (bank_.delay_samples() + 1 > delay_line_.size()) return "estimator windows too long for the delay line";
+    if (config.sync_id > static_cast<std::int32_t>(hal::kCanStandardIdMask)) return "can.sync_id must be a standard (11-bit) id";
+    send_sync_ = config.sync_id >= 0;
+    sync_frame_ = hal::CanFrame{};
+    sync_frame_.id = send_sync_ ? static_cast<std::uint32_t>(config.sync_id) : 0u;
     position_.setZero();
     torque_.setZero();
     last_bad_tick_.fill(0);
@@ -211,6 +215,12 @@ void FirmwareCycle::step(std::int64_t now_ns) noexcept {
         const hal::CanFrame& f = frames_[i];
         const int owner = owner_of(f);
         if (decoders_.dispatch(f) == hal::DecodeStatus::Ok && owner >= 0) note_decoded(owner, f);
+    }
+    // SYNC right after the read: the drives' answers have the rest of this period to arrive and are
+    // all read at the start of the next cycle, one sample per joint per cycle.
+    if (send_sync_) {
+        if (can_.send(sync_frame_) == hal::CanStatus::Ok) ++counters_.sync_sent;
+        else ++counters_.sync_failures;
     }
     counters_.decode = decoders_.counters();
     counters_.can = can_.counters();

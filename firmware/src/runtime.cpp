@@ -132,11 +132,11 @@ const char* format_counters(const CycleCounters& c, std::size_t joints, char* bu
     int n = std::snprintf(buffer, size,
                           "cycles %llu, datagrams %llu (publish failures %llu), frames %llu decoded %llu, rejected: short %llu "
                           "out-of-range %llu unknown-id %llu malformed %llu; duplicates %llu (conflicting %llu); CAN error frames %llu "
-                          "(last class 0x%x), rx overflows %llu; e-stop events %llu (rows %llu); warm-up rows %llu",
+                          "(last class 0x%x), rx overflows %llu; SYNC sent %llu (failures %llu); e-stop events %llu (rows %llu); warm-up rows %llu",
                           u(c.cycles), u(c.datagrams_published), u(c.publish_failures), u(c.decode.frames), u(c.decode.decoded),
                           u(c.decode.rejected_short), u(c.decode.rejected_out_of_range), u(c.decode.rejected_unknown_id),
                           u(c.decode.rejected_malformed), u(c.duplicate_frames), u(c.conflicting_duplicates), u(c.can.error_frames),
-                          c.can.last_error_class, u(c.can.rx_overflows), u(c.estop_events), u(c.estop_rows), u(c.warmup_rows));
+                          c.can.last_error_class, u(c.can.rx_overflows), u(c.sync_sent), u(c.sync_failures), u(c.estop_events), u(c.estop_rows), u(c.warmup_rows));
     for (std::size_t j = 0; j < joints && n > 0 && static_cast<std::size_t>(n) < size; ++j) {
         const JointCounters& jc = c.joints[j];
         n += std::snprintf(buffer + n, size - static_cast<std::size_t>(n), "; j%zu stale %llu decode-error %llu dup %llu window-stale %llu",

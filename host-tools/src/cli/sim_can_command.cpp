@@ -2,8 +2,12 @@
 // sample (1 kHz by default) becomes one frame per joint (two for ODrive) in the chosen profile, sent at
 // the sample's wall-clock time, so that sim-can -> CAN -> jacobid-fw -> UDP -> record -> identify runs
 // as on a robot. The core is sim::CanPlayer (any CanTransport); this command only opens SocketCAN.
+// With a SYNC id (--sync-id, or can.sync_id of the firmware config) the drives answer the firmware's
+// CANopen SYNC instead of their own clock: one sample per SYNC, as synchronous TPDOs do.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+
+#include <poll.h>
 
 #include <cmath>
 #include <ctime>
@@ -32,6 +36,8 @@ struct SimCanOptions {
     sim::SimulationSettings settings;
     std::vector<double> torque_noise{0.05, 0.01};
     std::uint64_t noise_seed = 2;
+    int sync_id = -1;           // -1: pace by the clock; else answer each SYNC frame with this id
+    double sync_timeout = 1.0;  // s without a SYNC (after the first) that end the run with an error
     bool quiet = false;
 };
 
@@ -40,6 +46,32 @@ std::int64_t monotonic_ns() {
     timespec ts{};
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+// Blocks until a SYNC frame (the only frames the socket's filter lets through) arrives; `timeout_s`
+// without one is an error that names the bus and the id.
+void report_sent(const sim::CanPlayer& player) {
+    const auto& c = player.counters();
+    fmt::print(stderr, "sim-can: {} samples, {} frames sent, {} refused by the transport{}\n", c.samples, c.frames_sent, c.send_failures,
+               c.send_failures ? fmt::format(" (last: {})", hal::describe(player.last_error())) : std::string());
+}
+
+void wait_for_sync(hal::SocketCanTransport& can, const SimCanOptions& o, double timeout_s) {
+    hal::CanFrame frame;
+    for (;;) {
+        const hal::CanStatus s = can.receive(frame);
+        if (s == hal::CanStatus::Ok) {
+            if (!frame.extended() && frame.id == static_cast<std::uint32_t>(o.sync_id)) return;
+            continue;
+        }
+        if (s != hal::CanStatus::Empty) throw InputError(fmt::format("--iface {}: {} (errno {})", o.iface, hal::describe(s), can.last_errno()));
+        pollfd p{can.native_handle(), POLLIN, 0};
+        const int ready = ::poll(&p, 1, static_cast<int>(timeout_s * 1e3));
+        if (ready == 0) {
+            throw InputError(fmt::format("--iface {}: no SYNC frame (id 0x{:03X}) for {} s: is jacobid-fw running with can.sync_id: 0x{:03X}?",
+                                         o.iface, o.sync_id, timeout_s, o.sync_id));
+        }
+    }
 }
 
 void run(SimCanOptions o) {
@@ -61,6 +93,7 @@ void run(SimCanOptions o) {
             throw InputError(fmt::format("--config {}: {} joints, but the robot has {}", o.config, fw.joints.size(), n));
         }
         for (const auto& j : fw.joints) joints.push_back(j.decoder);
+        if (o.sync_id < 0) o.sync_id = fw.sync_id;
     } else {
         const firmware::ProfileKind kind = o.profile == "mit" ? firmware::ProfileKind::Mit
                                            : o.profile == "cia402" ? firmware::ProfileKind::Cia402
@@ -95,14 +128,31 @@ void run(SimCanOptions o) {
     hal::SocketCanTransport can;
     hal::SocketCanConfig sc;
     sc.interface = o.iface.c_str();
+    // Only the SYNC frames (if any): the other drives' frames would just fill the receive queue.
+    const hal::CanFilter sync_filter = hal::exact_filter(o.sync_id < 0 ? 0u : static_cast<std::uint32_t>(o.sync_id));
+    if (o.sync_id >= 0) sc.filters = Span<const hal::CanFilter>(&sync_filter, 1);
     if (const hal::CanStatus s = can.open(sc); s != hal::CanStatus::Ok) {
         throw InputError(fmt::format("--iface {}: {} (errno {}); the in-process chain test runs the same simulator on the virtual bus",
                                      o.iface, hal::describe(s), can.last_errno()));
     }
     sim::CanPlayer player(can, joints);
     const std::int64_t start = monotonic_ns() + 100'000'000;  // first frame 100 ms from now
-    if (!o.quiet) fmt::print(stderr, "sim-can: {} joints on {} ({}), {} s at {} Hz\n", n, o.iface, o.config.empty() ? o.profile : o.config,
-                             o.settings.duration, o.settings.output_rate);
+    if (!o.quiet) {
+        fmt::print(stderr, "sim-can: {} joints on {} ({}), {} s at {} Hz, {}\n", n, o.iface, o.config.empty() ? o.profile : o.config,
+                   o.settings.duration, o.settings.output_rate,
+                   o.sync_id < 0 ? std::string("paced by the clock") : fmt::format("one sample per SYNC (id 0x{:03X})", o.sync_id));
+    }
+    if (o.sync_id >= 0) {
+        // The firmware may start after us: the first SYNC gets a long wait, the others sync_timeout.
+        constexpr double kFirstSyncTimeout = 30.0;
+        sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
+            wait_for_sync(can, o, k == 0 ? kFirstSyncTimeout : o.sync_timeout);
+            player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
+            ++k;
+        });
+        report_sent(player);
+        return;
+    }
     sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
         const std::int64_t due = start + static_cast<std::int64_t>(std::llround(static_cast<double>(k) * period_ns));
         const timespec ts{static_cast<time_t>(due / 1'000'000'000), static_cast<long>(due % 1'000'000'000)};
@@ -111,9 +161,7 @@ void run(SimCanOptions o) {
         player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
         ++k;
     });
-    const auto& c = player.counters();
-    fmt::print(stderr, "sim-can: {} samples, {} frames sent, {} refused by the transport{}\n", c.samples, c.frames_sent, c.send_failures,
-               c.send_failures ? fmt::format(" (last: {})", hal::describe(player.last_error())) : std::string());
+    report_sent(player);
 }
 #else
 void run(const SimCanOptions&) { throw InputError("sim-can: this jacobid was built without the HAL/firmware (JACOBID_BUILD_HAL=OFF)"); }
@@ -142,6 +190,13 @@ void add_sim_can_command(CLI::App& app) {
     cmd->add_option("--seed", o->settings.seed, "seed of the random moves")->capture_default_str();
     cmd->add_option("--torque-noise", o->torque_noise, "torque noise standard deviation in N.m, one value or one per joint")->delimiter(',');
     cmd->add_option("--noise-seed", o->noise_seed, "seed of the torque noise")->capture_default_str();
+    cmd->add_option("--sync-id", o->sync_id,
+                    "answer each CANopen SYNC frame with this standard id with the next sample instead of pacing by the clock "
+                    "(default: can.sync_id of --config, if set)")
+        ->check(CLI::Range(1, 0x7FF));
+    cmd->add_option("--sync-timeout", o->sync_timeout, "with SYNC: seconds without one (after the first, which may take 30 s) that are an error")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no start message");
     cmd->footer("Positions are quantized by the profile's own codes (MIT: 16 bit over the position range), not by an extra encoder model.");
 }

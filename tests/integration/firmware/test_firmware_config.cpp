@@ -89,6 +89,15 @@ TEST(FirmwareConfig, ErrorsNameTheKeyAndLine) {
     EXPECT_EQ(error_of(kCan + nine + kStream), "fw.yaml:3:3: joints: at most 8 joints");
 }
 
+TEST(FirmwareConfig, SyncIdIsOptionalHexOrDecimalAndAStandardId) {
+    const std::string joints_stream = kJoints + kStream;
+    EXPECT_EQ(firmware::parse_firmware_config(kCan + joints_stream, "fw.yaml").sync_id, -1);  // no SYNC unless asked
+    EXPECT_EQ(firmware::parse_firmware_config("can: {interface: vcan0, sync_id: 0x080}\n" + joints_stream, "fw.yaml").sync_id, 0x80);
+    EXPECT_EQ(firmware::parse_firmware_config("can: {interface: vcan0, sync_id: 129}\n" + joints_stream, "fw.yaml").sync_id, 129);
+    EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 0x800}\n" + joints_stream), "fw.yaml:1:34: can.sync_id: must be an integer in 1..2047");
+    EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 0}\n" + joints_stream), "fw.yaml:1:34: can.sync_id: must be an integer in 1..2047");
+}
+
 TEST(FirmwareConfig, MissingFileIsNamed) {
     try {
         firmware::load_firmware_config("/nonexistent/fw.yaml");

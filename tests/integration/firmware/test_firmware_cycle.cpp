@@ -156,6 +156,34 @@ TEST(FirmwareZeroAllocation, ManyCyclesOnTheVirtualBusAllocateNothing) {
     EXPECT_GT(test::allocation_count(), probe);
 }
 
+// CANopen SYNC: one zero-length frame with the configured standard id per cycle, seen by the other nodes
+// on the bus (the drives), sent after the cycle's read; nothing at all without can.sync_id.
+TEST(FirmwareCycle, SendsOneSyncFramePerCycleOnlyWhenConfigured) {
+    for (const std::int32_t sync_id : {-1, 0x80}) {
+        Rig rig;
+        rig.config.sync_id = sync_id;
+        ASSERT_EQ(rig.cycle->configure(rig.config), "");
+        test::TestBus::Endpoint* drive = rig.bus.attach();  // a listening node
+        std::size_t syncs = 0, others = 0;
+        for (int c = 0; c < 50; ++c) {
+            rig.tick();
+            hal::CanFrame f;
+            std::size_t this_cycle = 0;
+            while (drive->receive(f) == hal::CanStatus::Ok) {
+                if (f.id == 0x80u && f.len == 0 && !f.extended() && !f.remote()) ++this_cycle;
+                else ++others;  // the simulated drives' replies
+            }
+            EXPECT_EQ(this_cycle, sync_id < 0 ? 0u : 1u) << "cycle " << c;
+            syncs += this_cycle;
+        }
+        EXPECT_EQ(rig.cycle->counters().sync_sent, syncs);
+        EXPECT_EQ(rig.cycle->counters().sync_failures, 0u);
+        EXPECT_GT(others, 0u);
+        // The firmware does not read its own SYNC as a joint frame.
+        EXPECT_EQ(rig.cycle->counters().decode.frames, rig.cycle->counters().decode.decoded);
+    }
+}
+
 TEST(FirmwareFaults, DroppedFrameIsStaleForThatSampleAndDegradesTheWindow) {
     Rig rig;
     rig.faulty.rule = [&rig](hal::CanFrame& f, bool&) { return !(rig.k == 500 && f.data[0] == 2); };

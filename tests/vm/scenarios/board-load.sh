@@ -34,7 +34,7 @@ joints() {
 # config FILE ID...: a jacobid-fw config with these joints (sim-can reads its ids and encodings from it).
 config() {
   f=$1; shift
-  { echo "can: {interface: vcan0}"; echo "rate: 1000"; joints "$@"
+  { echo "can: {interface: vcan0, sync_id: 0x080}"; echo "rate: 1000"; joints "$@"
     echo "estimator: {position_window: 0.02, velocity_window: 0.05, acceleration_window: 0.1}"
     echo "stream: {host: 127.0.0.1, port: 5005}"
     echo "realtime: {priority: 80, cpu: -1, lock_memory: true, report_period: 10}"; } > "$f"

@@ -69,6 +69,10 @@ struct RealtimeConfig {
 struct FirmwareConfig {
     std::string source = "<defaults>";
     std::string can_interface = "can0";  // "virtual": in-process bus with no device (dry run)
+    // CANopen SYNC (CiA 301): a zero-length frame with this standard id, sent in every cycle right after
+    // the bus is read. Drives with synchronous TPDOs (and `jacobid sim-can`) answer it, so each sample
+    // lands in the next cycle whatever the drives' own clocks do. -1: no SYNC (drives free-run).
+    std::int32_t sync_id = -1;
     double rate = 1000.0;                // Hz
     std::uint32_t max_age = 0;           // cycles a joint value may be late before it is stale (0: every cycle)
     std::vector<JointConfig> joints;

@@ -59,6 +59,8 @@ struct CycleCounters {
     std::uint64_t backlog_cycles = 0;    // cycles whose drain filled the frame buffer (frames left queued)
     std::uint64_t duplicate_frames = 0;
     std::uint64_t conflicting_duplicates = 0;
+    std::uint64_t sync_sent = 0;         // SYNC frames sent (can.sync_id set)
+    std::uint64_t sync_failures = 0;     // SYNC frames the transport refused (e.g. transmit queue full)
     hal::DecodeCounters decode{};        // of the decoder set: frames, decoded, rejected by reason
     hal::CanCounters can{};              // of the transport, copied every cycle (error frames, overflows)
     std::array<JointCounters, kMaxJoints> joints{};
@@ -136,6 +138,8 @@ private:
     Bank::Vector position_ = Bank::Vector::Zero();
     Bank::Vector torque_ = Bank::Vector::Zero();
     std::array<hal::CanFrame, kMaxFramesPerCycle> frames_{};
+    bool send_sync_ = false;
+    hal::CanFrame sync_frame_{};  // CANopen SYNC: standard id, no data
     std::array<JointCycle, kMaxJoints> joint_cycle_{};
     std::array<SampleRecord, kKernelCapacity> delay_line_{};
     // Tick (1-based) of the last stale or undecodable sample per joint; 0: none yet.
