@@ -7,8 +7,12 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
+step=$(date +%s)
 "$root/scripts/build.sh"
+echo "run-tests: native build finished in $(( $(date +%s) - step )) s"
+step=$(date +%s)
 ctest --test-dir "${JACOBID_BUILD_DIR:-$root/build}" -j "$(nproc)" --output-on-failure --timeout 600
+echo "run-tests: native tests finished in $(( $(date +%s) - step )) s"
 # Hardening (docs/reliability.md): the whole suite again under ASan + UBSan, then every parser's libFuzzer
 # target for a short fixed time. JACOBID_SKIP_HARDENING=1 skips both (a quick local run).
 if [ "${JACOBID_SKIP_HARDENING:-0}" != "1" ]; then

@@ -1,30 +1,26 @@
 #!/usr/bin/env bash
-# The whole native test suite once more under AddressSanitizer + UndefinedBehaviorSanitizer (gcc, the
-# project's compiler), in its own build directory (build-sanitize). Any sanitizer report fails the run:
-# -fno-sanitize-recover=all turns every UBSan finding into an abort, ASan halts on the first error, and
-# LeakSanitizer reports leaks at exit.
+# The whole native test suite once more under AddressSanitizer + UndefinedBehaviorSanitizer, in the
+# clang build that the fuzz targets share (scripts/hardening-config.sh: why clang, -O2, one build).
+# Any sanitizer report fails the run: -fno-sanitize-recover=all turns every UBSan finding into an abort,
+# ASan halts on the first error, and LeakSanitizer reports leaks at exit.
 #
-#   scripts/sanitize-test.sh            configure, build, run ctest; prints the time of each step
-#   JACOBID_SANITIZE_BUILD_DIR=dir ...  another build directory
+#   scripts/sanitize-test.sh            configure, build (tests and fuzz targets), run ctest; times each step
+#   JACOBID_HARDENING_BUILD_DIR=dir ... another build directory
 #
 # Left out, and why:
 #  - tests/vm (ctest labels vcan, vm, gpio): those executables are linked -static for the VM initramfs,
 #    and ASan's runtime cannot be linked statically; they run unsanitized in scripts/vm-test.sh.
 #  - benchmarks: ctest does not run them, and timings under ASan mean nothing.
-# -O1: ASan's recommended level (usable stack traces, about half the run time of -O0).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${JACOBID_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
+build="${JACOBID_HARDENING_BUILD_DIR:-$root/build-hardening}"
 jobs="$(nproc)"
 start=$(date +%s)
+source "$root/scripts/hardening-config.sh"
+configure_hardening "$root" "$build"
 
-flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-# Debug keeps assert() on; CMAKE_CXX_FLAGS_DEBUG replaces its -O0 -g.
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
-  -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_BUILD_FUZZERS=OFF >/dev/null
-
-# Every executable except the static ones in tests/vm (ninja lists each output with its rule).
+# Every executable except the static ones in tests/vm (ninja lists each output with its rule); the fuzz
+# targets too, so that scripts/fuzz-test.sh finds them built.
 mapfile -t executables < <(ninja -C "$build" -t targets all | grep -E ': CXX_EXECUTABLE_LINKER' | cut -d: -f1 | grep -v '^tests/vm/')
 nice -n 10 ninja -C "$build" -j "$jobs" "${executables[@]}"
 built=$(date +%s)
@@ -32,9 +28,6 @@ echo "sanitize-test: built ${#executables[@]} executables in $(( built - start )
 
 # halt_on_error + abort_on_error: the first report ends the test with a failure; detect_leaks: LSan at exit.
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-# Leaks inside system libraries we cannot fix (urdfdom on a cyclic URDF), each documented in the file.
-export LSAN_OPTIONS="suppressions=$root/fuzz/lsan-suppressions.txt:print_suppressions=0"
 status=0
 ctest --test-dir "$build" -j "$jobs" -LE '^(vcan|vm|gpio)$' --output-on-failure --timeout 900 || status=$?
 # A report that did not fail its test (e.g. in a child process whose exit code was not checked) still

@@ -7,6 +7,7 @@
 #include <fuzzer/FuzzedDataProvider.h>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -86,7 +87,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 try {
                     const io::CsvTable t = io::read_csv(f.path);
                     JACOBID_FUZZ_CHECK(t.rows() == f.rows, "a recorded file holds another number of rows than reported");
-                } catch (const cli::InputError&) {
+                } catch (const cli::InputError& e) {
+                    std::fprintf(stderr, "read_csv: %s\n", e.what());
                     JACOBID_FUZZ_CHECK(false, "a recorded file (--on-gap split) is not a valid CSV log");
                 }
             }

@@ -8,7 +8,16 @@
 #include <cstdlib>
 #include <new>
 
+// gcc says __SANITIZE_ADDRESS__, clang (before 16) only __has_feature(address_sanitizer).
 #if defined(__SANITIZE_ADDRESS__)
+#define JACOBID_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define JACOBID_ASAN 1
+#endif
+#endif
+
+#if defined(JACOBID_ASAN)
 #define JACOBID_RAW_MALLOC std::malloc
 #define JACOBID_RAW_MEMALIGN(alignment, n) std::aligned_alloc(alignment, ((n) + (alignment) - 1) / (alignment) * (alignment))
 #else
@@ -28,7 +37,7 @@ std::atomic<std::uint64_t> g_allocations{0};
 
 std::uint64_t jacobid::test::allocation_count() noexcept { return g_allocations.load(); }
 
-#if !defined(__SANITIZE_ADDRESS__)
+#if !defined(JACOBID_ASAN)
 extern "C" void* malloc(std::size_t n) {
     g_allocations.fetch_add(1, std::memory_order_relaxed);
     return __libc_malloc(n);

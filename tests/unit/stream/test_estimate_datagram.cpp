@@ -256,10 +256,16 @@ TEST(EstimateDatagram, RejectsUnknownFlagBits) {
 }
 
 TEST(EstimateDatagram, RejectsBadSamplePeriods) {
-    for (double ts : {0.0, -0.001, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    // 1e300 s: found by fuzz_stream_recorder, sample index x period overflowed the recorder's time column.
+    for (double ts : {0.0, -0.001, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 5e-10, 1000.5, 1e300}) {
         Bytes b = from_hex(kReferenceHex);
         put_f64_at(b, 40, ts);
         EXPECT_EQ(decode_bytes(b), DatagramStatus::InvalidSamplePeriod) << ts;
+    }
+    for (double ts : {1e-9, 1e-3, 1000.0}) {
+        Bytes b = from_hex(kReferenceHex);
+        put_f64_at(b, 40, ts);
+        EXPECT_EQ(decode_bytes(b), DatagramStatus::Ok) << ts;
     }
 }
 

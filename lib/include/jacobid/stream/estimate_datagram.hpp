@@ -141,11 +141,16 @@ inline double get_f64(const std::uint8_t* p) noexcept {
 
 }  // namespace wire
 
+// Sample periods a controller can have: 1 ns (the kernels' own lower bound) to 1000 s. The bound keeps
+// the recorder's time column, sample index x period, finite for any 64-bit sample index.
+constexpr double kMinSamplePeriod = 1e-9;
+constexpr double kMaxSamplePeriod = 1e3;
+
 // The checks shared by encode and decode, so the controller cannot send what the host would reject.
 inline DatagramStatus validate_values(std::uint32_t stream_flags, double sample_period, const JointEstimate* joints,
                                       std::size_t count) noexcept {
     if ((stream_flags & ~kStreamFlagsKnown) != 0) return DatagramStatus::UnknownFlags;
-    if (!std::isfinite(sample_period) || sample_period <= 0.0) return DatagramStatus::InvalidSamplePeriod;
+    if (!(sample_period >= kMinSamplePeriod && sample_period <= kMaxSamplePeriod)) return DatagramStatus::InvalidSamplePeriod;
     for (std::size_t j = 0; j < count; ++j) {
         const JointEstimate& e = joints[j];
         if ((e.flags & ~kJointFlagsKnown) != 0) return DatagramStatus::UnknownFlags;

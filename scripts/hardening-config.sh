@@ -1,0 +1,31 @@
+# Sourced by scripts/sanitize-test.sh and scripts/fuzz-test.sh: the one build both run from (build-hardening).
+#
+# One clang build serves both: the test suite under ASan + UBSan, and the libFuzzer targets, which need
+# the same sanitizers plus coverage instrumentation (fuzzer-no-link) on the parsers they call. Building
+# the tree once instead of twice is a third of the CI budget.
+#  - clang, not gcc: with sanitizers it compiles the tree about 2.5 times faster (docs/reliability.md).
+#  - -O2: the simulated-identification tests do dense Eigen work that is 50 times slower at -O1 under ASan;
+#    ASan and UBSan lose no checks at -O2.
+#  - Debug build type without NDEBUG: assert() and Eigen's index and size checks stay on.
+#  - -gline-tables-only: file:line in every stack trace without the full debug info's compile time.
+#  - -fno-sanitize-recover=all: every UBSan finding aborts (fails its test or its fuzz run).
+#  - fuzz/ubsan-ignorelist.txt: no UBSan checks inside Eigen's own functions (they cost a factor 100 on the
+#    simulation tests, see the file); ASan still covers them.
+hardening_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+hardening_sanitizers="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+hardening_sanitizers+=" -fsanitize-ignorelist=$hardening_root/fuzz/ubsan-ignorelist.txt"
+
+# configure_hardening <source-dir> <build-dir>
+configure_hardening() {
+  local src="$1" build="$2"
+  local flags="-fsanitize=fuzzer-no-link $hardening_sanitizers"
+  cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+    -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only" -DCMAKE_CXX_FLAGS="$flags" \
+    -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
+    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_VM_TESTS=OFF >/dev/null
+}
+
+# Leaks inside system libraries we cannot fix (urdfdom on a cyclic URDF), each documented in the file.
+export LSAN_OPTIONS="suppressions=$hardening_root/fuzz/lsan-suppressions.txt:print_suppressions=0"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
