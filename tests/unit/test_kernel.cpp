@@ -239,8 +239,13 @@ TEST(Kernel, InvalidParametersAreRejected) {
     std::vector<double> w(31);
     p = ok; p.xi = 0.5;
     EXPECT_EQ(jacobid::design_closed_form_trapezoidal(p, jacobid::Span<double>(w)), KernelStatus::ClosedFormNeedsCentral);
-    // A failed design leaves the kernel marked as not designed.
+    // A failed design leaves the kernel marked as not designed, whether validation or the design failed.
     EXPECT_FALSE(k.designed());
+    ASSERT_EQ(k.design(ok), KernelStatus::Ok);
+    p = ok; p.kappa = -1.0;
+    EXPECT_EQ(k.design(p), KernelStatus::InvalidKappa);
+    EXPECT_FALSE(k.designed());
+    EXPECT_EQ(k.taps(), 0u);
 }
 
 TEST(Kernel, FloatStorageMatchesDouble) {

@@ -17,8 +17,13 @@ public:
     static constexpr std::size_t capacity = Capacity;
 
     // Designs in double (the weights of long windows span many orders of magnitude), stores as Scalar.
+    // Any failure leaves the kernel not designed (taps() == 0), never the previous design: a caller that
+    // misses the error must not go on filtering with weights for other parameters.
     KernelStatus design(const KernelParams& params) noexcept {
-        if (const KernelStatus s = validate(params, Capacity); s != KernelStatus::Ok) return s;
+        if (const KernelStatus s = validate(params, Capacity); s != KernelStatus::Ok) {
+            taps_ = 0;
+            return s;
+        }
         KernelStatus status;
         if constexpr (std::is_same_v<Scalar, double>) {
             weights_.fill(0.0);
