@@ -105,6 +105,16 @@ public:
 
     // Call after reading every known key.
     void reject_unknown() const {
+        // yaml-cpp keeps both entries of a repeated key and a lookup returns the first one: an error here.
+        std::vector<std::string> seen;
+        for (const auto& kv : node_) {
+            if (!kv.first.IsScalar()) continue;
+            const std::string key = kv.first.Scalar();
+            for (const auto& s : seen) {
+                if (s == key) fail(kv.first, key, "appears twice");
+            }
+            seen.push_back(key);
+        }
         for (const auto& kv : node_) {
             // A list or map in key position ("{[a, b]: 1}") has no name to report or compare.
             if (!kv.first.IsScalar()) fail(kv.first, "", "expected a key name, found a list or map used as a key");

@@ -269,6 +269,10 @@ std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
             return std::make_unique<SerialRobotModel>(std::move(config));
         } catch (const std::invalid_argument& e) {
             throw InputError(fmt::format("{}: {}", d.source, e.what()));
+        } catch (const std::runtime_error& e) {
+            // The base-parameter QR could not decide the rank: lengths spanning many orders of magnitude
+            // (e.g. an offset of 1.8e8 m beside 0.3 m links, found by fuzz_robot_description).
+            throw InputError(fmt::format("{}: {} (check the lengths in the description: they are in m)", d.source, e.what()));
         }
     }
     throw InputError(fmt::format("{}: unknown model '{}' (known models: {})", d.source, d.model, kKnownModels));

@@ -48,6 +48,14 @@ std::string text(const std::string& source, const YAML::Node& node, const std::s
 }
 
 void check_keys(const std::string& source, const YAML::Node& map, const std::set<std::string>& known, const std::string& what) {
+    // yaml-cpp keeps both entries of a repeated key and a lookup returns the first: "r: 1, r: 2" would
+    // silently mean r = 1. A repeated key is an error (found by fuzz_robot_description).
+    std::set<std::string> seen;
+    for (const auto& entry : map) {
+        if (entry.first.IsScalar() && !seen.insert(entry.first.Scalar()).second) {
+            throw InputError(fmt::format("{}: key '{}' appears twice in {}", where(source, entry.first), entry.first.Scalar(), what));
+        }
+    }
     for (const auto& entry : map) {
         if (!entry.first.IsScalar()) {
             throw InputError(fmt::format("{}: expected a key name in {}, found a list or map used as a key", where(source, entry.first), what));

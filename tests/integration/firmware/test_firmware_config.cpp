@@ -98,6 +98,12 @@ TEST(FirmwareConfig, SyncIdIsOptionalHexOrDecimalAndAStandardId) {
     EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 0}\n" + joints_stream), "fw.yaml:1:34: can.sync_id: must be an integer in 1..2047");
 }
 
+// yaml-cpp keeps both entries of a repeated key and a lookup returns the first: an error instead.
+TEST(FirmwareConfig, RepeatedKeyIsAnError) {
+    EXPECT_EQ(error_of("can: {interface: vcan0, interface: can0}\n" + kJoints + kStream), "fw.yaml:1:25: can.interface: appears twice");
+    EXPECT_EQ(error_of(kCan + "rate: 1000\nrate: 500\n" + kJoints + kStream), "fw.yaml:3:1: rate: appears twice");
+}
+
 TEST(FirmwareConfig, MissingFileIsNamed) {
     try {
         firmware::load_firmware_config("/nonexistent/fw.yaml");

@@ -66,6 +66,29 @@ TEST(MdhDescription, OverflowingGeometryIsRejectedByTheModel) {
     }
 }
 
+// Found by fuzz_robot_description (10-minute run): "r: 175707963, ..., r: 0.3" in one joint. yaml-cpp keeps
+// both and a lookup returns the first, so the 1.8e8 m offset was used, and beside 0.3 m links the
+// base-parameter QR could not decide the rank: an uncaught std::runtime_error (terminate).
+TEST(MdhDescription, RepeatedKeyIsAnInputError) {
+    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 0, r: 175707963, d: 0.3, r: 0.3}\n"), "r.yaml:3:38: key 'r' appears twice in joint 1");
+    EXPECT_EQ(error_of("model: planar2r\nL1: 0.5\nL1: 0.6\n"), "r.yaml:3:1: key 'L1' appears twice in the robot description");
+}
+
+TEST(MdhDescription, GeometryTooBadlyScaledForTheBaseParametersIsAnInputError) {
+    const auto d = robot::parse_robot_description(
+        "model: mdh\njoints:\n  - {sigma: 0}\n  - {sigma: 0, alpha: 10, r: 175707963, d: 0.3}\n"
+        "  - {sigma: 1, alpha: 4, d: 0.4, theta: 5, antecedent: 2, limits: [0, 0.2]}\n",
+        "r.yaml");
+    // Either a model (another machine's rounding may decide the rank) or a one-line InputError; any other
+    // exception fails the test (gtest reports it), which is what crashed the fuzzer.
+    try {
+        robot::make_robot_model(d);
+    } catch (const cli::InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("r.yaml: base parameters: ", 0), 0u) << e.what();
+        EXPECT_NE(std::string(e.what()).find("check the lengths"), std::string::npos) << e.what();
+    }
+}
+
 // A 2-link arm: joint 1 about z at the base, joint 2 about y at 0.3 m up and 0.1 m out, a fixed tool
 // link on link 2 (merged into link 2's inertia).
 const char* kArm = R"(<robot name="arm">
