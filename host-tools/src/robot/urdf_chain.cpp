@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "cli/command.hpp"
@@ -77,11 +78,17 @@ private:
 
     // `link` belongs to the moving body `body` (-1: base); `body_to_link` maps link coordinates to body coordinates.
     void visit(const urdf::Link& link, int body, const Transform& body_to_link) {
+        visited_.insert(&link);
         add_inertial(body, link, body_to_link);
         for (const auto& joint_ptr : link.child_joints) {
             const urdf::Joint& joint = *joint_ptr;
             const auto child = link.child_links.empty() ? nullptr : find_child(link, joint.child_link_name);
             if (!child) throw InputError(fmt::format("{}: child link '{}' not found", element(joint), joint.child_link_name));
+            // urdfdom accepts a joint whose child is its own parent or an ancestor: following it would recurse
+            // forever (a stack overflow found by fuzz_urdf). A kinematic tree visits every link once.
+            if (visited_.count(child)) {
+                throw InputError(fmt::format("{}: child link '{}' is already in the tree (the URDF has a cycle)", element(joint), joint.child_link_name));
+            }
             const Transform origin = body_to_link.then(to_transform(joint.parent_to_joint_origin_transform));
             if (joint.type == urdf::Joint::FIXED) {
                 visit(*child, body, origin);
@@ -131,6 +138,7 @@ private:
     }
 
     std::string source_;
+    std::set<const urdf::Link*> visited_;
     UrdfChain chain_;
     std::vector<Inertial10> inertials_;
     std::vector<double> damping_, friction_;

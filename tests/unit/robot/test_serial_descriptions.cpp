@@ -216,6 +216,21 @@ parameters:
     EXPECT_EQ(again.parameters, d.parameters);
 }
 
+// Found by fuzz_urdf (10-minute run): urdfdom accepted this file, whose joint j2 has l1 as parent and
+// child; following the tree recursed until the stack overflowed.
+TEST(UrdfChain, LinkThatIsItsOwnChildIsAnErrorNotAStackOverflow) {
+    const char* cyclic = R"URDF(<robot name="arm">
+  <link name="base"/>
+  <link name="l1"><inertial><origin  izz="0.001"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="1 0 0" rpy="0 0 0"/>
+    <cali xyz="3 5 1"/><limit loer="2" effort="10" velocity="1"/><dynamncs damping="0.3" friction="0.7"/></joint>
+  <joint name="j2" type="continuous"><parent link="l1"/><child link="l1"/><origin xyfloatz="027777777777777777777777777777777777777777777777777779777777777771 0 0.3" rpy="0 0 0"/>
+x a   <is xyz="0 1 0"/>></joint>
+</robot>
+)URDF";
+    EXPECT_EQ(urdf_error_of(cyclic), "arm.urdf: element <joint name='j2'>: child link 'l1' is already in the tree (the URDF has a cycle)");
+}
+
 TEST(UrdfChain, MalformedUrdfNamesTheElement) {
     std::string floating = kArm;
     floating.replace(floating.find("type=\"continuous\""), 17, "type=\"floating\"");
