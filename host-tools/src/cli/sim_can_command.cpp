@@ -48,14 +48,14 @@ std::int64_t monotonic_ns() {
     return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
-// Blocks until a SYNC frame (the only frames the socket's filter lets through) arrives; `timeout_s`
-// without one is an error that names the bus and the id.
 void report_sent(const sim::CanPlayer& player) {
     const auto& c = player.counters();
     fmt::print(stderr, "sim-can: {} samples, {} frames sent, {} refused by the transport{}\n", c.samples, c.frames_sent, c.send_failures,
                c.send_failures ? fmt::format(" (last: {})", hal::describe(player.last_error())) : std::string());
 }
 
+// Blocks until a SYNC frame (the only frames the socket's filter lets through) arrives; `timeout_s`
+// without one is an error that names the bus and the id.
 void wait_for_sync(hal::SocketCanTransport& can, const SimCanOptions& o, double timeout_s) {
     hal::CanFrame frame;
     for (;;) {
