@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "fuzz_check.hpp"
 #include "io/candump_joints.hpp"
 #include "io/candump_log.hpp"
@@ -50,7 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::vector<io::CandumpRecord> records;
     try {
         records = io::parse_candump_log(text, "fuzz.log");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         return 0;
     }
     for (const io::CandumpRecord& r : records) {
@@ -66,7 +66,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         io::CandumpRecord again;
         try {
             again = io::parse_candump_line(line, "again.log", 1);
-        } catch (const cli::InputError&) {
+        } catch (const InputError&) {
             JACOBID_FUZZ_CHECK(false, "a printed frame does not parse");
         }
         JACOBID_FUZZ_CHECK(same_frame(again.frame, f), "print + parse changes the frame");
@@ -81,7 +81,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (std::size_t c = 0; c < table.columns(); ++c) {
             for (double v : table.column(c)) JACOBID_FUZZ_CHECK(std::isfinite(v), "joint table holds a non-finite value");
         }
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
     }
     return 0;
 }

@@ -11,7 +11,7 @@
 #include <cstring>
 #include <string>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "fuzz_check.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
@@ -38,7 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     io::CsvTable table;
     try {
         table = io::parse_csv(text, "fuzz.csv");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         return 0;
     }
     JACOBID_FUZZ_CHECK(table.columns() >= 1, "accepted a table without columns");
@@ -49,7 +49,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     io::CsvTable again;
     try {
         again = io::parse_csv(print_table(table), "again.csv");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         JACOBID_FUZZ_CHECK(false, "the printed copy of an accepted table is rejected");
     }
     JACOBID_FUZZ_CHECK(again.header() == table.header() && again.rows() == table.rows(), "printed copy has another shape");
@@ -61,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const io::TimeAxis axis = io::check_uniform_time(table, table.header().front());
         JACOBID_FUZZ_CHECK(std::isfinite(axis.sample_period) && axis.sample_period > 0.0, "accepted time axis without a positive period");
         JACOBID_FUZZ_CHECK(axis.samples == table.rows(), "time axis sample count differs from the rows");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
     }
     return 0;
 }

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "fuzz_check.hpp"
 #include "robot/robot_description.hpp"
 
@@ -19,13 +19,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     robot::RobotDescription d;
     try {
         d = robot::parse_robot_description(text, "robot.yaml");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         return 0;
     }
     std::unique_ptr<robot::RobotModel> model;
     try {
         model = robot::make_robot_model(d);
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         return 0;
     }
     JACOBID_FUZZ_CHECK(model != nullptr, "make_robot_model returned no model");
@@ -33,7 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     robot::RobotDescription again;
     try {
         again = robot::parse_robot_description(robot::to_yaml(d), "again.yaml");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         JACOBID_FUZZ_CHECK(false, "to_yaml of an accepted description does not parse");
     }
     JACOBID_FUZZ_CHECK(again.model == d.model && again.L1 == d.L1 && again.joints.size() == d.joints.size() &&

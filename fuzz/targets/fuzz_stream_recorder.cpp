@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "fuzz_check.hpp"
 #include "scratch_directory.hpp"
 #include "io/csv_table.hpp"
@@ -87,7 +87,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 try {
                     const io::CsvTable t = io::read_csv(f.path);
                     JACOBID_FUZZ_CHECK(t.rows() == f.rows, "a recorded file holds another number of rows than reported");
-                } catch (const cli::InputError& e) {
+                } catch (const InputError& e) {
                     std::fprintf(stderr, "read_csv: %s\n", e.what());
                     JACOBID_FUZZ_CHECK(false, "a recorded file (--on-gap split) is not a valid CSV log");
                 }

@@ -11,7 +11,7 @@
 #include <memory>
 #include <string>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "fuzz_check.hpp"
 #include "scratch_directory.hpp"
 #include "jacobid/robot/kinematic_chain.hpp"
@@ -25,7 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     robot::UrdfChain chain;
     try {
         chain = robot::parse_urdf_chain(xml, "fuzz.urdf");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         return 0;
     }
     const std::size_t n = chain.joints.size();
@@ -45,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             robot::parse_robot_description("model: urdf\nurdf: " + urdf.string() + "\n", (fuzz::scratch_directory("urdf") / "robot.yaml").string());
         const std::unique_ptr<robot::RobotModel> model = robot::make_robot_model(d);
         JACOBID_FUZZ_CHECK(model != nullptr && static_cast<std::size_t>(model->joint_count()) == n, "model joint count differs from the URDF");
-    } catch (const cli::InputError&) {
+    } catch (const InputError&) {
         // e.g. more moving joints than the serial model supports: a message, not a model.
     }
     return 0;

@@ -24,13 +24,13 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
-    } catch (const jacobid::cli::InputError& e) {
+    } catch (const jacobid::InputError& e) {
         const auto* sub = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
         fmt::print(stderr, "jacobid {}: error: {}\n", sub ? sub->get_name() : "", e.what());
-        return jacobid::cli::kExitInputError;
+        return jacobid::kExitInputError;
     } catch (const std::exception& e) {
         fmt::print(stderr, "jacobid: internal error: {}\n", e.what());
-        return jacobid::cli::kExitInternalError;
+        return jacobid::kExitInternalError;
     }
-    return jacobid::cli::kExitOk;
+    return jacobid::kExitOk;
 }

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "jacobid/baseline/filtfilt.hpp"
 #include "signal/baseline_response.hpp"
 
@@ -74,7 +74,7 @@ DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::Log
         const std::size_t a0 = out.info.first, a1 = out.info.last;
         const FilterStatus status = sosfiltfilt(fp, Span<const double>(log.tau[js]->data() + a0, a1 - a0), Span<double>(tf.data() + a0, a1 - a0),
                                                 Span<double>(workspace));
-        if (status != FilterStatus::Ok) throw cli::InputError(fmt::format("{}: F_p on the torque: {}", log.source, describe(status)));
+        if (status != FilterStatus::Ok) throw InputError(fmt::format("{}: F_p on the torque: {}", log.source, describe(status)));
         for (std::size_t k = 0; k < a0; ++k) tf[k] = tf[a0];
         for (std::size_t k = a1; k < tf.size(); ++k) tf[k] = tf[a1 - 1];
         r.tau_filtered.push_back(std::move(tf));

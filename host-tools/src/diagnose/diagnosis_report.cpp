@@ -7,7 +7,7 @@
 #include <fstream>
 #include <tuple>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "plot/gnuplot.hpp"
 
 namespace jacobid::diagnose {
@@ -144,7 +144,7 @@ std::string format_text(const Diagnosis& d) {
 void write_report(const std::string& directory, const Diagnosis& d) {
     std::error_code ec;
     std::filesystem::create_directories(directory, ec);
-    if (ec) throw cli::InputError(fmt::format("--report {}: cannot create directory: {}", directory, ec.message()));
+    if (ec) throw InputError(fmt::format("--report {}: cannot create directory: {}", directory, ec.message()));
     const std::size_t joints = d.state.size();
     for (const auto& [column, name, unit] : {std::tuple{1, "velocity", "qd (rad/s)"}, std::tuple{0, "position", "q (rad)"}}) {
         std::vector<plot::Panel> panels;
@@ -201,7 +201,7 @@ void write_report(const std::string& directory, const Diagnosis& d) {
           "## Periodic content against the joint angle, whiteness\n\n![spectrum and autocorrelation](residual_spectrum.png)\n\n";
     md += "## Selection steps\n\n```\n" + format_text(d) + "```\n";
     std::ofstream out(std::filesystem::path(directory) / "report.md");
-    if (!out) throw cli::InputError(fmt::format("--report {}: cannot write report.md", directory));
+    if (!out) throw InputError(fmt::format("--report {}: cannot write report.md", directory));
     out << md;
 }
 

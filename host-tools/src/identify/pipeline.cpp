@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "identify/bandwidth.hpp"
 #include "identify/running_qr.hpp"
 #include "jacobid/baseline/butterworth.hpp"
@@ -19,8 +19,6 @@
 
 namespace jacobid::identify {
 namespace {
-
-using cli::InputError;
 using Clock = std::chrono::steady_clock;
 using Lowpass = signal::ButterworthSos;  // Butterworth up to order 16
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "plot/gnuplot.hpp"
 
 namespace jacobid::identify {
@@ -216,7 +216,7 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
 void write_report(const std::string& directory, const std::vector<MethodResult>& results, const ReportContext& ctx) {
     std::error_code ec;
     std::filesystem::create_directories(directory, ec);
-    if (ec) throw cli::InputError(fmt::format("--report {}: cannot create directory: {}", directory, ec.message()));
+    if (ec) throw InputError(fmt::format("--report {}: cannot create directory: {}", directory, ec.message()));
     std::string md = fmt::format("# Identification report: {}\n\nModel: `{}`.\n\n## Table II\n\n```\n{}```\n\n", ctx.log_source, ctx.model_name,
                                  format_table(results, ctx));
     for (const auto& r : results) {
@@ -255,7 +255,7 @@ void write_report(const std::string& directory, const std::vector<MethodResult>&
         }
     }
     std::ofstream out(std::filesystem::path(directory) / "report.md");
-    if (!out) throw cli::InputError(fmt::format("--report {}: cannot write report.md", directory));
+    if (!out) throw InputError(fmt::format("--report {}: cannot write report.md", directory));
     out << md;
 }
 

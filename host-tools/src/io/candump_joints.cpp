@@ -2,12 +2,10 @@
 
 #include <fmt/core.h>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::io {
 namespace {
-
-using cli::InputError;
 
 // One single-joint decoder set per joint: dispatching to each tells which joint a frame belongs to, which
 // the multi-joint set does not report.

@@ -7,12 +7,10 @@
 #include <limits>
 #include <sstream>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::io {
 namespace {
-
-using cli::InputError;
 
 constexpr std::uint32_t kCanErrFlag = 0x20000000u;  // linux/can.h CAN_ERR_FLAG, as candump prints it
 constexpr std::uint8_t kFdFlagBrs = 0x1;            // linux/can.h CANFD_BRS

@@ -2,14 +2,14 @@
 
 #include <fmt/core.h>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "io/candump_joints.hpp"
 
 namespace jacobid::io {
 
 CandumpWriter::CandumpWriter(const std::string& path, std::string interface) : path_(path), interface_(std::move(interface)) {
     file_ = std::fopen(path.c_str(), "w");
-    if (!file_) throw cli::InputError(fmt::format("{}: cannot open for writing", path));
+    if (!file_) throw InputError(fmt::format("{}: cannot open for writing", path));
 }
 
 CandumpWriter::~CandumpWriter() {

@@ -9,12 +9,10 @@
 #include <sstream>
 #include <string_view>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::io {
 namespace {
-
-using cli::InputError;
 
 bool is_space(char c) { return c == ' ' || c == '\t'; }
 

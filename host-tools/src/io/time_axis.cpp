@@ -5,19 +5,19 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::io {
 
 TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_name, double tolerance) {
     const std::vector<double>& t = table.column(column_name);
     if (t.size() < 2) {
-        throw cli::InputError(fmt::format("{}: column '{}' has {} sample(s), need at least 2 to know the sample period",
+        throw InputError(fmt::format("{}: column '{}' has {} sample(s), need at least 2 to know the sample period",
                                           table.source(), column_name, t.size()));
     }
     for (std::size_t i = 0; i + 1 < t.size(); ++i) {
         if (!(t[i + 1] > t[i])) {
-            throw cli::InputError(fmt::format("{}:{}: column '{}': time {} is not after the previous {} (time must increase)",
+            throw InputError(fmt::format("{}:{}: column '{}': time {} is not after the previous {} (time must increase)",
                                               table.source(), table.line_of_row(i + 1), column_name, t[i + 1], t[i]));
         }
     }
@@ -31,7 +31,7 @@ TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_nam
     const double median = sorted[sorted.size() / 2];
     for (std::size_t i = 0; i < steps.size(); ++i) {
         if (std::abs(steps[i] - median) > tolerance * median) {
-            throw cli::InputError(fmt::format(
+            throw InputError(fmt::format(
                 "{}:{}: column '{}': time step {:.6g} s differs from the sample period {:.6g} s by more than {:.3g} % "
                 "(non-uniform sampling or lost samples)",
                 table.source(), table.line_of_row(i + 1), column_name, steps[i], median, 100 * tolerance));

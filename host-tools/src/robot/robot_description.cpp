@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "robot/planar2r_model.hpp"
 #include "robot/serial_robot_model.hpp"
 #include "robot/urdf_chain.hpp"
@@ -19,8 +19,6 @@
 
 namespace jacobid::robot {
 namespace {
-
-using cli::InputError;
 using namespace yaml_fields;
 
 constexpr const char* kKnownModels = "planar2r, mdh, urdf";

@@ -10,12 +10,10 @@
 #include <set>
 #include <sstream>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::robot {
 namespace {
-
-using cli::InputError;
 
 struct Transform {
     Eigen::Matrix3d R = Eigen::Matrix3d::Identity();

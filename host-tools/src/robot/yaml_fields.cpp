@@ -4,11 +4,9 @@
 
 #include <cmath>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::robot::yaml_fields {
-
-using cli::InputError;
 
 std::string where(const std::string& source, const YAML::Node& node) {
     const YAML::Mark m = node.Mark();

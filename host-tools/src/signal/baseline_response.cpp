@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::signal {
 
@@ -12,7 +12,7 @@ ButterworthSos design_butterworth_or_throw(int order, double cutoff_hz, double t
     ButterworthSos sos;
     const FilterStatus s = butterworth_lowpass(order, cutoff_hz, 1.0 / ts, sos);
     if (s != FilterStatus::Ok) {
-        throw cli::InputError(fmt::format("{}: Butterworth order {} cutoff {} Hz at {} Hz sampling: {}", what, order, cutoff_hz, 1.0 / ts, describe(s)));
+        throw InputError(fmt::format("{}: Butterworth order {} cutoff {} Hz at {} Hz sampling: {}", what, order, cutoff_hz, 1.0 / ts, describe(s)));
     }
     return sos;
 }
@@ -29,7 +29,7 @@ ButterworthEuler parse_butterworth_spec(const std::string& spec, const std::stri
         b.cutoff_hz = std::stod(cutoff, &used);
         if (used != cutoff.size()) throw std::invalid_argument(spec);
     } catch (const std::exception&) {
-        throw cli::InputError(fmt::format("{}: expected ORDER:CUTOFF_HZ (e.g. 6:25), got '{}'", option_name, spec));
+        throw InputError(fmt::format("{}: expected ORDER:CUTOFF_HZ (e.g. 6:25), got '{}'", option_name, spec));
     }
     b.sos = design_butterworth_or_throw(b.order, b.cutoff_hz, ts, option_name);
     return b;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "jacobid/baseline/euler_difference.hpp"
 #include "jacobid/baseline/filtfilt.hpp"
 #include "jacobid/batch_differentiate.hpp"
@@ -16,20 +16,20 @@ namespace jacobid::signal {
 Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& x, const std::string& what) {
     std::vector<double> weights(tap_count(params));
     const KernelStatus ks = design_kernel(params, Span<double>(weights));
-    if (ks != KernelStatus::Ok) throw cli::InputError(fmt::format("{}: {}", what, describe(ks)));
+    if (ks != KernelStatus::Ok) throw InputError(fmt::format("{}: {}", what, describe(ks)));
     return jacobi_estimate(params, weights, x, what);
 }
 
 Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& weights, const std::vector<double>& x,
                          const std::string& what) {
     if (x.size() < weights.size()) {
-        throw cli::InputError(fmt::format("{}: {} samples, shorter than the differentiator window of {} taps ({} s)", what, x.size(),
+        throw InputError(fmt::format("{}: {} samples, shorter than the differentiator window of {} taps ({} s)", what, x.size(),
                                           weights.size(), static_cast<double>(weights.size() - 1) * params.sample_period));
     }
     Estimate e;
     e.values.resize(batch_output_size(x.size(), weights.size()));
     const BatchStatus bs = differentiate_batch(Span<const double>(weights), Span<const double>(x), Span<double>(e.values));
-    if (bs != BatchStatus::Ok) throw cli::InputError(fmt::format("{}: {}", what, describe(bs)));
+    if (bs != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", what, describe(bs)));
     e.first_index = batch_offset_samples(weights.size(), params.xi);
     return e;
 }
@@ -44,7 +44,7 @@ Estimate butterworth_euler_estimate(const ButterworthSos& sos, int order, double
     std::vector<double> workspace(sosfiltfilt_workspace_size(sos));
     const FilterStatus fs = sosfiltfilt(sos, Span<const double>(x), Span<double>(filtered), Span<double>(workspace));
     if (fs != FilterStatus::Ok) {
-        throw cli::InputError(fmt::format("{}: {} samples: Butterworth forward-backward filter: {}", what, x.size(), describe(fs)));
+        throw InputError(fmt::format("{}: {} samples: Butterworth forward-backward filter: {}", what, x.size(), describe(fs)));
     }
     std::vector<double> derivative(x.size());
     ValidRange valid{0, x.size()};
@@ -53,13 +53,13 @@ Estimate butterworth_euler_estimate(const ButterworthSos& sos, int order, double
     } else {
         const DifferenceResult r = order == 1 ? euler_first_derivative(Span<const double>(filtered), ts, Span<double>(derivative))
                                               : euler_second_derivative(Span<const double>(filtered), ts, Span<double>(derivative));
-        if (r.status != FilterStatus::Ok) throw cli::InputError(fmt::format("{}: Euler difference: {}", what, describe(r.status)));
+        if (r.status != FilterStatus::Ok) throw InputError(fmt::format("{}: Euler difference: {}", what, describe(r.status)));
         valid = r.valid;
     }
     const std::size_t begin = std::max(valid.begin, crop);
     const std::size_t end = valid.end > crop ? std::min(valid.end, x.size() - crop) : 0;
     if (end <= begin) {
-        throw cli::InputError(fmt::format("{}: {} samples leave nothing after removing {} edge samples at each end", what, x.size(), crop));
+        throw InputError(fmt::format("{}: {} samples leave nothing after removing {} edge samples at each end", what, x.size(), crop));
     }
     Estimate e;
     e.values.assign(derivative.begin() + static_cast<std::ptrdiff_t>(begin), derivative.begin() + static_cast<std::ptrdiff_t>(end));

@@ -10,12 +10,10 @@
 #include <map>
 #include <sstream>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::sim {
 namespace {
-
-using cli::InputError;
 
 // Keys each effect accepts, the first being the magnitude.
 std::vector<std::string> allowed_keys(EffectKind kind) {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "sim/torque_delay_line.hpp"
 
 namespace jacobid::sim {
@@ -19,7 +19,6 @@ std::size_t steps_per_output(const SimulationSettings& s) {
 }  // namespace
 
 void validate(const SimulationSettings& s) {
-    using cli::InputError;
     if (!(s.duration > 0.0) || !std::isfinite(s.duration)) throw InputError("--duration must be a finite number of seconds > 0");
     if (!(s.control_rate > 0.0) || !std::isfinite(s.control_rate)) throw InputError("--control-rate must be > 0 Hz");
     if (s.substeps < 1) throw InputError("--substeps must be >= 1");

@@ -5,12 +5,10 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::stream {
 namespace {
-
-using cli::InputError;
 
 void append(std::vector<SequenceRange>& ranges, std::uint64_t s) {
     if (!ranges.empty() && ranges.back().last + 1 == s) {

@@ -12,11 +12,9 @@
 #include <cerrno>
 #include <cstring>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 
 namespace jacobid::stream {
-
-using cli::InputError;
 
 Endpoint parse_endpoint(const std::string& text, const std::string& option) {
     const std::size_t colon = text.rfind(':');

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "diagnose/blocked_grams.hpp"
 #include "sim/effect_spec.hpp"
 
@@ -14,7 +14,7 @@ namespace {
 std::string error_of(const std::string& token) {
     try {
         parse_effect(token, 2);
-    } catch (const cli::InputError& e) {
+    } catch (const InputError& e) {
         return e.what();
     }
     return "";
@@ -53,7 +53,7 @@ TEST(EffectSpec, YamlErrorsNameFileLineAndColumn) {
     try {
         parse_effects_yaml("effects:\n  - {name: cogging, joint: 2, amplitude: 0.1, order: x}\n", "e.yaml", 2);
         FAIL();
-    } catch (const cli::InputError& e) {
+    } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("e.yaml:2:"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("'order'"), std::string::npos) << e.what();
     }

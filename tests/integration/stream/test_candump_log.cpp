@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "io/candump_log.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
@@ -141,7 +141,7 @@ TEST(CandumpLog, RejectsMalformedLinesNamingFileLineAndExpectation) {
         try {
             jacobid::io::parse_candump_log(text, "bad.log");
             ADD_FAILURE() << "accepted: " << c.line;
-        } catch (const jacobid::cli::InputError& e) {
+        } catch (const jacobid::InputError& e) {
             const std::string what = e.what();
             EXPECT_EQ(what.rfind("bad.log:3: ", 0), 0u) << what;
             EXPECT_NE(what.find(c.expected), std::string::npos) << "line: " << c.line << "\nmessage: " << what;
@@ -151,7 +151,7 @@ TEST(CandumpLog, RejectsMalformedLinesNamingFileLineAndExpectation) {
 }
 
 TEST(CandumpLog, MissingFileIsAnInputError) {
-    EXPECT_THROW(jacobid::io::read_candump_log("/nonexistent/dir/x.log"), jacobid::cli::InputError);
+    EXPECT_THROW(jacobid::io::read_candump_log("/nonexistent/dir/x.log"), jacobid::InputError);
 }
 
 struct PythonFrame {

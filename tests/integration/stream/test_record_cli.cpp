@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "run_command.hpp"
@@ -105,7 +105,7 @@ void send_faulty_stream(UdpSender& s, std::set<std::uint64_t> stale = {}) {
 
 TEST(RecordCli, CountsLossDuplicationReorderingAndMalformedExactly) {
     const Recording r = record("faulty", {"--count", "101"}, [](UdpSender& s) { send_faulty_stream(s); });
-    EXPECT_EQ(r.exit_code, jacobid::cli::kExitInputError) << r.err;
+    EXPECT_EQ(r.exit_code, jacobid::kExitInputError) << r.err;
     EXPECT_NE(r.err.find("3 datagram(s) missing (sequence numbers 10-11, 50; 3 lost, 0 arrived after the reorder window)"), std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("2 malformed datagram(s) ignored (1 bad_magic, 1 truncated)"), std::string::npos) << r.err;
@@ -132,7 +132,7 @@ TEST(RecordCli, CountsLossDuplicationReorderingAndMalformedExactly) {
     try {
         jacobid::io::check_uniform_time(table, "t");
         ADD_FAILURE() << "time axis with a gap accepted";
-    } catch (const jacobid::cli::InputError& e) {
+    } catch (const jacobid::InputError& e) {
         EXPECT_NE(std::string(e.what()).find("lost samples"), std::string::npos) << e.what();
     }
 }
@@ -177,7 +177,7 @@ TEST(RecordCli, DatagramBeyondTheReorderWindowIsLateNotWritten) {
         s.send(make_datagram(5));  // 14 datagrams after its place: given up long ago
         s.send(make_datagram(5));  // and its duplicate is a duplicate, not a second late arrival
     });
-    EXPECT_EQ(r.exit_code, jacobid::cli::kExitInputError) << r.err;
+    EXPECT_EQ(r.exit_code, jacobid::kExitInputError) << r.err;
     EXPECT_EQ(r.summary["datagrams"]["late"], 1);
     EXPECT_EQ(r.summary["datagrams"]["late_sequences"], json::parse("[5]"));
     EXPECT_EQ(r.summary["datagrams"]["lost"], 0);
@@ -242,7 +242,7 @@ TEST(RecordCli, SigintStopsCleanlyWithTheFileFlushed) {
 
 TEST(RecordCli, DurationWithNothingUsableIsAnError) {
     const Recording r = record("nothing", {"--duration", "0.3"}, [](UdpSender& s) { s.send(std::vector<std::uint8_t>(10, 0)); });
-    EXPECT_EQ(r.exit_code, jacobid::cli::kExitInputError) << r.err;
+    EXPECT_EQ(r.exit_code, jacobid::kExitInputError) << r.err;
     EXPECT_NE(r.err.find("no usable estimate datagram received (1 received, 1 malformed); nothing written"), std::string::npos) << r.err;
     EXPECT_NE(r.summary["stopped"].get<std::string>().find("--duration"), std::string::npos);
     EXPECT_FALSE(fs::exists(path("nothing.csv")));
@@ -256,7 +256,7 @@ TEST(RecordCli, InconsistentJointCountIsMalformedNotData) {
         s.send(make_datagram(3));
         s.send(make_datagram(4));
     });
-    EXPECT_EQ(r.exit_code, jacobid::cli::kExitInputError) << r.err;
+    EXPECT_EQ(r.exit_code, jacobid::kExitInputError) << r.err;
     EXPECT_EQ(r.summary["datagrams"]["malformed_by_reason"]["inconsistent"], 1);
     EXPECT_EQ(r.summary["datagrams"]["lost_sequences"], json::parse("[[2, 2]]"));
     EXPECT_NE(r.err.find("joint count 3 differs from the stream's 2"), std::string::npos) << r.err;
@@ -264,7 +264,7 @@ TEST(RecordCli, InconsistentJointCountIsMalformedNotData) {
 
 TEST(RecordCli, BadEndpointIsAnInputError) {
     const auto r = jacobid::test::run_command(std::string(JACOBID_EXECUTABLE) + " record --udp 127.0.0.1 -o " + path("x.csv"));
-    EXPECT_EQ(r.exit_code, jacobid::cli::kExitInputError);
+    EXPECT_EQ(r.exit_code, jacobid::kExitInputError);
     EXPECT_NE(r.err.find("--udp '127.0.0.1': no ':PORT'"), std::string::npos) << r.err;
     const auto help = jacobid::test::run_command(std::string(JACOBID_EXECUTABLE) + " record --help");
     EXPECT_EQ(help.exit_code, 0);

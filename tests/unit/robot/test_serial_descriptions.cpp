@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "robot/urdf_chain.hpp"
 #include "serial_test_support.hpp"
 
@@ -17,7 +17,7 @@ using namespace jacobid;
 std::string error_of(const std::string& yaml) {
     try {
         robot::parse_robot_description(yaml, "r.yaml");
-    } catch (const cli::InputError& e) {
+    } catch (const InputError& e) {
         return e.what();
     }
     return "no error";
@@ -26,7 +26,7 @@ std::string error_of(const std::string& yaml) {
 std::string urdf_error_of(const std::string& xml) {
     try {
         robot::parse_urdf_chain(xml, "arm.urdf");
-    } catch (const cli::InputError& e) {
+    } catch (const InputError& e) {
         return e.what();
     }
     return "no error";
@@ -61,7 +61,7 @@ TEST(MdhDescription, OverflowingGeometryIsRejectedByTheModel) {
     try {
         robot::make_robot_model(d);
         ADD_FAILURE() << "a 1e200 m link was accepted";
-    } catch (const cli::InputError& e) {
+    } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()).rfind("r.yaml: the regressor is not finite", 0), 0u) << e.what();
     }
 }
@@ -83,7 +83,7 @@ TEST(MdhDescription, GeometryTooBadlyScaledForTheBaseParametersIsAnInputError) {
     // exception fails the test (gtest reports it), which is what crashed the fuzzer.
     try {
         robot::make_robot_model(d);
-    } catch (const cli::InputError& e) {
+    } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()).rfind("r.yaml: base parameters: ", 0), 0u) << e.what();
         EXPECT_NE(std::string(e.what()).find("check the lengths"), std::string::npos) << e.what();
     }
