@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Batch differentiation of 1e7 samples: jacobid (direct, FFT, dispatcher) vs scipy.signal.oaconvolve.
 
 Usage: /usr/bin/python3 benchmarks/batch_vs_scipy.py BUILD_DIR [--samples N] [--repeat R] [--taps L ...]

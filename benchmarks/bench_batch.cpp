@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Batch differentiation of a whole record: direct path (lib/), FFT overlap-save path (host-tools,
 // FFTW3), their crossover, the FFT block size, FFTW planning (ESTIMATE vs MEASURE) and FFTW vs Eigen's
 // unsupported FFT module (kissfft backend).

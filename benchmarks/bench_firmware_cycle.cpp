@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Firmware cycle cost (docs/performance.md, "Firmware cycle"): FirmwareCycle::step() for 6 MIT joints at
 // 1 kHz, i.e. drain 6 frames from the virtual bus + decode + safety I/O (fake lines) + bank + datagram
 // encode + publish. Variants split the cost: the simulator's sends alone, and a real UDP send over

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One hour of 1 kHz 2R data (3.6 M samples) identified end to end, with the split of the time between
 // parsing, differentiation, regressor + decimation filter, and least squares, and the peak RSS.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Regressor of a 6-axis arm per sample (issue 6, target <= 3 us): the fixed-size RNEA regressor of the
 // 78 standard parameters (lib, PUMA 560 with rotor inertia), and the host model's base regressor (52 base
 // columns selected from it, what `jacobid identify` evaluates per sample).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Streaming tick: 6 joints x (q^, qd^, qdd^), 211 taps each (kappa = mu = 6, q = 2, T = 0.21 s,
 // Ts = 1 ms, central), plus the torque delay: jacobid::DifferentiatorBank<Scalar, 6, 256> against a
 // straightforward implementation (modulo-indexed ring buffer, plain scalar loop) in the same binary.

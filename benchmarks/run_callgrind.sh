@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Instructions per streaming tick (6 joints x 3 channels x 211 taps + torque delay) of the
 # DifferentiatorBank and of the straightforward baseline, counted by valgrind --tool=callgrind: stable
 # where timings are noisy. Each implementation runs twice (BASE and BASE + TICKS ticks); the difference of

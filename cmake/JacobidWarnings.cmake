@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Warnings on for every target we own; applied with jacobid_set_warnings(target).
 function(jacobid_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Main job: simulate the paper-like 2R robot (Table II truth, PD on random quintic moves, 1 kHz, encoder
 # 2^16 counts/rev, torque noise 0.05 / 0.01 N.m), identify it with the Jacobi pipeline and the
 # Butterworth baseline side by side, print the Table II comparison next to the truth, and write a

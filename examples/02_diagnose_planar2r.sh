@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Model-discrepancy workflow on the paper's 2R robot: the simulator hides two effects the nominal model
 # lacks (a 0.2 N.m friction offset on joint 1 and 0.15 N.m cogging at 8 per revolution on joint 2);
 # `jacobid diagnose` locates the disagreement, names both effects with their magnitudes, re-identifies the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Configures and builds jacobid (Release) into ${JACOBID_BUILD_DIR:-build}.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"

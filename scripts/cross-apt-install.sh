@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs the given Debian packages that are not installed yet (root or sudo); used by cross-deps.sh and
 # vm-deps.sh. Prints what it installs.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Cross-compilation dependencies (Debian 12 packages; root or sudo):
 #  - toolchains: g++-aarch64-linux-gnu, g++-arm-linux-gnueabihf, gcc-arm-none-eabi + its newlib libstdc++;
 #  - qemu-user-static: runs the aarch64/armhf test executables on this machine (ctest, no binfmt needed);

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # GoogleTest for a cross target, compiled from Debian's googletest sources (package googletest) with the
 # target's toolchain into build-cross-<arch>/googletest-install, unless it is there already. Used by
 # scripts/cross-test.sh (unit tests under qemu-user) and scripts/vm-test.sh (the board build).

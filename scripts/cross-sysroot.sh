@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Target packages without multiarch: downloads Debian packages of another architecture with apt-get
 # download (its own package lists, the machine's apt sources, the machine's dpkg left alone) and unpacks
 # them with dpkg -x.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Cross builds and their tests (docs/targets.md):
 #  1. aarch64 and armhf (toolchains/*-linux-gnu*.cmake): GoogleTest compiled from Debian's sources with
 #     the cross compiler, jacobid's core + HAL + unit tests cross-compiled, `ctest -L unit` run under

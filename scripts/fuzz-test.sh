@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds the libFuzzer targets (fuzz/, clang with ASan + UBSan, in the build the sanitizer suite shares:
 # scripts/hardening-config.sh) and runs each for a fixed time from its seed corpus (fuzz/corpus/<target>/).
 # Fails on any crash, hang (-timeout), leak, sanitizer report or violated property; the input that did it

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Sourced by scripts/sanitize-test.sh and scripts/fuzz-test.sh: the one build both run from (build-hardening).
 #
 # One clang build serves both: the test suite under ASan + UBSan, and the libFuzzer targets, which need

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs jacobid's build and test dependencies from Debian 12 packages (needs root or sudo).
 set -euo pipefail
 packages=(

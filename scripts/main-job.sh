@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # README command 1: installs the dependencies, builds, and runs the main job: simulate the paper-like 2R
 # robot, identify it with the Jacobi pipeline and the Butterworth baseline, print the Table II comparison
 # next to the truth, and write the report with plots (examples/01_identify_planar2r.sh).

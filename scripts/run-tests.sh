@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # README command 2: installs the dependencies, builds, and runs every test: the native suite through ctest
 # (unit, integration, install/consume), then the cross builds (aarch64 and armhf unit tests under
 # qemu-user, Cortex-M no-heap link) and the SocketCAN/GPIO tests in qemu VMs with Debian's kernels;

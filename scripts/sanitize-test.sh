@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The whole native test suite once more under AddressSanitizer + UndefinedBehaviorSanitizer, in the
 # clang build that the fuzz targets share (scripts/hardening-config.sh: why clang, -O2, one build).
 # Any sanitizer report fails the run: -fno-sanitize-recover=all turns every UBSan finding into an abort,

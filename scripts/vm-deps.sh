@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # What the VM tests need (docs/targets.md), from Debian 12 packages only:
 #  - qemu-system-x86 / qemu-system-arm (has qemu-system-aarch64), run without KVM (-accel tcg);
 #  - per VM architecture, in ${JACOBID_VM_ASSETS:-build-vm/assets}/<arch>: Debian's stock kernel

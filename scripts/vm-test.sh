@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The tests that need a kernel with CAN or a GPIO chip (ctest labels vcan, vm, gpio; docs/targets.md):
 #  1. this machine's build (build-vm): vcan.host runs the SocketCAN tests directly if vcan interfaces can
 #     be made here (else skipped, the reason printed), vm.x86_64.hal-vcan runs them in qemu-system-x86_64

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # 64-bit Arm Linux controller boards (Raspberry Pi 4/5 with a 64-bit OS, i.MX8, Jetson, RK3588, ...).
 #   apt-get install g++-aarch64-linux-gnu qemu-user-static
 #   dpkg --add-architecture arm64 && apt-get update && apt-get install libgpiod-dev:arm64   # for hal/

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # 32-bit Arm Linux controller boards with hardware float (ARMv7-A: BeagleBone, Raspberry Pi 2/3 with a
 # 32-bit OS, i.MX6, STM32MP1, ...). Debian's armhf baseline: -march=armv7-a -mfpu=vfpv3-d16 -mthumb.
 #   apt-get install g++-arm-linux-gnueabihf qemu-user-static

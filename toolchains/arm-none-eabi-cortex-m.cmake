@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Bare-metal Cortex-M with a hardware FPU (Debian gcc-arm-none-eabi + libstdc++-arm-none-eabi-newlib).
 # Builds lib/ (jacobid::core) only: there is no OS, so the top-level project's HAL, host tools, tests and
 # benchmarks are switched off below. Choose the core with -DJACOBID_CORTEX_M_CPU=:

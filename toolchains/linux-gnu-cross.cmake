@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared part of the Debian cross toolchains (included by aarch64-linux-gnu.cmake and
 # arm-linux-gnueabihf.cmake, which set JACOBID_TARGET_TRIPLE and CMAKE_SYSTEM_PROCESSOR first).
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Standard parameters (Khalil's XXj ... Mj about the link frame origin) from mass, centre of mass and
 central inertia, as used to write the `parameters:` blocks of puma560.yaml and ur5_like.yaml.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "jacobid/firmware/firmware_cycle.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid-fw: the real-time firmware. Reads joint frames from a CAN interface at a fixed rate, runs the
 // Jacobi streaming bank and publishes the aligned estimates as UDP datagrams (docs/firmware.md).
 //

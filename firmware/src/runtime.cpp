@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "jacobid/firmware/runtime.hpp"
 
 #include <arpa/inet.h>

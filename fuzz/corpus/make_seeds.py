@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes the seed corpora of the fuzz targets (fuzz/corpus/<target>/seed-*).
 
 Text seeds are the examples of the tests and docs (named below); binary seeds (estimate datagrams, CAN

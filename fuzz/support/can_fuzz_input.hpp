@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Turns fuzzer bytes into what a device profile sees: a joint mapping and a stream of CAN frames.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The checks every device-profile fuzz target applies to each frame it feeds a configured decoder:
 //  - a decoded frame (Ok) has a length a transport can deliver and leaves finite link-side values within the mapping's plausibility limits

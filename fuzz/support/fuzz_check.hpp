@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A property a fuzz target asserts about the parser's result. A violation is a finding like a crash:
 // the message says which property failed, and abort() makes libFuzzer save the input (crash-<sha1>).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A directory of this fuzzing process for targets whose parser reads or writes files (removed and
 // recreated by the target as it needs; one per process, so parallel jobs do not share files).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // candump -L logs (host-tools/src/io/candump_log.*) and their conversion to joint samples through the
 // device profiles (candump_joints.*), the input of `jacobid identify --can-config`. Bad input must be an
 // InputError. Properties: every parsed frame is one a transport could carry (hal::is_valid_frame) or an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Numeric CSV logs (host-tools/src/io/csv_table.*, time_axis.*), the input of `jacobid identify` and
 // `jacobid differentiate`. Bad input must be an InputError (exit 2), never another exception or a crash.
 // Properties of an accepted table: rectangular, every value finite, and printing it with 17 significant

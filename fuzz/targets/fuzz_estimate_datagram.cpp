@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Estimate datagram decoder (lib/include/jacobid/stream/estimate_datagram.hpp), as the host (64 joints)
 // and a small controller build (4 joints) instantiate it. Properties: decode never reads outside the
 // datagram (ASan), and a datagram it accepts re-encodes to exactly the same bytes (the format has one

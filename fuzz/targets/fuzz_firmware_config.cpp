@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid-fw configuration (firmware/src/firmware_config_yaml.cpp): any text must either parse or raise
 // ConfigError (one line naming file, line, column and key), never another exception or a crash.
 // Property of an accepted configuration: its joints configure the HAL decoder set without error (the

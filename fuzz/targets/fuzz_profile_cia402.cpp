@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CiA 402 TPDO decoder (hal/include/jacobid/hal/profiles/cia402.hpp): fuzzed node id, PDO layout, scales
 // and modulo range, then fuzzed frames on (mostly) the PDO's COB-ID. Properties: decoder_properties.hpp.
 #include <cstddef>

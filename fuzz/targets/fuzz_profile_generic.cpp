@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Generic signal decoder (hal/include/jacobid/hal/profiles/generic.hpp): fuzzed bit-field layouts of
 // position, velocity and effort (shared or separate frames), then fuzzed frames on (mostly) their ids.
 // Properties: decoder_properties.hpp.

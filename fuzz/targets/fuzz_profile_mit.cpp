@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MIT-mode reply decoder (hal/include/jacobid/hal/profiles/mit.hpp): a fuzzed joint configuration, then a
 // stream of fuzzed frames on (mostly) its reply id. Properties: decoder_properties.hpp.
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ODrive CAN-simple decoder (hal/include/jacobid/hal/profiles/odrive.hpp): fuzzed node id and wrap period,
 // then fuzzed encoder-estimate / Iq frames (mostly) of that node. Properties: decoder_properties.hpp.
 #include <cstddef>

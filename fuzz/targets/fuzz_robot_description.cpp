@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Robot description YAML (host-tools/src/robot/robot_description.*), read by identify/simulate/diagnose.
 // Any text must either parse or raise InputError (exit 2), never another exception or a crash.
 // Properties of an accepted description: its model can be built (make_robot_model), the model's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The host's receive path of the estimate stream (host-tools/src/stream/recorder.*, sequence_tracker.*):
 // a fuzzed sequence of datagrams, some raw bytes (garbage, truncated, oversized) and some well-formed
 // ones with fuzzed sequence numbers, flags, joint counts and values, recorded under a fuzzed gap policy.

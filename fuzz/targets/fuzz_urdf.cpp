@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // URDF robot descriptions (host-tools/src/robot/urdf_chain.*, through urdfdom), the text behind
 // `model: urdf` in a robot description. Bad input must be an InputError, never another exception or a crash.
 // Properties of an accepted URDF: one name and one limit pair per moving joint, finite joint geometry that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libgpiod v1 backend of the GPIO lines. See gpiod_lines.hpp.
 #include "jacobid/hal/gpiod_lines.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SocketCAN backend. See socketcan_transport.hpp for the contract; comments here explain the system
 // call details.
 #include "jacobid/hal/socketcan_transport.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid: the host-side command line. Subcommands are defined in src/cli/*_command.cpp.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>

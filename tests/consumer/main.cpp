@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Uses the installed core: a 2-joint streaming bank differentiating a ramp must report its slope.
 #include <jacobid/jacobid.hpp>
 

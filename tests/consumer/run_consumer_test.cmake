@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # ctest driver: install the build tree into a scratch prefix, then configure, build and run the consumer.
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR)
   if(NOT DEFINED ${var})

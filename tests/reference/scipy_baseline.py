@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """scipy reference values for the Butterworth + Euler baseline of the real-time core.
 
 The C++ tests (tests/unit/test_butterworth.cpp, test_filtfilt.cpp, test_decimate.cpp) run this script

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Test-side helper: runs tests/reference/scipy_baseline.py with the python that has scipy
 // (JACOBID_REFERENCE_PYTHON) and parses its output, one array per line "<name> <v0> <v1> ..." printed

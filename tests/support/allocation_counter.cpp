@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Interposes malloc/calloc/realloc/aligned_alloc (glibc exports the real ones as __libc_*) and the global
 // operator new family, counting each call. Frees are not counted: the claim under test is "no allocation".
 // Under AddressSanitizer the C allocator belongs to the sanitizer: only the operator new family is counted

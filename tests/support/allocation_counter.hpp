@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Counts every heap allocation of the process (global operator new and the C allocator), so tests can
 // prove that a real-time path allocates nothing. Link tests/support/allocation_counter.cpp.

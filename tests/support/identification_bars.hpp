@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The identification issue's accuracy bars against the paper's Table II truth (the simulator's default):
 // inertial parameters within 1 %, Coulomb levels within 5 %, relative error norm below 2 %. Shared by every

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Runs a shell command for CLI tests and captures its exit code, standard output and standard error.
 #include <array>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A per-process scratch folder for tests that write files, removed when the test program exits.
 #include <filesystem>

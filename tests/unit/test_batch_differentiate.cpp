@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Batch (direct) differentiation: equals the textbook correlation, drops the ends, rejects short input.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Butterworth and Chebyshev I low-pass design: coefficients against scipy.signal.butter / cheby1
 // (output='sos'), frequency-response properties that follow from the definitions, and the error paths.
 #include "jacobid/baseline/butterworth.hpp"

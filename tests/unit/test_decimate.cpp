@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Decimation against scipy.signal.decimate (default Chebyshev I low-pass, and a Butterworth low-pass given
 // to scipy as a dlti system), sizes, and the error paths.
 #include "jacobid/baseline/decimate.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Central Euler differences. Expected values come from Taylor expansion, not from the code:
 //   (x(t+h) - x(t-h)) / 2h       = x'(t) + h^2/6 x'''(t) + ...     (exact up to degree 2)
 //   (x(t+h) - 2x(t) + x(t-h))/h^2 = x''(t) + h^2/12 x''''(t) + ... (exact up to degree 3)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // FFT (overlap-save) batch path: same outputs as the direct path to 1e-12 relative to sum|w||x|, same
 // output size and error statuses, for block sizes that do and do not divide the record.
 #include <gtest/gtest.h>

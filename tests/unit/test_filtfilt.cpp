@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Streaming SOS filter, sosfilt_zi and zero-phase sosfiltfilt against scipy.signal, the padlen
 // boundary against scipy's own acceptance, and the error paths.
 #include "jacobid/baseline/filtfilt.hpp"

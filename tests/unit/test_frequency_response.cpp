@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Frequency response, numeric cutoff and inverse window design.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Jacobi polynomials against closed forms and direct numerical integration (independent references).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Jacobi kernels: two independent constructions agree, polynomial exactness, discretization error,
 // parameter validation.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Streaming bank: equals batch after the delay, float vs double, alignment, warm-up, zero allocation.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the vcan tests directly on this machine (ctest: vcan.host). Needs Linux with the vcan module and
 # root (CAP_NET_ADMIN). Creates two vcan interfaces of its own, jcan0 (classic CAN, MTU 16) and
 # jcanfd0 (CAN FD, MTU 72), runs the test binary on them and deletes them again.

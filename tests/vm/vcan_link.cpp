@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid-vcan-link: creates (or deletes) a vcan interface through rtnetlink, like
 // `ip link add dev NAME [mtu N] type vcan && ip link set NAME up`, for initramfs images whose busybox
 // `ip` cannot create vcan links. Static, no dependencies; needs CAP_NET_ADMIN and the vcan module.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Boots Debian's stock kernel under qemu (TCG, no KVM) with a busybox initramfs that holds the test
 binaries and one scenario script, and turns what the serial console says into an exit status:
 0 = the scenario printed PASS, 1 = it printed FAIL, 2 = no verdict (the VM did not boot, hung, or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid bode: frequency response (magnitude, phase, group delay) of one or several differentiators
 // against the ideal (2 pi f)^n, as CSV and a PNG plot (the paper's Fig. 2 and Fig. 3).
 #include <CLI/CLI.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid diagnose: where the identified model and the measured data disagree, which physical effect is
 // missing, and how much the gap shrinks on held-out data once it is added (docs/diagnose.md).
 #include <CLI/CLI.hpp>

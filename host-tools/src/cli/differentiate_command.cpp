@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid differentiate: velocity/acceleration (any order 0..3) of columns of a CSV log, with the Jacobi
 // differentiator or the Butterworth + central Euler baseline, written with their time stamps.
 #include <CLI/CLI.hpp>

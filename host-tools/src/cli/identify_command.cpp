@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid identify: dynamic parameters of a robot from a log of joint positions and motor torques
 // (Table II of the paper: X^, 2 sigma, %sigma_r), with the Jacobi pipeline, the Butterworth baseline or
 // both side by side.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid kernel: the FIR weights of one Jacobi differentiator, as CSV, JSON or a C++ header table.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>

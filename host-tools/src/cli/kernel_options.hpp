@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Command-line options that describe one Jacobi kernel, shared by kernel, bode and differentiate.
 #include <string>

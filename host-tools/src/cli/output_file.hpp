@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Writing command results: '-' is standard output, anything else a file (InputError if it cannot be
 // written, naming the path).

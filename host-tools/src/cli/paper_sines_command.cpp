@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid paper-sines: the reference paper's Section III experiment. Three sines with impulsive, white
 // and 200 Hz noise; velocity and acceleration from the central Jacobi differentiator (kappa = mu = 12,
 // q = 6, T = 0.21 s) and from a 6th-order 25 Hz forward-backward Butterworth + central Euler differences.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid record: receives the controller's estimate stream (UDP, docs/stream-format.md) and writes the
 // CSV log that `jacobid identify` reads, reporting every datagram that did not become a row.
 #include <CLI/CLI.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid sim-can: the closed-loop simulator playing the motor drivers on a CAN interface. Every output
 // sample (1 kHz by default) becomes one frame per joint (two for ODrive) in the chosen profile, sent at
 // the sample's wall-clock time, so that sim-can -> CAN -> jacobid-fw -> UDP -> record -> identify runs

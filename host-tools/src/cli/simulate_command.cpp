@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid simulate: a closed-loop simulated robot log (t, q_j, tau_j) plus its truth (parameters and the
 // noise-free states), the test bench of the identification pipeline.
 #include <CLI/CLI.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The host tools' error contract, shared by every module (io/, robot/, identify/, signal/, sim/, stream/,
 // diagnose/) and by the command line that reports it.

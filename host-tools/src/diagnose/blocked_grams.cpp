@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/blocked_grams.hpp"
 
 #include <Eigen/Cholesky>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Normal equations of the decimated rows, kept per joint and per contiguous block of time: G = W^T W,
 // b = W^T Y, yy = Y^T Y over every catalogue column. Any subset of columns, any joint weighting and any

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/candidate_catalogue.hpp"
 
 #include <algorithm>

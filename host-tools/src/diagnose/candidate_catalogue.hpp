@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The candidate effects the diagnosis tries, each with its hyper-parameter on a grid: Stribeck velocities
 // (a geometric grid, 0.02-0.5 rad/s), cogging orders 2..max (order 1 on joint 1 is what a tilted base does,

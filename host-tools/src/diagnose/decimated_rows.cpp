@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/decimated_rows.hpp"
 
 #include <fmt/core.h>

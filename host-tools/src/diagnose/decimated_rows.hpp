@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The identification's decimated, filtered rows (Y_j and W_j per joint, exactly as `jacobid identify` builds
 // them: run_pipeline keeps them when plot_rows is unlimited), plus what the diagnosis needs beside them:

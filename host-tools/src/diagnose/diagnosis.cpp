@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/diagnosis.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // `jacobid diagnose` end to end: identify the nominal model as `jacobid identify` does, compare it with the
 // data (torque residual, short-horizon simulation), locate the disagreement, select the missing effects

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/diagnosis_report.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Output of `jacobid diagnose`: a text summary (tables of the named effects and of the gap before and
 // after), JSON ({"effects": [...], "before": {...}, "after": {...}, ...}) and a Markdown report with PNG

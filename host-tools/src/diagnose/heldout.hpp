@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Error on data a model was not fitted on: the validation log's rows when there is one, otherwise blocked
 // cross-validation (each contiguous time block predicted by the fit on the others; contiguous blocks keep

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/horizon_simulation.hpp"
 
 #include <algorithm>

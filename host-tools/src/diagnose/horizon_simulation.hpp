@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Short-horizon simulation of an identified model against the measured positions: segments of a few
 // tenths of a second, each started from the measured state (position from the log, velocity from the Jacobi

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/residual_analysis.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where a model and the data disagree: a joint's torque residual binned by velocity (sign, near zero),
 // position, acceleration and time; its spectrum against the joint angle (periodic content per revolution,

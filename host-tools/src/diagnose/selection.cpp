@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/selection.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Forward stepwise selection of the missing effects. Each step fits the current model (nominal columns +
 // effects accepted so far, torque channel shifted by the accepted delay) and tries every remaining

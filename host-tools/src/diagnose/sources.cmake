@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Model-discrepancy diagnosis (`jacobid diagnose`, included by host-tools/CMakeLists.txt).
 target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/statistics.cpp

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "diagnose/statistics.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Statistics of filtered, decimated residuals, which are correlated: the autocorrelation, the effective
 // sample size it implies, and the chi-square tail used by the selection's significance test.

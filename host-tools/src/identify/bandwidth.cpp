@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "identify/bandwidth.hpp"
 
 #include <fftw3.h>

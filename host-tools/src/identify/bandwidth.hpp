@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bandwidth of the motion in a log, used to choose the differentiator windows and the decimation filter
 // when the user gives none: the frequency below which `fraction` (99 %) of the velocity's energy lies,

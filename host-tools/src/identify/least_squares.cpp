@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "identify/least_squares.hpp"
 
 #include <algorithm>

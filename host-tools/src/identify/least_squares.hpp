@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Solution and statistics of the identification LS problem Y = W X + rho from triangular factors of
 // [W Y] (running_qr.hpp), one per joint, so that ordinary, weighted (Gautier) and reduced (essential

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "identify/log_columns.hpp"
 
 #include "io/time_axis.hpp"

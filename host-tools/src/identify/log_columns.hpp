@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The joints' position and torque columns of a CSV log, as a robot description names them, with the
 // log's uniform time axis checked (shared by `jacobid identify` and `jacobid diagnose`).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "identify/pipeline.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The identification pipeline of the paper (Sec. II-B, method-notes §2 and §4) on one log:
 //   1. joint velocities and accelerations from the measured positions: central Jacobi differentiators

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "identify/report.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Presentation of identification results: the paper's Table II layout (X^, 2 sigma, %sigma_r per
 // parameter, methods side by side, optionally next to the truth of a simulation), JSON, and a Markdown

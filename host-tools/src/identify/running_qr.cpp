@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "identify/running_qr.hpp"
 
 namespace jacobid::identify {

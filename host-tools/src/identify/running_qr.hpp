@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Least squares that accumulates rows into a running triangular factor: [W Y] = Q R, only R (columns x
 // columns) is kept. Memory is independent of the number of rows, so logs of any length fit, and R carries

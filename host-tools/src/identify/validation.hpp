@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Cross-validation: the torques of a second trajectory predicted with identified parameters. The main
 // figure compares them as the identification does, after the same decimation filter F_p on both sides

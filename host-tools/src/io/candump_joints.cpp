@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/candump_joints.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Joint positions and torques from a candump capture: the frames are decoded by the same HAL device
 // profiles as the firmware's, and grouped into samples (one per controller cycle), so a capture taken on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/candump_log.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // candump log files ("candump -L", can-utils' log format; also what python-can's CanutilsLogReader reads):
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/candump_writer.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A CanTransport that writes every frame it is given as a `candump -L` line, time-stamped with a clock the
 // caller advances (simulated time): the simulator's motor drivers can then produce a capture file exactly

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/csv_table.hpp"
 
 #include <fast_float/fast_float.h>

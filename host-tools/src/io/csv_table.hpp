@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Numeric CSV logs: a header row of column names, then one row per sample, every cell a finite number.
 // Anything else is an InputError naming the file, line and column; nothing is skipped or guessed.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/time_axis.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The time column of a log: strictly increasing and uniformly sampled within a stated tolerance.
 #include <cstddef>

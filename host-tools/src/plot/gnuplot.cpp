@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "plot/gnuplot.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // PNG plots through gnuplot (Debian's gnuplot-nox, pngcairo terminal). The data travel inline in the
 // script (gnuplot 5 data blocks), so no temporary files are left behind.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/base_parameter_report.hpp"
 
 #include <fmt/core.h>

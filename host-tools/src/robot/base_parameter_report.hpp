@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The base parameter set of a robot description as a person reads it (one regrouping relation per line,
 // with the true values when the description gives parameters) or as JSON, for

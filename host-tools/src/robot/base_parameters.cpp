@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/base_parameters.hpp"
 
 #include <fmt/core.h>

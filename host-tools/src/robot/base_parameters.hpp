@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Base parameters computed numerically (Gautier 1991): the standard regressor W is stacked over random
 // states; the rank comes from a QR decomposition with column pivoting, and the base set is chosen by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/planar2r_model.hpp"
 
 namespace jacobid::robot {

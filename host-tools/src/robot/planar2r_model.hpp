@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Host adapter of the fixed-size 2R regressor (lib/include/jacobid/robot/planar2r.hpp).
 #include "jacobid/robot/planar2r.hpp"

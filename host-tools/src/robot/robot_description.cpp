@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/robot_description.hpp"
 
 #include <fmt/core.h>

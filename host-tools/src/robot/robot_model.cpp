@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/robot_model.hpp"
 
 #include <Eigen/Cholesky>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Host-side robot model interface: any number of joints, any number of base parameters. The identifier
 // and the simulator only see this interface; each concrete model adapts a fixed-size, allocation-free

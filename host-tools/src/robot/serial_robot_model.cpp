@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/serial_robot_model.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Host model of a serial (or tree) robot described by MDH rows or a URDF: the fixed-size RNEA regressor of
 // the standard parameters (lib/include/jacobid/robot/rnea_regressor.hpp) reduced to the numerically

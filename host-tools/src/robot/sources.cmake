@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Robot models and their descriptions (included by host-tools/CMakeLists.txt).
 find_package(urdfdom REQUIRED)
 target_sources(jacobid_host PRIVATE

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/urdf_chain.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A URDF (through urdfdom) as a kinematic chain: every revolute, continuous or prismatic joint becomes a
 // ChainJoint whose fixed transform is the joint origin (composed with the origins of any fixed joints

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "robot/yaml_fields.hpp"
 
 #include <fmt/core.h>

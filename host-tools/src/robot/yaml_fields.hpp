@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Typed reads of YAML fields with InputError messages "file:line:column: 'key' must be ...", shared by
 // the robot description parsers.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "signal/baseline_response.hpp"
 
 #include <fmt/core.h>

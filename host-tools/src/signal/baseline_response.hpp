@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Frequency response of the classic pipeline the paper compares against: a Butterworth low-pass run
 // forward and backward (|H|^2, zero phase) followed by central Euler differences.

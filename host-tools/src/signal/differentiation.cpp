@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "signal/differentiation.hpp"
 
 #include <fmt/core.h>

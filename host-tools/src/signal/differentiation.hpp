@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Whole-signal differentiation on the host: the Jacobi kernel (central or not) and the classic
 // Butterworth forward-backward + central Euler pipeline. Each result says which input sample its first

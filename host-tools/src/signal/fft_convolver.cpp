@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "signal/fft_convolver.hpp"
 
 #include <fftw3.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Batch differentiation of long records through the FFT (FFTW3 real-to-complex overlap-save).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "sim/augmented_model.hpp"
 
 namespace jacobid::sim {

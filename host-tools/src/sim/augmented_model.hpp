@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A RobotModel decorator: the nominal model's regressor followed by the columns of extra effect terms.
 // Everything that works on a RobotModel (ForwardDynamics, the identification pipeline, validation) then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "sim/can_player.hpp"
 
 #include <variant>

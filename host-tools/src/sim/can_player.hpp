@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The simulator's motor drivers on a CAN bus: each sample of the closed-loop simulation (link-side q, qd,
 // tau per joint) becomes the frames the joint's device would send, in its profile (MIT reply, CiA 402

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "sim/effect_spec.hpp"
 
 #include <fast_float/fast_float.h>

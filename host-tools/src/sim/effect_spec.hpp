@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Effects injected by `jacobid simulate`: which effect, on which joint, how large. Two spellings:
 //

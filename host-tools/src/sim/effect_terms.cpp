@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "sim/effect_terms.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Physical effects that a nominal rigid-body model misses, each written as regressor columns that are linear
 // in the effect's magnitude once its hyper-parameter (Stribeck velocity, cogging order) is fixed. The same

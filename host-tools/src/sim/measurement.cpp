@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "sim/measurement.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What the log records instead of the truth: encoder quantization of the positions, Gaussian noise on the
 // torques (per joint) and an optional position-dependent torque ripple (cogging-like: amplitude *

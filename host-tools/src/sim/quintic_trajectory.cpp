@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "sim/quintic_trajectory.hpp"
 
 #include <algorithm>

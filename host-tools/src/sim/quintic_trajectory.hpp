@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Successive point-to-point moves with quintic (5th-order polynomial) time laws, the reference of the
 // paper's PD-controlled robot: every move starts and ends at rest (zero velocity and acceleration), all

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Closed-loop simulation of a robot model: PD position control tracking quintic point-to-point moves.
 //

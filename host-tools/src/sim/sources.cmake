@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Closed-loop simulation (included by host-tools/CMakeLists.txt).
 target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/quintic_trajectory.cpp

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "sim/torque_delay_line.hpp"
 
 #include <cmath>

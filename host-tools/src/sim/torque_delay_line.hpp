@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The torque channel of a log lagging the position channel by a fixed delay (drive current sampled earlier
 // than the encoder, or stamped later on the bus). Linear interpolation between logged samples of the true

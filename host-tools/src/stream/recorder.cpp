@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "stream/recorder.hpp"
 
 #include <fmt/core.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The host side of the estimate stream: decodes datagrams, orders them (SequenceTracker) and writes the
 // CSV log that `jacobid identify` reads, accounting for everything that did not become a row.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "stream/sequence_tracker.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Puts received estimate datagrams back into sequence order and accounts for every sequence number:
 // each one is written (once), duplicated, reordered (arrived after a later one but in time to be written

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "stream/udp_receiver.hpp"
 
 #include <arpa/inet.h>

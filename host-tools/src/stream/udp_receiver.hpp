@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A bound IPv4 UDP socket for the estimate stream (plain POSIX sockets). Host tools only.
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Differentiation of a whole recorded signal with one kernel ("valid" correlation): an output exists
 // only where the whole window lies inside the record, so the h samples at either end are dropped, never

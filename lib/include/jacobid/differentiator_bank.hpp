@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Streaming differentiator bank: per joint, position q^ (n = 0), velocity qd^ (n = 1) and acceleration
 // qdd^ (n = 2) estimates, each from its own Jacobi kernel, plus the raw torque, all delayed to one common

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Dot product of two contiguous arrays with independent partial sums. A plain `s += a[i] * b[i]` loop is
 // a serial dependency chain the compiler may not reorder (no -ffast-math in the core); keeping Lanes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Frequency response of an FIR differentiator, its -3 dB cutoff relative to the ideal (2 pi f)^n, and the
 // inverse design: the window that gives a wanted cutoff.

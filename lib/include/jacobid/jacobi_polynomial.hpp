@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Jacobi polynomials P_i^{(alpha,beta)} on [-1, 1] (Abramowitz-Stegun convention: alpha belongs to the
 // (1 - x) factor of the weight (1 - x)^alpha (1 + x)^beta), their derivatives, norms and roots.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Convenience header: the whole real-time core.
 #include "jacobid/batch_differentiate.hpp"

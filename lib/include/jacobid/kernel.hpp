@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A designed Jacobi differentiator: its parameters and FIR weights (oldest sample first) in fixed-size
 // storage. Capacity is the largest number of taps it can hold.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // FIR weights of the Jacobi differentiator, written oldest sample first into caller-owned storage.
 //

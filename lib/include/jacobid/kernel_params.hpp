@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Parameters of one Jacobi differentiator and their validation. Config only: no storage, no maths.
 #include <cmath>

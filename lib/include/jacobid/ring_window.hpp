@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Fixed-capacity ring buffer whose latest Capacity samples are always contiguous in memory: every sample
 // is written twice, at i and i + Capacity, so any window ending at the newest sample is one pointer and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A minimal non-owning view of contiguous memory (C++17 has no std::span). The core passes buffers the
 // caller owns through it, so that nothing in lib/ allocates.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a Cortex-M firmware holds of jacobid: one 6-joint streaming bank (float, positions + torques in,
 // aligned q^, qd^, qdd^ and delayed torque out), its kernels designed at start-up by configure(), then
 // one step() per control cycle. Statically allocated; no heap, no OS, no exceptions.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /* Minimal Cortex-M startup: vector table (stack pointer + reset), .data copy, .bss zeroing, static
    constructors, main. Enough to link and size the program; a board port brings its own (CMSIS). */
 #include <stdint.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """compare.py NATIVE CROSS: same names, values equal within |a-b| <= tol * max(1, |a|, |b|),
 tol 1e-9 for double ("d.") and 2e-3 for float ("f.") outputs. Prints the largest deviations.
 The float tolerance is that of the arithmetic, not of the platform: a 51-tap second-derivative kernel at

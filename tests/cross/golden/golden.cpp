@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Prints the streaming bank's estimates (double and float) for a fixed input, one "name value" per line.
 #include <jacobid/jacobid.hpp>
 

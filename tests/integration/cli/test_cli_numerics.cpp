@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The jacobid executable end to end: kernel/differentiate/bode/paper-sines outputs and their errors.
 #include <gtest/gtest.h>
 

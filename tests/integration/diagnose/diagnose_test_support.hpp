@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Shared by the diagnosis CLI tests: a 2R robot description, simulate/diagnose runs in the scratch folder.
 #include <fstream>

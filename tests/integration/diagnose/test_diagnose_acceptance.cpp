@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Acceptance of `jacobid diagnose` (issue 7) on simulated data in which the simulator hides an effect from
 // the nominal model. Ground truth comes from the simulator's truth JSON, never from the diagnosis.
 #include <gtest/gtest.h>

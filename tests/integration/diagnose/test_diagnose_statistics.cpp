@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Statistics of the selection against independent references: scipy.stats.chi2.sf values (computed with
 // Debian's /usr/bin/python3: `from scipy.stats import chi2; chi2.sf(x, k)`), the AR(1) effective sample
 // size n (1 - phi) / (1 + phi), and blocked normal equations against a direct QR least-squares solve.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The simulator's hidden effects checked against physics written independently here: the noise-free
 // states (--states) give the true motor torque, and tau - D(q, qd, qdd) X_nominal must be exactly the
 // injected effect (gravity: the gradient of the potential energy, by central differences); a torque delay

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Effect syntax (--effect tokens, effects YAML) and the effect columns' value conventions.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Short-horizon simulation and residual location on data whose answer is known by construction: a
 // noise-free simulated log is reproduced by the true model (and not by a wrong one, nor with the wrong
 // torque delay); a synthetic residual with a known harmonic and a known velocity-dependent step is located.

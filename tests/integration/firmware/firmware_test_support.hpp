@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Shared pieces of the firmware tests: fake GPIO lines, an in-memory publisher that decodes what the cycle
 // sends, a transport decorator that injects faults, and the test firmware configuration.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The whole chain: closed-loop 2R simulator -> MIT frames on the virtual CAN bus (CanPlayer, the core of
 // `jacobid sim-can`) -> FirmwareCycle -> estimate datagrams -> the recorder of `jacobid record` -> CSV ->
 // `jacobid identify`. The expected values are the simulator's truth (the paper's Table II).

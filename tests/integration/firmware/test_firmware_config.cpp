@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // fw.yaml errors: one line naming the file, line, column and the key, for each kind of mistake.
 #include <gtest/gtest.h>
 

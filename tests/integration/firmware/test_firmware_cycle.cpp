@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // FirmwareCycle on the virtual bus with simulated time: alignment of what a datagram says, zero heap
 // allocation over many cycles, and fault injection (each fault detected, counted and flagged).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The jacobid-fw and `jacobid sim-can` executables: help, configuration and device errors, and a dry run
 // of the real cycle loop (clock_nanosleep, UDP, SIGTERM, jitter statistics) into `jacobid record`.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // End-to-end acceptance of `jacobid simulate` + `jacobid identify`: the expected values are the truth of
 // the simulation (the paper's Table II, which the simulator integrates through its own forward dynamics),
 // never numbers copied from the identifier's output.

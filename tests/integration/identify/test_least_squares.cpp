@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Running QR and the LS statistics against direct, independent computations (Eigen's column-pivoted QR
 // on the full matrix, normal equations for the covariance on a well-conditioned problem).
 #include <gtest/gtest.h>

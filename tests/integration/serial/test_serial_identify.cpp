@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // End to end on a 6-axis arm: `jacobid simulate` of the PUMA 560 (examples/robots/puma560.yaml, published
 // parameters) at 1 kHz with torque noise and 16-bit encoders, then `jacobid identify` through the same
 // pipeline as the 2R. Acceptance of issue 6, against the simulation's ground truth:

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Reference reader for tests/integration/stream/test_candump_log.cpp: reads a candump -L log with
 python-can's CanutilsLogReader (Debian python3-can) and prints one line per message:
 

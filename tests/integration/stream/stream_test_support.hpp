@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Test side of the estimate stream: datagrams with known values, a UDP sender to 127.0.0.1, and a child
 // process for `jacobid record` whose stderr we can watch (to learn the port it bound) and signal.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Off-line identification from a CAN capture: `jacobid sim-can --candump` writes what candump -L would
 // have recorded (checked frame by frame with python-can's reader), `jacobid identify --can-config` decodes
 // it with the firmware's joint profiles and must meet the identification bars against the simulation's

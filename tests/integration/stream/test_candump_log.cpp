@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // candump -L log parser (host-tools/src/io/candump_log.*): hand-checked frames, one-line errors, and
 // agreement with python-can's CanutilsLogReader (python_can_reader.py, Debian python3-can) frame by frame.
 #include <gtest/gtest.h>

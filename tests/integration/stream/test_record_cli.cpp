@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `jacobid record` end to end: a sender in this process streams datagrams to 127.0.0.1 with injected loss,
 // duplication, reordering, late arrival and malformed datagrams; the recorder's counts, exit code, CSV
 // rows and JSON summary must account for every one of them exactly.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SequenceTracker in process: every arrival pattern accounted for exactly, rows in order, gaps reported
 // where they happen (the CLI tests cover the same through real sockets; these cover the corner cases).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Helpers for the HAL tests: frames written as hex byte lists.
 #include <cstdint>

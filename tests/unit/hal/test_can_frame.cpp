@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CanFrame validity and the acceptance-filter semantics shared by the virtual bus and SocketCAN.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CiA 402 TPDO: 0x6064 position (INT32 LE) with 0x6078 current or 0x6077 torque (INT16 LE, per mille).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Generic signals: id, byte offset, bit width, signedness, byte order, scale and offset.
 #include <gtest/gtest.h>
 

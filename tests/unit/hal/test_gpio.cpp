@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Safety GPIO logic with fake lines (e-stop latch, drive enable, cycle sync), and the libgpiod backend's
 // error paths on a machine without GPIO.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The per-cycle demultiplexer: several profiles on one bus, counters by rejection reason, fresh/stale
 // ageing, the simulator -> virtual bus -> decoder path, and zero allocation on the decode path.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MIT-mode reply: byte-exact frames written from the layout in mit.hpp (mini-cheetah pack_reply), the
 // AK80-9 ranges, demultiplexing on data[0], unwrapping at the range ends, rejection of bad frames.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ODrive CANSimple: 0x009 encoder estimates and 0x014 Iq, float32 little-endian, id = node << 5 | cmd.
 #include <gtest/gtest.h>
 

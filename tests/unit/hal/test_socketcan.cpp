@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SocketCAN backend without a CAN-capable kernel: open() errors, kernel structure conversion (frames
 // and filters), control-message parsing, and the send/receive paths over a datagram socketpair standing
 // in for the CAN socket (adopt()).

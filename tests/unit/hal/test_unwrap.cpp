@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Multi-turn unwrapping on integer counts and on a floating-point period.
 #include <gtest/gtest.h>
 

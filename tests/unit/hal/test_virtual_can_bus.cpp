@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // In-process virtual bus: fan-out to several endpoints, filters, ordering, overflow of a full receive
 // queue, tx-queue-full and arbitration in stepped mode, FD handling, error frames.
 #include <gtest/gtest.h>

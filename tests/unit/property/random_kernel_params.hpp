@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Random Jacobi differentiator parameters for the property tests: inside the ranges validate() accepts
 // (kernel_params.hpp), or with exactly one parameter pushed outside them. Fixed seeds: a failure names the

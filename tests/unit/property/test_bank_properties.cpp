@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Property tests of the streaming differentiator bank (lib/include/jacobid/differentiator_bank.hpp):
 //  - random valid, alignable configurations configure, and bounded finite input gives finite output
 //    within the FIR bound |y| <= sum_k |w_k| * max|x| (a dot product of the window with the weights);

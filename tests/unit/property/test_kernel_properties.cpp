@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Property tests of kernel design (lib/include/jacobid/kernel.hpp): random parameters within the ranges
 // validate() accepts give finite weights, and each kind of invalid parameter is rejected with its own
 // KernelStatus (and leaves the kernel undesigned).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The independent reference: a serial chain as orocos-kdl segments (joint at the segment root with the
 // chain joint's origin and axis, tip frame = the chain joint's fixed transform, so that root -> tip is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Loading the published example robots (examples/robots/) for the serial-robot tests.
 #include <string>

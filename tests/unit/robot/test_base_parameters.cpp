@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Base parameters of the serial models: the 2R written as an MDH table must give exactly the planar2r
 // model's base set (names, order, torques; + IA2 with rotor inertia), with ZZ1R = ZZ1 + IA1 + L1^2 M2; and
 // the base parameter counts of the 2R, SCARA RRPR, PUMA 560 and UR5-like arm must match the published

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 2R regressor against an independent computation of the same torques: Lagrange's equations applied
 // to the kinetic energy of the two rigid bodies (masses, centres of mass, central inertias, rotor
 // inertias), with the body velocities from screw kinematics (v = sum qd_i z x (p - o_i)) rather than from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The fixed-size RNEA regressor allocates nothing per sample (project rule for lib/), rejects non-finite
 // input with a result value instead of producing NaN rows, and its O(n) inverse dynamics is the same
 // model: tau = W X for any parameter vector (W itself is checked against KDL in test_rnea_vs_kdl.cpp).

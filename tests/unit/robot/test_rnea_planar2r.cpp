@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The lib's Newton-Euler regressor (rnea_regressor.hpp) against the closed-form planar 2R model of the
 // paper (planar2r.hpp), an independent derivation: the 2R robot as an MDH chain (z axes vertical, link 1
 // of length L1 along x) with random standard parameters. Its torques must equal the closed form's with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The RNEA standard-parameter regressor against an independent implementation of inverse dynamics:
 // orocos-kdl's ChainIdSolver_RNE (Debian liborocos-kdl-dev), which works on spatial inertias and frames
 // and shares no code with ours. For the PUMA 560 and the UR5-like arm, with random standard inertial

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Robot descriptions of serial robots: MDH tables and URDF files load into the same chain (a URDF written
 // for the same robot gives the same torques as its MDH table), and malformed input is rejected with a
 // one-line error naming the file and line (YAML) or the element (URDF).

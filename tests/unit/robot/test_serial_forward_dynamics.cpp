@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The simulator's forward dynamics of a serial robot through the direct Newton-Euler route
 // (SerialRobotModel::inverse_dynamics) gives the same accelerations as the generic regressor route
 // (a wrapper that hides the fast path), and closes the loop: torques(q, qd, accelerations(tau)) = tau.

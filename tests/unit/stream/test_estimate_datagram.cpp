@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Estimate datagram (lib/include/jacobid/stream/estimate_datagram.hpp) against the byte layout of
 // docs/stream-format.md. The reference datagram below is written by hand from the spec's table (offsets,
 // little-endian, IEEE-754 bit patterns worked out on paper), not captured from encode().

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // jacobid::hal's libgpiod lines on a real GPIO character device (label gpio): the aarch64 VM's PL061
 // (qemu -M virt: gpiochip0, "9030000.pl061", 8 lines; line 3 is wired to the power key, left alone).
 // Outputs are read back through the character device; SafetyIo drives real enable and sync lines.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Every motor profile end to end over the kernel: frames encoded by the hal profile encoders (the
 // simulator side) go through vcan to a SocketCanTransport with kernel filters (the firmware side) and
 // are decoded by the JointDecoderSet, with the kernel receive time as the sample time (label vcan).

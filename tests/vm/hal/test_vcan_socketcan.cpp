@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SocketCanTransport against the kernel's CAN stack on a vcan interface (label vcan): round trip with
 // kernel timestamps, kernel acceptance filters, error frames, receive overflow, CAN FD.
 // Runs where vcan exists: on a host through tests/vm/run-on-host.sh, or in the VM (scripts/vm-test.sh).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Helpers of the vcan tests: the interface under test, waiting for frames, raw CAN sockets for what the
 // transport must not do itself (inject error frames).

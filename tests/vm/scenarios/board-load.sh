@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Load on the emulated controller board (docs/targets.md, "Load test"): 6 joints at 1 kHz for 60 s on
 # vcan0. The drivers are three jacobid sim-can processes, each the 2R robot on two MIT motor ids (1-2,
 # 3-4, 5-6): 6000 frames/s into one jacobid-fw with a 6-joint config, streaming to jacobid record.

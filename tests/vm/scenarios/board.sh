@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The emulated controller board (docs/targets.md, "Emulated controller board"): qemu -M virt (aarch64,
 # TCG) with the cross-compiled jacobid-fw and jacobid. jacobid sim-can plays the 2R robot's MIT drivers on
 # vcan0 (20 s at 1 kHz), jacobid-fw reads vcan0, drives the enable and cycle-sync outputs of the board's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared by the acquisition-chain scenarios (chain.sh, board.sh, board-load.sh; `# include: chain-lib.sh`,
 # sourced from /scenario-lib): starting and stopping the chain's processes, reading their reports, the
 # gates on a complete stream, and the identification bars. busybox sh + awk. Set SCENARIO first.

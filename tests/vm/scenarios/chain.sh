@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The full acquisition chain in the x86_64 VM (docs/targets.md, "Full chain on the x86_64 VM"): jacobid
 # sim-can plays the 2R robot's MIT drivers on vcan0 (20 s at 1 kHz), jacobid-fw reads vcan0 and streams
 # estimate datagrams over UDP on the loopback, jacobid record writes the CSV, jacobid identify compares with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # jacobid::hal's libgpiod lines on the aarch64 virt machine's PL061 (gpiochip0).
 # modules:
 # binaries: test_hal_gpio_chardev

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # SocketCAN HAL tests on vcan (tests/vm/hal/test_vcan_*.cpp) in the VM.
 # modules: can can-raw vcan
 # binaries: jacobid-vcan-link test_hal_vcan

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Configuration of the jacobid firmware (jacobid-fw): plain structs, separate from the cycle's state
 // (Moteus/Pinocchio style: the config is read once at start-up, FirmwareCycle only reads it).

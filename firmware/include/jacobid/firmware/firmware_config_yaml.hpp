@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // fw.yaml -> FirmwareConfig. Every error is a ConfigError whose one-line message names the file, the line
 // and column, and the key ("fw.yaml:7:17: joints[1].gear_ratio: must be finite and non-zero"); unknown

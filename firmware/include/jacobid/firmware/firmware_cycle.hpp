@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One firmware cycle, without clock, sockets or signals: step(now_ns) drains the CAN transport, decodes
 // the joints (JointDecoderSet), applies the safety I/O, runs the streaming differentiator bank and hands

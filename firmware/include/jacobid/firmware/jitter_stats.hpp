@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Wake-up latency statistics of a periodic loop, as cyclictest reports them: min, average, max and a
 // percentile in microseconds. A fixed histogram of 1 us bins (plus one overflow bin) gives the percentile

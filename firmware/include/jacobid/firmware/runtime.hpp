@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The operating-system side of jacobid-fw: UDP and file publishers, real-time settings, summary lines.
 // Everything here is set up at start-up (may allocate); the per-cycle calls (publish, format_*) do not.

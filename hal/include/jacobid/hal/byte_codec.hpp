@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Byte-level packing shared by the device profiles: fixed-width integers in either byte order, IEEE-754
 // float32, and bit fields of any width. Built from shifts, never from casting the payload to a wider

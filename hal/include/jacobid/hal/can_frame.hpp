@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One CAN / CAN FD frame as the HAL passes it around, independent of the transport (SocketCAN, the
 // in-process virtual bus, a future MCU driver). A plain value type with a fixed 64-byte payload, so queues

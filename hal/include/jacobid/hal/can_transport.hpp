@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The CAN transport interface the firmware cycle talks to. Two backends: SocketCanTransport (Linux
 // kernel, socketcan_transport.hpp) and VirtualCanBus endpoints (in-process, virtual_can_bus.hpp).

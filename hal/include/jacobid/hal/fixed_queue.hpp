@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // FIFO of fixed capacity over a std::array: push fails (returns false) instead of growing, which is how
 // the HAL models a full hardware/kernel queue without touching the heap.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Safety GPIO logic: drive-enable output, e-stop input (active-low, latched), cycle-sync output.
 //

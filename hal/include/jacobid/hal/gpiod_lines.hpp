@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // libgpiod (v1 C API, Debian 12's 1.6) implementations of the GPIO line interfaces of gpio.hpp.
 // The C API is used on purpose: gpiod_line_get_value / gpiod_line_set_value are one ioctl each, while

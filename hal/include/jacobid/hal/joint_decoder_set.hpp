@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The per-cycle demultiplexer: a fixed set of joints, each with its device profile, fed with the frames
 // a transport drained; keeps every joint's JointState and the decode counters.

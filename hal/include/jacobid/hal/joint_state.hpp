@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What the device profiles produce: one joint's state per cycle in link-side SI units, the mapping from
 // the motor/device side to the link side, the decode status codes and the decode counters.

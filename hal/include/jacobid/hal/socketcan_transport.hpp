@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // SocketCAN backend of CanTransport (Linux raw CAN socket, CAN_RAW).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Multi-turn unwrapping. Devices report a position that wraps: MIT-mode replies at the ends of their
 // 16-bit range, CiA 402 at the INT32 limits (or every turn with a modulo position range), single-turn

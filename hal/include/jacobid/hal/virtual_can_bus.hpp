@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // In-process virtual CAN bus: several endpoints, each a CanTransport with its own acceptance filters
 // and fixed-size receive queue, so the decoders, the firmware cycle and the simulator can be tested

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Digital low-pass IIR design, section for section as scipy.signal.butter / scipy.signal.cheby1 with
 // output='sos' (scipy 1.10): analog prototype with cutoff 1 rad/s, prewarped cutoff, bilinear transform,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Decimation by an integer factor q: zero-phase low-pass (sosfiltfilt), then every q-th sample starting at
 // index 0. With the default low-pass this is scipy.signal.decimate(x, q) (ftype='iir', zero_phase=True);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Central Euler differences, the paper's baseline differentiator (applied after the forward-backward
 // Butterworth filter):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Outcome of the baseline (Butterworth + Euler) functions. The core has no exceptions, so every function
 // that can refuse its input returns one of these; where scipy would raise, we return the matching value.

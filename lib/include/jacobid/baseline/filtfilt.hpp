@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Zero-phase forward-backward filtering with scipy.signal.sosfiltfilt's edge handling (padtype='odd',
 // default padlen): the signal is extended at both ends by its point reflection, filtered forward from the

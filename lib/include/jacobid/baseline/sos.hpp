@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A cascade of second-order sections (SOS) and its streaming direct-form-II-transposed state, with the
 // same coefficient layout, recursion and steady-state initial conditions as scipy.signal (sosfilt,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The sign function of Coulomb friction, exact or smoothed. Real drives show a continuous transition
 // through zero velocity; if the data's friction is smooth (2/pi atan(alpha qd)) and the regressor uses

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The joint table of a serial (or tree) robot, fixed capacity N joints. Every joint j carries the fixed
 // transform from its antecedent's frame to its own frame at q_j = 0 (rotation + origin) and a unit axis

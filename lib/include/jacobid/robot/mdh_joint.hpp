@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // One row of a modified Denavit-Hartenberg table (Khalil & Kleinfinger 1986): frame j is reached from
 // its antecedent frame a(j) by Rot(x, alpha) Trans(x, d) Rot(z, theta) Trans(z, r), and joint j moves

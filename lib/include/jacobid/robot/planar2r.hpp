@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The 2R planar robot moving in a horizontal plane (no gravity), modified DH with d2 = L1
 // (method-notes §3). Base parameters, in the paper's order:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Per-sample regressor storage shared by the robot models: D(q, qd, qdd) with tau = D X, one row per
 // joint, one column per base parameter. Fixed-size so that evaluating it allocates nothing; a model whose

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Regressor of the standard parameters (standard_parameters.hpp) of a serial or tree robot by the
 // recursive Newton-Euler algorithm in linear form (Khalil & Dombre, ch. 9 and 12; Atkeson et al. 1986):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Column layout of the standard dynamic parameters of an n-joint robot (Khalil's notation, link index
 // appended: XX1 ... FC6). Per link j, in link j's frame, about its origin:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The estimate datagram: one aligned row of the differentiator bank (raw q and tau at the aligned sample,
 // q^, qd^, qdd^) for every joint, sent by the controller to the host recorder over UDP, one datagram per

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // CiA 402 drive, actual values from a transmit PDO (CANopen, CiA 301 data types: little-endian).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Generic signal profile, for devices without a dedicated profile: each quantity is one bit field of
 // one CAN frame, described like a DBC signal but simpler.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // MIT mode reply (mini-cheetah motor controller; T-Motor AK and CubeMars actuators in MIT mode).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // ODrive CANSimple (ODrive firmware 0.5 / 0.6): 11-bit id = node_id << 5 | command id, payload
 // little-endian.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The last check every device profile applies to a decoded link-side value before it enters a JointState.
 #include <cmath>
