@@ -12,126 +12,12 @@
 #include <sstream>
 
 #include "jacobid/differentiator_bank.hpp"
+#include "jacobid/yaml/yaml_section.hpp"
 
 namespace jacobid::firmware {
 namespace {
 
-// Reads one YAML mapping, remembering which keys were used so that the rest can be reported as unknown.
-class Section {
-public:
-    Section(const std::string& source, const YAML::Node& node, std::string path) : source_(source), node_(node), path_(std::move(path)) {
-        if (!node_.IsMap()) fail(node_, "", "must be a mapping (key: value)");
-    }
-
-    [[noreturn]] void fail(const YAML::Node& at, const std::string& key, const std::string& message) const {
-        const YAML::Mark m = at.Mark();
-        const std::string where = m.is_null() ? source_ : fmt::format("{}:{}:{}", source_, m.line + 1, m.column + 1);
-        throw ConfigError(fmt::format("{}: {}: {}", where, qualified(key), message));
-    }
-    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-        const YAML::Node n = node_[key];
-        fail(n.IsDefined() ? n : node_, key, message);
-    }
-    std::string qualified(const std::string& key) const {
-        if (key.empty()) return path_.empty() ? "(top level)" : path_;
-        return path_.empty() ? key : path_ + "." + key;
-    }
-
-    bool has(const std::string& key) const { return node_[key].IsDefined() && !node_[key].IsNull(); }
-    YAML::Node get(const std::string& key) const { return node_[key]; }
-
-    template <typename T>
-    T scalar(const std::string& key, const T& fallback, const char* what) {
-        used_.push_back(key);
-        const YAML::Node n = node_[key];
-        if (!n.IsDefined() || n.IsNull()) return fallback;
-        if (!n.IsScalar()) fail(n, key, fmt::format("expected {}", what));
-        try {
-            return n.as<T>();
-        } catch (const YAML::Exception&) {
-            fail(n, key, fmt::format("expected {}, got '{}'", what, n.Scalar()));
-        }
-    }
-    double number(const std::string& key, double fallback) {
-        if (!has(key)) {
-            used_.push_back(key);
-            return fallback;  // may be infinite (limits off by default)
-        }
-        const double v = scalar<double>(key, fallback, "a number");
-        if (!std::isfinite(v)) fail(key, "must be a finite number");
-        return v;
-    }
-    double positive(const std::string& key, double fallback) {
-        const double v = number(key, fallback);
-        if (!(v > 0.0)) fail(key, "must be > 0");
-        return v;
-    }
-    long integer(const std::string& key, long fallback, long lo, long hi) {
-        const long v = scalar<long>(key, fallback, "an integer");
-        if (v < lo || v > hi) fail(key, fmt::format("must be an integer in {}..{}", lo, hi));
-        return v;
-    }
-    bool boolean(const std::string& key, bool fallback) { return scalar<bool>(key, fallback, "true or false"); }
-    std::string text(const std::string& key, const std::string& fallback) { return scalar<std::string>(key, fallback, "a string"); }
-    std::string choice(const std::string& key, const std::string& fallback, std::initializer_list<const char*> options) {
-        const std::string v = text(key, fallback);
-        std::string all;
-        for (const char* o : options) {
-            if (v == o) return v;
-            all += (all.empty() ? "" : ", ") + std::string(o);
-        }
-        fail(key, fmt::format("'{}' is not one of: {}", v, all));
-    }
-    std::string required_text(const std::string& key) {
-        if (!has(key)) fail(node_, key, "missing (required)");
-        return text(key, "");
-    }
-    // [lo, hi] with lo < hi.
-    std::pair<double, double> range(const std::string& key, std::pair<double, double> fallback) {
-        used_.push_back(key);
-        const YAML::Node n = node_[key];
-        if (!n.IsDefined() || n.IsNull()) return fallback;
-        if (!n.IsSequence() || n.size() != 2) fail(n, key, "expected [min, max]");
-        double lo = 0.0, hi = 0.0;
-        try {
-            lo = n[0].as<double>();
-            hi = n[1].as<double>();
-        } catch (const YAML::Exception&) {
-            fail(n, key, "expected [min, max] numbers");
-        }
-        if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi)) fail(n, key, "need finite min < max");
-        return {lo, hi};
-    }
-    void mark_used(const std::string& key) { used_.push_back(key); }
-
-    // Call after reading every known key.
-    void reject_unknown() const {
-        // yaml-cpp keeps both entries of a repeated key and a lookup returns the first one: an error here.
-        std::vector<std::string> seen;
-        for (const auto& kv : node_) {
-            if (!kv.first.IsScalar()) continue;
-            const std::string key = kv.first.Scalar();
-            for (const auto& s : seen) {
-                if (s == key) fail(kv.first, key, "appears twice");
-            }
-            seen.push_back(key);
-        }
-        for (const auto& kv : node_) {
-            // A list or map in key position ("{[a, b]: 1}") has no name to report or compare.
-            if (!kv.first.IsScalar()) fail(kv.first, "", "expected a key name, found a list or map used as a key");
-            const std::string key = kv.first.Scalar();
-            bool known = false;
-            for (const auto& u : used_) known = known || u == key;
-            if (!known) fail(kv.first, key, "unknown key");
-        }
-    }
-
-private:
-    const std::string& source_;
-    YAML::Node node_;
-    std::string path_;
-    std::vector<std::string> used_;
-};
+using Section = yaml::YamlSection<ConfigError>;
 
 // The joint key a HAL config status is about, so the error points at the right line.
 const char* key_of(hal::ConfigStatus s, ProfileKind kind) {
@@ -318,12 +204,7 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
 }  // namespace
 
 FirmwareConfig parse_firmware_config(const std::string& yaml_text, const std::string& source) {
-    YAML::Node root;
-    try {
-        root = YAML::Load(yaml_text);
-    } catch (const YAML::ParserException& e) {
-        throw ConfigError(fmt::format("{}:{}:{}: invalid YAML: {}", source, e.mark.line + 1, e.mark.column + 1, e.msg));
-    }
+    const YAML::Node root = yaml::load<ConfigError>(yaml_text, source);
     if (!root.IsDefined() || root.IsNull()) throw ConfigError(fmt::format("{}: empty configuration", source));
     try {
         return read_config(root, source);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -16,11 +17,11 @@
 #include "robot/planar2r_model.hpp"
 #include "robot/serial_robot_model.hpp"
 #include "robot/urdf_chain.hpp"
-#include "robot/yaml_fields.hpp"
+#include "jacobid/yaml/yaml_section.hpp"
 
 namespace jacobid::robot {
 namespace {
-using namespace yaml_fields;
+using Section = yaml::YamlSection<InputError>;
 
 constexpr const char* kKnownModels = "planar2r, mdh, urdf";
 
@@ -32,85 +33,74 @@ std::vector<JointDescription> default_joints(int count) {
 
 bool is_serial(const std::string& model) { return model == "mdh" || model == "urdf"; }
 
-// name, position, torque, limits of one joint map (the keys every model shares).
-void read_joint_columns(const std::string& source, const YAML::Node& node, JointDescription& joint, bool& has_limits) {
-    if (node["name"]) joint.name = text(source, node["name"], "name");
-    if (node["position"]) joint.position_column = text(source, node["position"], "position");
-    if (node["torque"]) joint.torque_column = text(source, node["torque"], "torque");
-    if (const YAML::Node limits = node["limits"]) {
-        if (!limits.IsSequence() || limits.size() != 2) throw InputError(fmt::format("{}: 'limits' must be [lower, upper]", where(source, limits)));
-        joint.lower_limit = number(source, limits[0], "limits");
-        joint.upper_limit = number(source, limits[1], "limits");
-        if (joint.lower_limit > joint.upper_limit) {
-            throw InputError(fmt::format("{}: 'limits' lower {} > upper {}", where(source, limits), joint.lower_limit, joint.upper_limit));
-        }
-        has_limits = true;
+// name, position, torque, limits of one joint map (the keys every model shares); true if limits were given.
+bool read_joint_columns(Section& s, JointDescription& joint) {
+    joint.name = s.text("name", joint.name);
+    joint.position_column = s.text("position", joint.position_column);
+    joint.torque_column = s.text("torque", joint.torque_column);
+    if (!s.has("limits")) {
+        s.mark_used("limits");
+        return false;
     }
+    const YAML::Node limits = s.list("limits", 2, 2, "numbers [lower, upper] (rad or m)");
+    joint.lower_limit = s.number_element(limits[0], "limits", "rad or m");
+    joint.upper_limit = s.number_element(limits[1], "limits", "rad or m");
+    if (joint.lower_limit > joint.upper_limit) s.fail("limits", fmt::format("lower {} > upper {}", joint.lower_limit, joint.upper_limit));
+    return true;
 }
 
-void parse_planar2r_joints(const std::string& source, const YAML::Node& joints, RobotDescription& d) {
-    const int joint_count = 2;
-    d.joints = default_joints(joint_count);
-    if (!joints) return;
-    if (!joints.IsSequence() || static_cast<int>(joints.size()) != joint_count) {
-        throw InputError(fmt::format("{}: 'joints' must be a list of {} joints for model {}", where(source, joints), joint_count, d.model));
+// The joints list: absent (defaults), or exactly `count` entries (names or maps read by `read`).
+template <typename ReadJoint>
+void read_joint_list(Section& top, int count, const std::string& of, ReadJoint read) {
+    if (!top.has("joints")) {
+        top.mark_used("joints");
+        return;
     }
-    for (int j = 0; j < joint_count; ++j) {
-        const YAML::Node node = joints[static_cast<std::size_t>(j)];
+    const YAML::Node joints = top.list("joints", static_cast<std::size_t>(count), static_cast<std::size_t>(count), of);
+    for (int j = 0; j < count; ++j) read(joints[static_cast<std::size_t>(j)], j, fmt::format("{}[{}]", top.qualified("joints"), j));
+}
+
+void parse_planar2r_joints(Section& top, RobotDescription& d) {
+    d.joints = default_joints(2);
+    read_joint_list(top, 2, "joints (names or maps) for model planar2r", [&](const YAML::Node& node, int j, const std::string& path) {
         JointDescription& joint = d.joints[static_cast<std::size_t>(j)];
         if (node.IsScalar()) {
             joint.name = node.as<std::string>();
-            continue;
+            return;
         }
-        if (!node.IsMap()) throw InputError(fmt::format("{}: joint {} must be a name or a map", where(source, node), j + 1));
-        check_keys(source, node, {"name", "position", "torque", "limits"}, fmt::format("joint {}", j + 1));
-        bool has_limits = false;
-        read_joint_columns(source, node, joint, has_limits);
-    }
+        Section s(top.source(), node, path);
+        read_joint_columns(s, joint);
+        s.reject_unknown();
+    });
 }
 
-void parse_mdh_joints(const std::string& source, const YAML::Node& joints, RobotDescription& d) {
-    if (!joints) throw InputError(fmt::format("{}: model mdh needs 'joints' (one MDH row per joint: sigma, alpha, d, theta, r)", source));
-    if (!joints.IsSequence() || joints.size() < 1 || static_cast<int>(joints.size()) > kMaxSerialJoints) {
-        throw InputError(fmt::format("{}: 'joints' must be a list of 1 to {} MDH rows", where(source, joints), kMaxSerialJoints));
-    }
+void parse_mdh_joints(Section& top, RobotDescription& d) {
+    if (!top.has("joints")) top.fail(top.node(), "joints", "missing (required): model mdh needs one MDH row per joint (sigma, alpha, d, theta, r)");
+    const YAML::Node joints = top.list("joints", 1, kMaxSerialJoints, "MDH rows");
     const int n = static_cast<int>(joints.size());
     d.joints = default_joints(n);
     KinematicChain<kMaxSerialJoints> check;
     for (int j = 0; j < n; ++j) {
-        const YAML::Node node = joints[static_cast<std::size_t>(j)];
-        const std::string what = fmt::format("joint {}", j + 1);
-        if (!node.IsMap()) throw InputError(fmt::format("{}: {} must be a map {{name, sigma, alpha, d, theta, r, ...}}", where(source, node), what));
-        check_keys(source, node, {"name", "sigma", "alpha", "d", "theta", "r", "antecedent", "limits", "position", "torque"}, what);
+        Section s(top.source(), joints[static_cast<std::size_t>(j)], fmt::format("joints[{}]", j));
         JointDescription& joint = d.joints[static_cast<std::size_t>(j)];
-        bool has_limits = false;
-        read_joint_columns(source, node, joint, has_limits);
+        const bool has_limits = read_joint_columns(s, joint);
         MdhJoint row;
-        if (!node["sigma"]) throw InputError(fmt::format("{}: {} needs 'sigma' (0: revolute, 1: prismatic)", where(source, node), what));
-        const int sigma = integer(source, node["sigma"], "sigma");
-        if (sigma != 0 && sigma != 1) {
-            throw InputError(fmt::format("{}: 'sigma' must be 0 (revolute) or 1 (prismatic), got {}", where(source, node["sigma"]), sigma));
-        }
+        if (!s.has("sigma")) s.fail(s.node(), "sigma", "missing (required): 0 revolute, 1 prismatic");
+        const long sigma = s.integer("sigma", 0, std::numeric_limits<long>::min(), std::numeric_limits<long>::max());
+        if (sigma != 0 && sigma != 1) s.fail("sigma", fmt::format("must be 0 (revolute) or 1 (prismatic), got {}", sigma));
         row.type = sigma == 1 ? JointType::Prismatic : JointType::Revolute;
-        if (row.type == JointType::Prismatic && !has_limits) {
-            throw InputError(fmt::format("{}: prismatic {} needs 'limits: [lower, upper]' in m", where(source, node), what));
-        }
-        row.alpha = node["alpha"] ? number(source, node["alpha"], "alpha") : 0.0;
-        row.d = node["d"] ? number(source, node["d"], "d") : 0.0;
-        row.theta = node["theta"] ? number(source, node["theta"], "theta") : 0.0;
-        row.r = node["r"] ? number(source, node["r"], "r") : 0.0;
+        if (row.type == JointType::Prismatic && !has_limits) s.fail(s.node(), "limits", "required for a prismatic joint: [lower, upper] in m");
+        row.alpha = s.number("alpha", 0.0, "rad");
+        row.d = s.number("d", 0.0, "m");
+        row.theta = s.number("theta", 0.0, "rad");
+        row.r = s.number("r", 0.0, "m");
         // Khalil's a(j): 0 is the base, k is joint k; default: the previous joint (a serial chain).
-        int antecedent = j;
-        if (node["antecedent"]) {
-            antecedent = integer(source, node["antecedent"], "antecedent");
-            if (antecedent < 0 || antecedent > j) {
-                throw InputError(fmt::format("{}: 'antecedent' of joint {} must be 0 (base) to {} (an earlier joint), got {}",
-                                             where(source, node["antecedent"]), j + 1, j, antecedent));
-            }
-        }
-        row.antecedent = antecedent - 1;
+        const long antecedent = s.integer("antecedent", j, std::numeric_limits<long>::min(), std::numeric_limits<long>::max());
+        if (antecedent < 0 || antecedent > j) s.fail("antecedent", fmt::format("must be 0 (base) to {} (an earlier joint), got {}", j, antecedent));
+        row.antecedent = static_cast<int>(antecedent) - 1;
+        s.reject_unknown();
         const ChainError e = check.add(to_chain_joint(row));
-        if (e != ChainError::Ok) throw InputError(fmt::format("{}: {}: {}", where(source, node), what, to_string(e)));
+        if (e != ChainError::Ok) s.fail(s.node(), "", to_string(e));
         d.mdh.push_back(row);
         d.chain.push_back(to_chain_joint(row));
     }
@@ -121,9 +111,10 @@ std::string directory_of(const std::string& path) {
     return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
 }
 
-void parse_urdf(const std::string& source, const YAML::Node& root, RobotDescription& d) {
-    if (!root["urdf"]) throw InputError(fmt::format("{}: model urdf needs 'urdf: <file.urdf>' (relative to this file)", source));
-    const std::string file = text(source, root["urdf"], "urdf");
+void parse_urdf(Section& top, RobotDescription& d) {
+    if (!top.has("urdf")) top.fail(top.node(), "urdf", "missing (required): model urdf needs 'urdf: <file.urdf>' (relative to this file)");
+    const std::string file = top.text("urdf", "");
+    const std::string& source = top.source();
     // Absolute, so that to_yaml() (stored in simulation truth files) still finds it from elsewhere.
     std::error_code absolute_error;
     d.urdf = (!file.empty() && file[0] == '/') ? file : directory_of(source) + file;
@@ -131,7 +122,7 @@ void parse_urdf(const std::string& source, const YAML::Node& root, RobotDescript
     if (!absolute_error) d.urdf = absolute.lexically_normal().string();
     // Regular files only: a description must not make the tool read a device or a pipe forever.
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(d.urdf, ec)) throw InputError(fmt::format("{}: URDF '{}' is not a readable file", where(source, root["urdf"]), d.urdf));
+    if (!std::filesystem::is_regular_file(d.urdf, ec)) top.fail("urdf", fmt::format("'{}' is not a readable file", d.urdf));
     UrdfChain chain = load_urdf_chain(d.urdf);
     const int n = static_cast<int>(chain.joints.size());
     if (n > kMaxSerialJoints) throw InputError(fmt::format("{}: {} movable joints, at most {} are supported", d.urdf, n, kMaxSerialJoints));
@@ -144,18 +135,12 @@ void parse_urdf(const std::string& source, const YAML::Node& root, RobotDescript
         joint.lower_limit = chain.limits[static_cast<std::size_t>(j)].first;
         joint.upper_limit = chain.limits[static_cast<std::size_t>(j)].second;
     }
-    if (const YAML::Node joints = root["joints"]) {
-        if (!joints.IsSequence() || static_cast<int>(joints.size()) != n) {
-            throw InputError(fmt::format("{}: 'joints' must be a list of {} joints (the movable joints of {})", where(source, joints), n, d.urdf));
-        }
-        for (int j = 0; j < n; ++j) {
-            const YAML::Node node = joints[static_cast<std::size_t>(j)];
-            if (!node.IsMap()) throw InputError(fmt::format("{}: joint {} must be a map {{name, position, torque, limits}}", where(source, node), j + 1));
-            check_keys(source, node, {"name", "position", "torque", "limits"}, fmt::format("joint {}", j + 1));
-            bool has_limits = false;
-            read_joint_columns(source, node, d.joints[static_cast<std::size_t>(j)], has_limits);
-        }
-    }
+    read_joint_list(top, n, fmt::format("joint maps {{name, position, torque, limits}} (the movable joints of {})", d.urdf),
+                    [&](const YAML::Node& node, int j, const std::string& path) {
+                        Section s(source, node, path);
+                        read_joint_columns(s, d.joints[static_cast<std::size_t>(j)]);
+                        s.reject_unknown();
+                    });
 }
 
 StandardParameterOptions options_of(const RobotDescription& d) {
@@ -175,69 +160,58 @@ RobotDescription default_planar2r_description() {
 }
 
 RobotDescription parse_robot_description(const std::string& yaml_text, const std::string& source) {
-    YAML::Node root;
-    try {
-        root = YAML::Load(yaml_text);
-    } catch (const YAML::Exception& e) {
-        throw InputError(fmt::format("{}:{}:{}: invalid YAML: {}", source, e.mark.line + 1, e.mark.column + 1, e.msg));
-    }
+    const YAML::Node root = yaml::load<InputError>(yaml_text, source);
     if (!root.IsMap()) throw InputError(fmt::format("{}: expected a YAML map with at least 'model: planar2r'", source));
-    check_keys(source, root, {"model", "L1", "joints", "friction", "rotor_inertia", "parameters", "gravity", "urdf"}, "the robot description");
+    Section top(source, root, "");
     RobotDescription d;
     d.source = source;
-    if (!root["model"]) throw InputError(fmt::format("{}: missing key 'model' (known models: {})", source, kKnownModels));
-    d.model = text(source, root["model"], "model");
-    if (d.model != "planar2r" && !is_serial(d.model)) {
-        throw InputError(fmt::format("{}: unknown model '{}' (known models: {})", where(source, root["model"]), d.model, kKnownModels));
-    }
+    if (!top.has("model")) top.fail(root, "model", fmt::format("missing (required): one of {}", kKnownModels));
+    d.model = top.choice("model", "", {"planar2r", "mdh", "urdf"});
     const auto only_for = [&](const char* key, bool allowed, const char* models) {
-        if (root[key] && !allowed) throw InputError(fmt::format("{}: '{}' is only for model {}", where(source, root[key]), key, models));
+        if (top.has(key) && !allowed) top.fail(key, fmt::format("is only for model {}", models));
     };
     only_for("L1", d.model == "planar2r", "planar2r");
     only_for("gravity", is_serial(d.model), "mdh or urdf");
     only_for("urdf", d.model == "urdf", "urdf");
-    if (root["L1"]) {
-        d.L1 = number(source, root["L1"], "L1");
-        if (!(d.L1 > 0.0)) throw InputError(fmt::format("{}: 'L1' must be > 0 (link length in m)", where(source, root["L1"])));
+    d.L1 = top.positive("L1", d.L1, "link length in m");
+    if (d.model == "planar2r") parse_planar2r_joints(top, d);
+    if (d.model == "mdh") parse_mdh_joints(top, d);
+    if (d.model == "urdf") parse_urdf(top, d);
+    if (top.has("gravity")) {
+        const YAML::Node gravity = top.list("gravity", 3, 3, "numbers [gx, gy, gz] in m/s^2");
+        for (std::size_t k = 0; k < 3; ++k) d.gravity[static_cast<Eigen::Index>(k)] = top.number_element(gravity[k], "gravity", "m/s^2");
     }
-    if (d.model == "planar2r") parse_planar2r_joints(source, root["joints"], d);
-    if (d.model == "mdh") parse_mdh_joints(source, root["joints"], d);
-    if (d.model == "urdf") parse_urdf(source, root, d);
-    if (const YAML::Node gravity = root["gravity"]) {
-        if (!gravity.IsSequence() || gravity.size() != 3) throw InputError(fmt::format("{}: 'gravity' must be [gx, gy, gz] in m/s^2", where(source, gravity)));
-        for (std::size_t k = 0; k < 3; ++k) d.gravity[static_cast<Eigen::Index>(k)] = number(source, gravity[k], "gravity");
+    top.mark_used("gravity");
+    top.mark_used("friction");
+    if (top.has("friction")) {
+        Section friction = top.child("friction");
+        d.coulomb.model = friction.choice("coulomb", d.coulomb.model == CoulombModel::Sign ? "sign" : "smooth", {"sign", "smooth"}) == "sign"
+                              ? CoulombModel::Sign
+                              : CoulombModel::SmoothAtan;
+        d.coulomb.alpha = friction.positive("alpha", d.coulomb.alpha, "s/rad");
+        d.friction_offset = friction.boolean("offset", d.friction_offset);
+        friction.reject_unknown();
     }
-    if (const YAML::Node friction = root["friction"]) {
-        if (!friction.IsMap()) throw InputError(fmt::format("{}: 'friction' must be a map", where(source, friction)));
-        check_keys(source, friction, {"coulomb", "alpha", "offset"}, "friction");
-        if (friction["coulomb"]) {
-            const std::string c = text(source, friction["coulomb"], "coulomb");
-            if (c == "sign") d.coulomb.model = CoulombModel::Sign;
-            else if (c == "smooth") d.coulomb.model = CoulombModel::SmoothAtan;
-            else throw InputError(fmt::format("{}: 'coulomb' must be sign or smooth, got '{}'", where(source, friction["coulomb"]), c));
-        }
-        if (friction["alpha"]) {
-            d.coulomb.alpha = number(source, friction["alpha"], "alpha");
-            if (!(d.coulomb.alpha > 0.0)) throw InputError(fmt::format("{}: 'alpha' must be > 0 (s/rad)", where(source, friction["alpha"])));
-        }
-        if (friction["offset"]) d.friction_offset = boolean(source, friction["offset"], "offset");
-    }
-    if (root["rotor_inertia"]) d.rotor_inertia = boolean(source, root["rotor_inertia"], "rotor_inertia");
-    if (const YAML::Node parameters = root["parameters"]) {
-        if (!parameters.IsMap()) throw InputError(fmt::format("{}: 'parameters' must be a map NAME: value", where(source, parameters)));
+    d.rotor_inertia = top.boolean("rotor_inertia", d.rotor_inertia);
+    top.mark_used("parameters");
+    if (top.has("parameters")) {
+        Section parameters = top.child("parameters");
         // Serial robots take standard parameters (the base ones are derived); planar2r takes its base parameters.
         const std::vector<std::string> known =
             is_serial(d.model) ? standard_parameter_names(static_cast<int>(d.chain.size()), options_of(d)) : make_robot_model(d)->parameter_names();
-        for (const auto& entry : parameters) {
-            const std::string name = entry.first.as<std::string>();
+        for (const auto& entry : parameters.node()) {
+            if (!entry.first.IsScalar()) parameters.fail(entry.first, "", "expected a parameter name, found a list or map used as a key");
+            const std::string name = entry.first.Scalar();
             if (std::find(known.begin(), known.end(), name) == known.end()) {
                 std::string list;
                 for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
-                throw InputError(fmt::format("{}: unknown parameter '{}' (this model has: {})", where(source, entry.first), name, list));
+                throw InputError(fmt::format("{}: unknown parameter '{}' (this model has: {})", yaml::where(source, entry.first), name, list));
             }
-            d.parameters.emplace_back(name, number(source, entry.second, name));
+            d.parameters.emplace_back(name, parameters.number(name, 0.0));
         }
+        parameters.reject_unknown();  // a parameter given twice
     }
+    top.reject_unknown();
     return d;
 }
 

@@ -4,7 +4,6 @@ find_package(urdfdom REQUIRED)
 target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/robot_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/planar2r_model.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/yaml_fields.cpp
   ${CMAKE_CURRENT_LIST_DIR}/robot_description.cpp
   ${CMAKE_CURRENT_LIST_DIR}/base_parameters.cpp
   ${CMAKE_CURRENT_LIST_DIR}/serial_robot_model.cpp
@@ -14,3 +13,5 @@ target_sources(jacobid_host PRIVATE
 # urdfdom's headers are not warning-clean under -Wshadow/-Wconversion: include them as system headers.
 target_include_directories(jacobid_host SYSTEM PRIVATE ${urdfdom_INCLUDE_DIRS})
 target_link_libraries(jacobid_host PRIVATE ${urdfdom_LIBRARIES})
+# Robot descriptions are read with the YAML idiom shared with the firmware (yaml/).
+target_link_libraries(jacobid_host PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)

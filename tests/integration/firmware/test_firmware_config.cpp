@@ -57,13 +57,15 @@ TEST(FirmwareConfig, ErrorsNameTheKeyAndLine) {
     EXPECT_EQ(error_of(kJoints + kStream), "fw.yaml:1:1: can: missing (required): can: {interface: can0}");
     EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit}\n  - {profile: mit, gear_ratio: 0}\n" + kStream),
               "fw.yaml:4:32: joints[1].gear_ratio: gear ratio must be finite and non-zero");
-    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit, gear_ration: 4}\n" + kStream), "fw.yaml:3:20: joints[0].gear_ration: unknown key");
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit, gear_ration: 4}\n" + kStream), "fw.yaml:3:20: joints[0].gear_ration: unknown key (known: direction, effort, effort_range, extended_id, gear_ratio, "
+              "max_torque, max_velocity, motor_id, name, offset, position_range, profile, reply_id, require_status, "
+              "torque_constant, velocity_range)");
     EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: canopen}\n" + kStream),
               "fw.yaml:3:15: joints[0].profile: 'canopen' is not one of: mit, cia402, odrive");
     EXPECT_EQ(error_of(kCan + "joints:\n  - {motor_id: 1}\n" + kStream),
               "fw.yaml:3:5: joints[0].profile: missing (required): mit, cia402 or odrive");
     EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: mit, effort_range: [8, -8]}\n" + kStream),
-              "fw.yaml:3:34: joints[0].effort_range: need finite min < max");
+              "fw.yaml:3:34: joints[0].effort_range: need min < max, got [8, -8]");
     EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: cia402, node_id: 200}\n" + kStream),
               "fw.yaml:3:32: joints[0].node_id: must be an integer in 1..127");
     EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: cia402, effort: current, rated_current: 3}\n" + kStream),
@@ -82,7 +84,7 @@ TEST(FirmwareConfig, ErrorsNameTheKeyAndLine) {
     EXPECT_EQ(error_of(kCan + kJoints + kStream + "gpio: {chip: gpiochip0, estop_line: 4, enable_line: 4, sync_line: 6}\n"),
               "fw.yaml:6:67: gpio.sync_line: estop_line, enable_line and sync_line must be different lines");
     EXPECT_EQ(error_of(kCan + kJoints + kStream + "realtime: {priority: 120}\n"), "fw.yaml:6:22: realtime.priority: must be an integer in 0..99");
-    EXPECT_EQ(error_of(kCan + kJoints + kStream + "extra: 1\n"), "fw.yaml:6:1: extra: unknown key");
+    EXPECT_EQ(error_of(kCan + kJoints + kStream + "extra: 1\n"), "fw.yaml:6:1: extra: unknown key (known: can, estimator, gpio, joints, max_age, rate, realtime, stream)");
     EXPECT_EQ(error_of("can: [\n"), "fw.yaml:2:1: invalid YAML: end of sequence flow not found");
     EXPECT_EQ(error_of(""), "fw.yaml: empty configuration");
     std::string nine = "joints:\n";

@@ -190,7 +190,7 @@ TEST(IdentifyBadInput, UnknownModelMissingColumnNaNAndShortLog) {
     const std::string log = simulate("short1k", "--duration 8 --torque-noise 0.05,0.01");
     CliRun r = jacobid("identify --robot " + path("bad_model.yaml") + " --in " + log);
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("bad_model.yaml:1:8: unknown model 'scara9'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("bad_model.yaml:1:8: model: 'scara9' is not one of: planar2r, mdh, urdf"), std::string::npos) << r.err;
 
     write("robot.yaml", kRobot);
     write("missing.csv", "t,q1,q2,tau1\n0,0,0,0\n0.001,0,0,0\n");

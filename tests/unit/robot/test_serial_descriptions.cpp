@@ -34,27 +34,27 @@ std::string urdf_error_of(const std::string& xml) {
 }
 
 TEST(MdhDescription, MalformedTablesNameFileLineAndField) {
-    EXPECT_EQ(error_of("model: mdh\n"), "r.yaml: model mdh needs 'joints' (one MDH row per joint: sigma, alpha, d, theta, r)");
-    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {name: a, alpha: 0}\n"), "r.yaml:3:5: joint 1 needs 'sigma' (0: revolute, 1: prismatic)");
-    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 2}\n"), "r.yaml:3:13: 'sigma' must be 0 (revolute) or 1 (prismatic), got 2");
-    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 0, d: abc}\n"), "r.yaml:3:19: 'd' must be a finite number");
+    EXPECT_EQ(error_of("model: mdh\n"), "r.yaml:1:1: joints: missing (required): model mdh needs one MDH row per joint (sigma, alpha, d, theta, r)");
+    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {name: a, alpha: 0}\n"), "r.yaml:3:5: joints[0].sigma: missing (required): 0 revolute, 1 prismatic");
+    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 2}\n"), "r.yaml:3:13: joints[0].sigma: must be 0 (revolute) or 1 (prismatic), got 2");
+    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 0, d: abc}\n"), "r.yaml:3:19: joints[0].d: expected a number, got 'abc'");
     EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 0, length: 1}\n"),
-              "r.yaml:3:16: unknown key 'length' in joint 1 (known: alpha, antecedent, d, limits, name, position, r, sigma, theta, torque)");
+              "r.yaml:3:16: joints[0].length: unknown key (known: alpha, antecedent, d, limits, name, position, r, sigma, theta, torque)");
     EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 0}\n  - {sigma: 0, antecedent: 2}\n"),
-              "r.yaml:4:28: 'antecedent' of joint 2 must be 0 (base) to 1 (an earlier joint), got 2");
-    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 1}\n"), "r.yaml:3:5: prismatic joint 1 needs 'limits: [lower, upper]' in m");
-    EXPECT_EQ(error_of("model: mdh\ngravity: [0, 0]\njoints:\n  - {sigma: 0}\n"), "r.yaml:2:10: 'gravity' must be [gx, gy, gz] in m/s^2");
-    EXPECT_EQ(error_of("model: planar2r\ngravity: [0, 0, -9.81]\n"), "r.yaml:2:10: 'gravity' is only for model mdh or urdf");
+              "r.yaml:4:28: joints[1].antecedent: must be 0 (base) to 1 (an earlier joint), got 2");
+    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 1}\n"), "r.yaml:3:5: joints[0].limits: required for a prismatic joint: [lower, upper] in m");
+    EXPECT_EQ(error_of("model: mdh\ngravity: [0, 0]\njoints:\n  - {sigma: 0}\n"), "r.yaml:2:10: gravity: must be a list of 3 numbers [gx, gy, gz] in m/s^2");
+    EXPECT_EQ(error_of("model: planar2r\ngravity: [0, 0, -9.81]\n"), "r.yaml:2:10: gravity: is only for model mdh or urdf");
     const std::string unknown = error_of("model: mdh\njoints:\n  - {sigma: 0}\nparameters:\n  ZZ1R: 1.0\n");
     EXPECT_EQ(unknown.rfind("r.yaml:5:3: unknown parameter 'ZZ1R' (this model has: XX1, XY1, XZ1, YY1", 0), 0u) << unknown;
-    EXPECT_EQ(error_of("model: urdf\n"), "r.yaml: model urdf needs 'urdf: <file.urdf>' (relative to this file)");
-    EXPECT_EQ(error_of("model: scara\n"), "r.yaml:1:8: unknown model 'scara' (known models: planar2r, mdh, urdf)");
+    EXPECT_EQ(error_of("model: urdf\n"), "r.yaml:1:1: urdf: missing (required): model urdf needs 'urdf: <file.urdf>' (relative to this file)");
+    EXPECT_EQ(error_of("model: scara\n"), "r.yaml:1:8: model: 'scara' is not one of: planar2r, mdh, urdf");
 }
 
 // Fuzzer findings (fuzz/findings, docs/reliability.md): a list used as a key, and numbers so large that the
 // regressor overflows, are input errors naming the file, not crashes.
 TEST(MdhDescription, ListAsKeyIsAnInputError) {
-    EXPECT_EQ(error_of("model: planar2r\n[a, b]: 1\n"), "r.yaml:2:1: expected a key name in the robot description, found a list or map used as a key");
+    EXPECT_EQ(error_of("model: planar2r\n[a, b]: 1\n"), "r.yaml:2:1: (top level): expected a key name, found a list or map used as a key");
 }
 
 TEST(MdhDescription, OverflowingGeometryIsRejectedByTheModel) {
@@ -71,8 +71,8 @@ TEST(MdhDescription, OverflowingGeometryIsRejectedByTheModel) {
 // both and a lookup returns the first, so the 1.8e8 m offset was used, and beside 0.3 m links the
 // base-parameter QR could not decide the rank: an uncaught std::runtime_error (terminate).
 TEST(MdhDescription, RepeatedKeyIsAnInputError) {
-    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 0, r: 175707963, d: 0.3, r: 0.3}\n"), "r.yaml:3:38: key 'r' appears twice in joint 1");
-    EXPECT_EQ(error_of("model: planar2r\nL1: 0.5\nL1: 0.6\n"), "r.yaml:3:1: key 'L1' appears twice in the robot description");
+    EXPECT_EQ(error_of("model: mdh\njoints:\n  - {sigma: 0, r: 175707963, d: 0.3, r: 0.3}\n"), "r.yaml:3:38: joints[0].r: appears twice");
+    EXPECT_EQ(error_of("model: planar2r\nL1: 0.5\nL1: 0.6\n"), "r.yaml:3:1: L1: appears twice");
 }
 
 TEST(MdhDescription, GeometryTooBadlyScaledForTheBaseParametersIsAnInputError) {
