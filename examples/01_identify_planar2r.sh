@@ -14,18 +14,7 @@ if [ -d "$arg" ]; then jacobid="$arg/host-tools/jacobid"; else jacobid="$arg"; f
 out=${2:-out/01_identify_planar2r}
 mkdir -p "$out"
 
-cat > "$out/robot.yaml" <<'YAML'
-model: planar2r
-L1: 0.5
-joints:
-  - {name: j1, position: q1, torque: tau1, limits: [-2.5, 2.5]}
-  - {name: j2, position: q2, torque: tau2, limits: [-2.5, 2.5]}
-friction:
-  coulomb: smooth
-  alpha: 100
-  offset: false
-rotor_inertia: false
-YAML
+cp "$(dirname "$0")/robots/planar2r.yaml" "$out/robot.yaml"  # the paper's 2R (examples/robots/planar2r.yaml)
 
 "$jacobid" simulate --robot "$out/robot.yaml" --out "$out/log.csv" --truth "$out/truth.json" \
     --duration 60 --rate 1000 --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 1

@@ -14,16 +14,7 @@ if [ -d "$arg" ]; then jacobid="$arg/host-tools/jacobid"; else jacobid="$arg"; f
 out=${2:-out/02_diagnose_planar2r}
 mkdir -p "$out"
 
-cat > "$out/robot.yaml" <<'YAML'
-model: planar2r
-L1: 0.5
-joints:
-  - {name: j1, position: q1, torque: tau1, limits: [-2.5, 2.5]}
-  - {name: j2, position: q2, torque: tau2, limits: [-2.5, 2.5]}
-friction:
-  coulomb: smooth
-  alpha: 100
-YAML
+cp "$(dirname "$0")/robots/planar2r.yaml" "$out/robot.yaml"  # the paper's 2R (examples/robots/planar2r.yaml)
 cat > "$out/effects.yaml" <<'YAML'
 effects:
   - {name: coulomb_offset, joint: 1, value: 0.2}          # N.m, e.g. a current-sensor offset

@@ -58,7 +58,7 @@ double truth(int order, double t) {
 void run(const PaperSinesOptions& o) {
     if (!(o.duration > 0) || !(o.ts > 0)) throw InputError("--duration and --ts must be > 0");
     const auto n = static_cast<std::size_t>(std::llround(o.duration / o.ts)) + 1;
-    // Signal and noise (method-notes §1): 0.2 N(0,1) + 0.2 sin(2 pi 200 t) + 0.2 Poisson(0.1).
+    // Signal and noise (docs/method.md, "Paper Section III"): 0.2 N(0,1) + 0.2 sin(2 pi 200 t) + 0.2 Poisson(0.1).
     std::mt19937_64 rng(o.seed);
     std::normal_distribution<double> gaussian(0.0, 1.0);
     std::poisson_distribution<int> poisson(0.1);

@@ -4,7 +4,7 @@
 // [W Y] (running_qr.hpp), one per joint, so that ordinary, weighted (Gautier) and reduced (essential
 // parameters) problems are all solved without touching the data again.
 //
-// Statistics (method-notes §2): sigma_rho^2 = ||Y - W X||^2 / (r - c), C_XX = sigma_rho^2 (W^T W)^-1,
+// Statistics (docs/method.md, "Identification"): sigma_rho^2 = ||Y - W X||^2 / (r - c), C_XX = sigma_rho^2 (W^T W)^-1,
 // %sigma_r = 100 sigma_X / |X|, cond(W), relative error norm ||Y - W X|| / ||Y||.
 // Rank: columns of W that are zero (to rounding) and directions in which the column-normalized W is
 // numerically singular are reported, with the parameter combinations W cannot see; the LS is then solved

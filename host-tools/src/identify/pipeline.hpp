@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The identification pipeline of the paper (Sec. II-B, method-notes §2 and §4) on one log:
+// The identification pipeline of the paper (Sec. II-B; docs/method.md, "Identification" and "Pitfalls") on one log:
 //   1. joint velocities and accelerations from the measured positions: central Jacobi differentiators
 //      whose windows are designed from a wanted cutoff (window_for_cutoff), or the Butterworth baseline
 //      (forward-backward Butterworth on q and tau, then central Euler differences);

@@ -29,7 +29,7 @@ Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& 
 Estimate butterworth_euler_estimate(const ButterworthSos& sos, int order, double ts, const std::vector<double>& x,
                                     std::size_t crop, const std::string& what);
 
-// The end transient of a forward-backward low-pass with cutoff fc lasts a few 1/fc (method-notes §4):
+// The end transient of a forward-backward low-pass with cutoff fc lasts a few 1/fc (docs/method.md, "Pitfalls"):
 // 3 / fc, in samples.
 std::size_t butterworth_edge_samples(double cutoff_hz, double ts);
 

@@ -11,7 +11,7 @@
 namespace jacobid::sim {
 
 struct MoveSettings {
-    double min_duration = 0.6;  // s; fast moves as in method-notes §4 (0.6-1.6 s)
+    double min_duration = 0.6;  // s; fast moves as in docs/method.md, "Pitfalls" (0.6-1.6 s)
     double max_duration = 1.6;  // s
     double max_dwell = 0.2;     // s of rest after each move, uniform in [0, max_dwell]
 };

@@ -2,7 +2,7 @@
 #pragma once
 // Streaming differentiator bank: per joint, position q^ (n = 0), velocity qd^ (n = 1) and acceleration
 // qdd^ (n = 2) estimates, each from its own Jacobi kernel, plus the raw torque, all delayed to one common
-// delay so that a row of outputs describes one instant (method-notes §1, "Alignment in a stream").
+// delay so that a row of outputs describes one instant (docs/method.md, "Streaming alignment").
 //
 // Model/Data split (Pinocchio style): configure() designs the kernels once; step() only reads them and
 // the ring buffers. Nothing allocates; step() costs 3 dot products per joint.

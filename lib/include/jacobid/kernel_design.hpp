@@ -2,7 +2,7 @@
 #pragma once
 // FIR weights of the Jacobi differentiator, written oldest sample first into caller-owned storage.
 //
-// Three constructions (method-notes §1):
+// Three constructions (docs/method.md, "Three constructions"):
 //  - projection form, trapezoidal: c_k = s_k * g(tau_k), g from the weighted least-squares projection on
 //    Jacobi polynomials (any xi);
 //  - closed form of the paper's eq. (12), trapezoidal, central only: an independent construction used to
@@ -211,7 +211,7 @@ inline KernelStatus design_kernel(const KernelParams& p, Span<double> out) noexc
 }
 
 // The delayed causal evaluation point that cancels the first truncation error term: the largest root of
-// P_{q+1}^{(mu+n, kappa+n)} (method-notes §1).
+// P_{q+1}^{(mu+n, kappa+n)} (docs/method.md, "Three constructions").
 inline double delayed_causal_xi(int order, double kappa, double mu, int q) noexcept {
     return jacobi_largest_root(q + 1, mu + order, kappa + order);
 }

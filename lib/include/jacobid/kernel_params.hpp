@@ -22,7 +22,7 @@ struct KernelParams {
     Discretization discretization = Discretization::Trapezoidal;
 };
 // Note on kappa/mu: w(tau) = (1 - tau)^mu (1 + tau)^kappa with tau = +1 the newest sample, so mu shapes
-// the newest end of the window and kappa the oldest end (method-notes §1).
+// the newest end of the window and kappa the oldest end (docs/method.md, "Conventions").
 
 constexpr int kMaxOrder = 3;
 constexpr int kMaxDegree = 40;  // q + n; far beyond any useful differentiator, bounds fixed-size tables

@@ -90,7 +90,7 @@ struct Friction {
     double off[2] = {0.07, -0.02};
 };
 
-// Base parameters from the physical ones (the regrouping of method-notes §3).
+// Base parameters from the physical ones (the regrouping of docs/method.md, "The planar 2R robot").
 std::vector<double> base_parameters(const Planar2R& model, const PhysicalRobot& r, const Friction& f) {
     using P = Planar2R::Parameter;
     std::vector<double> x(static_cast<std::size_t>(model.parameter_count()), 0.0);

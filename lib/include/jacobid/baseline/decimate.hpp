@@ -4,7 +4,7 @@
 // index 0. With the default low-pass this is scipy.signal.decimate(x, q) (ftype='iir', zero_phase=True);
 // any other SosCascade (e.g. the paper's Butterworth) can be the low-pass instead. The low-pass must cut
 // below the new Nyquist frequency and, in the identification pipeline, below the differentiators' cutoff
-// (method notes, section 4).
+// (docs/method.md, "Pitfalls").
 #include <cstddef>
 
 #include "jacobid/baseline/butterworth.hpp"

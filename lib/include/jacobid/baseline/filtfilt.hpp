@@ -3,7 +3,7 @@
 // Zero-phase forward-backward filtering with scipy.signal.sosfiltfilt's edge handling (padtype='odd',
 // default padlen): the signal is extended at both ends by its point reflection, filtered forward from the
 // steady state of its first extended sample, filtered backward from the steady state of the last forward
-// output, and the extensions are dropped. Same edges as scipy means the end transients the method notes
+// output, and the extensions are dropped. Same edges as scipy means the end transients docs/method.md ("Pitfalls")
 // tell us to crop are the same ones in both implementations.
 #include <cstddef>
 

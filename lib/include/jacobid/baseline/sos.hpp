@@ -2,8 +2,8 @@
 #pragma once
 // A cascade of second-order sections (SOS) and its streaming direct-form-II-transposed state, with the
 // same coefficient layout, recursion and steady-state initial conditions as scipy.signal (sosfilt,
-// sosfilt_zi). Low-pass filters with low normalized cutoffs are only usable in this form (method notes,
-// section 4), and keeping scipy's conventions lets the baseline be checked against it number for number.
+// sosfilt_zi). Low-pass filters with low normalized cutoffs are only usable in this form (docs/method.md,
+// "Pitfalls"), and keeping scipy's conventions lets the baseline be checked against it number for number.
 #include <array>
 #include <cstddef>
 

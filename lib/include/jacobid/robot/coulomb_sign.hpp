@@ -2,7 +2,7 @@
 #pragma once
 // The sign function of Coulomb friction, exact or smoothed. Real drives show a continuous transition
 // through zero velocity; if the data's friction is smooth (2/pi atan(alpha qd)) and the regressor uses
-// sign(qd), the identified Coulomb levels come out ~25 % low (method-notes §4), so the choice is a model
+// sign(qd), the identified Coulomb levels come out ~25 % low (docs/method.md, "Pitfalls"), so the choice is a model
 // option shared by the simulator and the regressor.
 #include <cmath>
 

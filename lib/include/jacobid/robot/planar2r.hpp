@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The 2R planar robot moving in a horizontal plane (no gravity), modified DH with d2 = L1
-// (method-notes §3). Base parameters, in the paper's order:
+// (docs/method.md, "The planar 2R robot"). Base parameters, in the paper's order:
 //   ZZ1R = ZZ1 + Ia1 + M2 L1^2, FV1, FC1, ZZ2, MX2, MY2, FV2, FC2
 // plus optional columns: a constant friction offset per joint (FOFF1, FOFF2, e.g. an unbalanced torque
 // sensor) and the rotor inertia of joint 2 (IA2, which acts on joint 2 only, so it does not regroup into
