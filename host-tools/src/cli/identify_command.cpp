@@ -6,6 +6,8 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -15,7 +17,9 @@
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
 #include "identify/pipeline.hpp"
+#include "identify/plausibility.hpp"
 #include "identify/report.hpp"
+#include "identify/torque_delay.hpp"
 #include "identify/validation.hpp"
 #include "io/candump_joints.hpp"
 #include "io/csv_table.hpp"
@@ -49,6 +53,7 @@ struct IdentifyOptions {
     bool quiet = false;
     double time_tolerance = io::kDefaultTimeTolerance;
     std::string can_config;
+    std::string torque_delay = "auto";  // auto | seconds
 };
 
 // A CSV log, or with --can-config a candump capture decoded by the firmware's joint profiles.
@@ -83,6 +88,24 @@ io::CsvTable read_log(const std::string& path, const robot::RobotDescription& ro
     (void)robot;
     throw InputError(fmt::format("--can-config: this jacobid was built without the HAL/firmware (JACOBID_BUILD_HAL=OFF), cannot decode {}", path));
 #endif
+}
+
+// --torque-delay: estimated (auto) or given in seconds.
+identify::TorqueDelayResult torque_delay(const robot::RobotModel& model, const identify::LogColumns& log, const identify::PipelineSettings& settings,
+                                         const identify::SolveOptions& solve, const IdentifyOptions& o) {
+    identify::TorqueDelayResult r;
+    if (o.torque_delay != "auto") {
+        r.given = true;
+        char* end = nullptr;
+        r.estimate.delay = std::strtod(o.torque_delay.c_str(), &end);
+        if (o.torque_delay.empty() || *end != '\0' || !std::isfinite(r.estimate.delay) || std::abs(r.estimate.delay) > 1.0) {
+            throw InputError(fmt::format("--torque-delay '{}': expected auto or a delay in seconds within +-1 s", o.torque_delay));
+        }
+        r.estimate.compensated = r.estimate.delay != 0.0;
+        return r;
+    }
+    r.estimate = identify::estimate_torque_delay(model, log, settings, solve);
+    return r;
 }
 
 std::map<std::string, double> read_truth(const std::string& path) {
@@ -140,14 +163,17 @@ void run(IdentifyOptions o) {
     for (const identify::Method m : methods) {
         identify::PipelineSettings settings = o.pipeline;
         settings.method = m;
-        identify::PipelineOutput out = identify::run_pipeline(*model, log, settings);
         identify::SolveOptions solve;
         solve.weighted = o.weighted;
         solve.rank_tolerance = o.rank_tolerance;
         identify::MethodResult r;
+        r.torque_delay = torque_delay(*model, log, settings, solve, o);
+        const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
+        identify::PipelineOutput out = identify::run_pipeline(*model, r.torque_delay.applied() != 0.0 ? aligned.log : log, settings);
         r.info = out.info;
         r.plot = std::move(out.plot);
         r.solution = identify::solve_least_squares(out.factors, model->parameter_names(), solve);
+        r.violations = identify::plausibility_violations(identify::sign_constraints(*model), r.solution);
         if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, model->parameter_names(), o.essential, solve);
         if (!o.validate.empty()) {
             identify::PipelineSettings v = settings;
@@ -161,7 +187,10 @@ void run(IdentifyOptions o) {
             v.differentiator_cutoff = r.info.differentiator_cutoff;
             v.decimation_cutoff = r.info.decimation_cutoff;
             v.progress = false;
-            r.validation = identify::validate_prediction(*model, validation_log, v, r.solution.x);
+            // The same hardware, the same offset between its channels.
+            const identify::ShiftedTorques validation_aligned = identify::shift_torques(validation_log, r.torque_delay.applied());
+            r.validation = identify::validate_prediction(*model, r.torque_delay.applied() != 0.0 ? validation_aligned.log : validation_log, v,
+                                                         r.solution.x);
         }
         for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
             ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));
@@ -230,6 +259,10 @@ void add_identify_command(CLI::App& app) {
     cmd->add_option("--decimation-cutoff", o->pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)");
     cmd->add_option("--decimation", o->pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))");
     cmd->add_option("--min-motion", o->pipeline.min_joint_motion, "position range in rad below which a joint counts as not moving")
+        ->capture_default_str();
+    cmd->add_option("--torque-delay", o->torque_delay,
+                    "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
+                    "significant, reported with its std) or SECONDS (read the torque that much later; negative: earlier; 0: off)")
         ->capture_default_str();
     cmd->add_flag("--weighted", o->weighted, "weighted LS: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier)");
     cmd->add_option("--essential", o->essential,

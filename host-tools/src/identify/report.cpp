@@ -62,6 +62,7 @@ std::vector<std::string> identifiability_warnings(const MethodResult& r, const s
             w.push_back(fmt::format("{} is not identified (set to 0, absorbed by the parameters it is confounded with)", r.solution.names[p]));
         }
     }
+    for (const auto& v : r.violations) w.push_back(describe(v));
     return w;
 }
 
@@ -119,7 +120,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
         row(fmt::format("residual RMS joint {}", j + 1), [j](const MethodResult& r) { return num(r.solution.joint_residual_rms[j], "{:.4g}") + " N.m"; });
     }
     for (const auto& r : results) {
-        s += fmt::format("{}: {}\n", method_title(r), settings_line(r.info));
+        s += fmt::format("{}: {}; {}\n", method_title(r), settings_line(r.info), describe(r.torque_delay));
         if (r.essential) {
             s += fmt::format("{} essential parameters (drop largest %sigma_r above threshold):\n", method_title(r));
             for (const auto& step : r.essential->steps) {
@@ -181,6 +182,16 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
         un.push_back(e);
     }
     j["unidentifiable"] = un;
+    json implausible = json::array();
+    for (const auto& v : r.violations) {
+        implausible.push_back({{"parameter", v.name}, {"value", v.value}, {"std", v.std_dev}, {"rel_std_percent", v.rel_std_percent}, {"must_be", "non-negative"},
+                               {"why", v.why}});
+    }
+    j["plausibility_violations"] = implausible;
+    const auto finite = [](double d) { return std::isfinite(d) ? json(d) : json(nullptr); };
+    j["torque_delay"] = {{"seconds", r.torque_delay.estimate.delay},      {"std", finite(r.torque_delay.estimate.std_dev)},
+                         {"estimated", !r.torque_delay.given},           {"compensated", r.torque_delay.estimate.compensated},
+                         {"at_bound", r.torque_delay.estimate.at_bound}, {"applied_seconds", r.torque_delay.applied()}};
     j["warnings"] = identifiability_warnings(r, ctx.joint_names);
     const auto& i = r.info;
     j["settings"] = {{"sample_period", i.sample_period},

@@ -11,6 +11,8 @@
 
 #include "identify/least_squares.hpp"
 #include "identify/pipeline.hpp"
+#include "identify/plausibility.hpp"
+#include "identify/torque_delay.hpp"
 #include "identify/validation.hpp"
 
 namespace jacobid::identify {
@@ -20,6 +22,8 @@ struct MethodResult {
     LsSolution solution;
     std::optional<EssentialResult> essential;
     std::optional<ValidationResult> validation;
+    std::vector<PlausibilityViolation> violations;
+    TorqueDelayResult torque_delay;  // sign-constrained parameters identified negative
     PlotRows plot;
 };
 

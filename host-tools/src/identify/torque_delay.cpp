@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+#include "identify/torque_delay.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace jacobid::identify {
+namespace {
+
+// Linear interpolation of x at fractional index `at`, clamped to the record.
+double sample_at(const std::vector<double>& x, double at) {
+    if (!(at > 0.0)) return x.front();
+    const auto i = static_cast<std::size_t>(std::floor(at));
+    if (i + 1 >= x.size()) return x.back();
+    const double f = at - static_cast<double>(i);
+    return (1.0 - f) * x[i] + f * x[i + 1];
+}
+
+}  // namespace
+
+ShiftedTorques shift_torques(const LogColumns& log, double delay) {
+    ShiftedTorques s;
+    s.log = log;
+    const double shift = delay / log.sample_period;
+    s.tau.resize(log.tau.size());
+    for (std::size_t j = 0; j < log.tau.size(); ++j) {
+        const auto& x = *log.tau[j];
+        s.tau[j].resize(x.size());
+        for (std::size_t k = 0; k < x.size(); ++k) s.tau[j][k] = sample_at(x, static_cast<double>(k) + shift);
+    }
+    for (std::size_t j = 0; j < log.tau.size(); ++j) s.log.tau[j] = &s.tau[j];
+    return s;
+}
+
+TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& pipeline,
+                                          const SolveOptions& solve, const TorqueDelaySettings& settings) {
+    TorqueDelayEstimate e;
+    const double h = log.sample_period;
+    const double max_delay = settings.max_delay > 0.0 ? settings.max_delay : 5.0 * h;
+    PipelineSettings quiet = pipeline;
+    quiet.progress = false;
+    quiet.plot_rows = 0;
+    // The first identification fixes the automatic choices (bandwidth, windows, decimation) so that every
+    // shifted torque is fitted with the same equations and RSS values are comparable.
+    const PipelineOutput first = run_pipeline(model, log, quiet);
+    quiet.bandwidth = first.info.bandwidth;
+    quiet.differentiator_cutoff = first.info.differentiator_cutoff;
+    quiet.decimation_cutoff = first.info.decimation_cutoff;
+    quiet.decimation = first.info.decimation;
+    if (pipeline.method == Method::Jacobi) {
+        quiet.velocity_window = first.info.velocity_window;
+        quiet.acceleration_window = first.info.acceleration_window;
+    }
+    const std::vector<std::string>& names = model.parameter_names();
+    std::size_t equations = 0;
+    int parameters = 0;
+    const auto rss_at = [&](double d) {
+        ++e.evaluations;
+        const ShiftedTorques shifted = shift_torques(log, d);
+        const PipelineOutput out = d == 0.0 ? first : run_pipeline(model, shifted.log, quiet);
+        const LsSolution s = solve_least_squares(out.factors, names, solve);
+        equations = s.equations;
+        parameters = s.identified_count;
+        return s.residual_norm * s.residual_norm;
+    };
+    const int half = std::max(1, static_cast<int>(std::lround(max_delay / h)));
+    // Grid of one sample, walked outwards from 0 while RSS keeps falling (smooth, unimodal near the truth).
+    e.grid.push_back(0.0);
+    e.rss.push_back(rss_at(0.0));
+    for (const int direction : {-1, 1}) {
+        for (int i = 1; i <= half; ++i) {
+            const double d = direction * i * h;
+            const double r = rss_at(d);
+            const auto at = direction < 0 ? e.grid.begin() : e.grid.end();
+            const auto offset = at - e.grid.begin();
+            e.grid.insert(at, d);
+            e.rss.insert(e.rss.begin() + offset, r);
+            const double previous = direction < 0 ? e.rss[1] : e.rss[e.rss.size() - 2];
+            if (r > previous) break;  // past the minimum on this side
+        }
+    }
+    const auto best = static_cast<std::size_t>(std::min_element(e.rss.begin(), e.rss.end()) - e.rss.begin());
+    e.delay = e.grid[best];
+    double curvature = 0.0;
+    if (best == 0 || best + 1 == e.grid.size()) {
+        e.at_bound = std::abs(e.grid[best]) >= half * h * (1.0 - 1e-9);
+    } else {
+        const double rm = e.rss[best - 1], rc = e.rss[best], rp = e.rss[best + 1];
+        const double den = rm - 2.0 * rc + rp;
+        if (den > 0.0) {
+            e.delay += 0.5 * h * (rm - rp) / den;
+            curvature = den / (h * h);
+        }
+    }
+    const double dof = static_cast<double>(equations) - static_cast<double>(parameters) - 1.0;
+    const double sigma2 = dof > 0.0 ? e.rss[best] / dof : std::numeric_limits<double>::infinity();
+    e.std_dev = curvature > 0.0 ? std::sqrt(2.0 * sigma2 / curvature) : std::numeric_limits<double>::infinity();
+    e.compensated = std::abs(e.delay) > settings.significance * e.std_dev;
+    return e;
+}
+
+std::string describe(const TorqueDelayResult& r) {
+    const TorqueDelayEstimate& e = r.estimate;
+    if (r.given) return fmt::format("torque delay {:+.3f} ms (given by --torque-delay)", 1e3 * e.delay);
+    std::string s = fmt::format("torque delay {:+.3f} ms (std {:.3f} ms, estimated from {} identifications; ", 1e3 * e.delay, 1e3 * e.std_dev, e.evaluations);
+    if (e.at_bound) return s + "at the edge of the search range: the offset may be larger; not compensated)";
+    return s + (e.compensated ? "compensated)" : "not significant, not compensated)");
+}
+
+}  // namespace jacobid::identify

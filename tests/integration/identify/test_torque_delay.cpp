@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// identify --torque-delay auto on simulated 2R logs whose torque channel is misaligned by a known amount:
+// half a sample early (built exactly, without interpolation: a 2 kHz simulation whose 1 kHz rows take the
+// torque of the NEXT 2 kHz row) and 2 ms late (the simulator's torque_delay effect). Expected values are
+// the simulation's truth (the paper's Table II) and the offset we built in.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_command.hpp"
+#include "scratch_directory.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string path(const std::string& name) { return (jacobid::test::scratch_directory() / name).string(); }
+
+jacobid::test::CommandResult jacobid_cli(const std::string& args) { return jacobid::test::run_command(std::string(JACOBID_EXECUTABLE) + " " + args); }
+
+const char* kRobot = "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
+const char* kNoise = " --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 1 --duration 60";
+
+std::string robot() {
+    std::ofstream(path("robot.yaml")) << kRobot;
+    return path("robot.yaml");
+}
+
+// A 1 kHz log whose torques lead the positions by half a sample: every second row of a 2 kHz simulation
+// (controller at 2 kHz too, so that consecutive rows hold different torques),
+// each with the torques of the row after it.
+std::string half_sample_lead_log() {
+    const std::string fine = path("fine.csv"), lead = path("lead.csv");
+    if (fs::exists(lead)) return lead;
+    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --rate 2000 --control-rate 2000 --out " + fine + kNoise);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(fine);
+    std::string header;
+    std::getline(in, header);
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(in, line);) rows.push_back(line);
+    // Columns t,q1,q2,tau1,tau2 (checked): keep t,q of row 2k and tau of row 2k+1.
+    EXPECT_EQ(header.rfind("t,q1,q2,tau1,tau2", 0), 0u) << header;
+    const auto split = [](const std::string& s) {
+        std::vector<std::string> cells;
+        std::stringstream ss(s);
+        for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+        return cells;
+    };
+    std::ofstream out(lead);
+    out << "t,q1,q2,tau1,tau2\n";
+    for (std::size_t k = 0; k + 1 < rows.size(); k += 2) {
+        const auto now = split(rows[k]), next = split(rows[k + 1]);
+        out << now[0] << ',' << now[1] << ',' << now[2] << ',' << next[3] << ',' << next[4] << '\n';
+    }
+    return lead;
+}
+
+json identify(const std::string& log, const std::string& args) {
+    const auto r = jacobid_cli("identify --quiet --robot " + robot() + " --in " + log + " --format json " + args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return json::parse(r.out);
+}
+
+double error_percent(const json& j, const std::string& name, double truth) { return 100.0 * (j["parameters"][name]["value"].get<double>() - truth) / truth; }
+
+void expect_friction_within(const json& j, double percent, const std::string& what) {
+    const std::pair<const char*, double> truth[] = {{"FV1", 0.248}, {"FC1", 0.431}, {"FV2", 0.0144}, {"FC2", 0.1268}};
+    for (const auto& [name, value] : truth) EXPECT_LT(std::abs(error_percent(j, name, value)), percent) << what << " " << name;
+}
+
+}  // namespace
+
+TEST(TorqueDelay, HalfSampleLeadIsEstimatedCompensatedAndReported) {
+    const std::string log = half_sample_lead_log();
+    // Uncompensated, the lead biases friction (this is what the estimate has to remove).
+    const json off = identify(log, "--torque-delay 0");
+    EXPECT_GT(std::abs(error_percent(off, "FV1", 0.248)), 2.0) << off["parameters"].dump();
+    for (const char* method : {"jacobi", "butterworth"}) {
+        const json j = identify(log, std::string("--method ") + method);
+        const json& d = j["torque_delay"];
+        EXPECT_NEAR(d["seconds"].get<double>(), -0.0005, 0.00005) << method << " " << d.dump();
+        EXPECT_TRUE(d["compensated"].get<bool>()) << method;
+        EXPECT_TRUE(d["estimated"].get<bool>());
+        EXPECT_GT(d["std"].get<double>(), 0.0);
+        EXPECT_LT(d["std"].get<double>(), 0.00005) << method;
+        expect_friction_within(j, 0.5, method);
+    }
+}
+
+TEST(TorqueDelay, TwoMillisecondsLateAndAGivenDelay) {
+    const std::string log = path("late.csv");
+    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json j = identify(log, "");
+    EXPECT_NEAR(j["torque_delay"]["seconds"].get<double>(), 0.002, 0.00005) << j["torque_delay"].dump();
+    expect_friction_within(j, 0.5, "auto");
+    const json given = identify(log, "--torque-delay 0.002");
+    EXPECT_FALSE(given["torque_delay"]["estimated"].get<bool>());
+    EXPECT_DOUBLE_EQ(given["torque_delay"]["applied_seconds"].get<double>(), 0.002);
+    expect_friction_within(given, 0.5, "given");
+    const auto bad = jacobid_cli("identify --robot " + robot() + " --in " + log + " --torque-delay 2ms");
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("--torque-delay '2ms'"), std::string::npos) << bad.err;
+}
