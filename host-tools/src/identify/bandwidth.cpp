@@ -123,20 +123,26 @@ struct Welch {
 // in it, and g = |1 - e^{-i 2 pi f Ts}|^2 (a white position noise of level L gives F = L g).
 struct Spectrum {
     std::vector<double> power, floor, g;
-    double level = 0.0;
+    double level = 0.0;        // of the floor F
+    double noise_level = 0.0;  // of the noise the bandwidth limit counts (>= level)
 };
 
-// First frequency where the cumulative sum of max(c, 0) reaches `fraction` of its total; 0 when empty.
-double energy_frequency(const std::vector<double>& c, double resolution, double fraction) {
+// First frequency where the cumulative sum of c (power minus floor) reaches `fraction` of its total; 0 when
+// the total is not positive. Not clipped at 0 per bin: the noise's positive fluctuations about its floor
+// would add up over thousands of bins (docs/method.md).
+// Only bins up to `highest` count: above the widest differentiator cutoff the noise allows, a coloured
+// floor (a coarse quantizer's) that the white model leaves behind would pass for motion.
+double energy_frequency(const std::vector<double>& c, double resolution, double fraction, double highest) {
+    const std::size_t bins = std::isfinite(highest) ? std::min(c.size(), static_cast<std::size_t>(highest / resolution) + 1) : c.size();
     double total = 0.0;
-    for (double x : c) total += std::max(x, 0.0);
+    for (std::size_t f = 0; f < bins; ++f) total += c[f];
     if (!(total > 0.0)) return 0.0;
     double cumulative = 0.0;
-    for (std::size_t f = 0; f < c.size(); ++f) {
-        cumulative += std::max(c[f], 0.0);
+    for (std::size_t f = 0; f < bins; ++f) {
+        cumulative += c[f];
         if (cumulative >= fraction * total) return std::max(static_cast<double>(f), 1.0) * resolution;
     }
-    return static_cast<double>(c.size() - 1) * resolution;
+    return static_cast<double>(bins - 1) * resolution;
 }
 
 // Highest bandwidth B whose differentiator cutoff (ratio x B) admits at most kAccelerationNoiseShare of
@@ -148,7 +154,7 @@ double noise_limit(const Spectrum& s, double resolution, double ratio) {
         const double f = static_cast<double>(k) * resolution;
         const double f4 = f * f * f * f;
         if (s.g[k] > 0.0) signal += (s.power[k] - s.floor[k]) / s.g[k] * f4;
-        noise += s.level * f4;
+        noise += s.noise_level * f4;
         if (k >= 2 && noise > kAccelerationNoiseShare * signal) return f / ratio;
     }
     return kInfinity;
@@ -239,6 +245,13 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
                 for (std::size_t k = band_lo; k <= band_hi; ++k) ratio.push_back(s.power[k] / g[k]);
                 s.level = quantile(ratio, 0.5) * median_to_mean;
             }
+            // A coarse quantizer's error is not white when the motion crosses few steps per sample: it
+            // piles up at low frequencies, below the floor band, which then underestimates it there. Its
+            // variance is D^2 / 12 all the same: a detected step sets the noise the bandwidth limit counts
+            // to at least that, spread white. The floor subtracted from the velocity energy stays the band's:
+            // D^2 / 12 spread white would over-subtract at high frequencies (docs/method.md).
+            const double step = jb.quantization_step;
+            s.noise_level = std::max(s.level, step * step / 12.0 * static_cast<double>(welch.used) * welch.window_power);
         } else {
             s.power.assign(bins, 0.0);
         }
@@ -253,9 +266,9 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
             if (k > 0) motion_variance += std::max(clean[k], 0.0) / g[k];
         }
         jb.floor_fraction = total > 0.0 ? removed / total : 0.0;
-        jb.noise_rms = std::sqrt(s.level / (static_cast<double>(welch.used) * welch.window_power));
-        jb.energy_frequency = energy_frequency(clean, result.resolution, fraction);
+        jb.noise_rms = std::sqrt(s.noise_level / (static_cast<double>(welch.used) * welch.window_power));
         jb.noise_limit = noise_limit(s, result.resolution, cutoff_ratio);
+        jb.energy_frequency = energy_frequency(clean, result.resolution, fraction, cutoff_ratio * jb.noise_limit);
         jb.frequency = std::min(jb.energy_frequency, jb.noise_limit);
         jb.used = jb.moving && motion_variance >= kMotionToNoise * s.level * static_cast<double>(bins - 1);
         result.jumps += jb.jumps;
@@ -278,6 +291,7 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
     for (std::size_t j = 0; j < spectra.size(); ++j) {
         if (!result.joints[j].used) continue;
         sum.level += spectra[j].level;
+        sum.noise_level += spectra[j].noise_level;
         for (std::size_t k = 0; k < bins; ++k) {
             sum.power[k] += spectra[j].power[k];
             sum.floor[k] += spectra[j].floor[k];
@@ -285,13 +299,13 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
     }
     std::vector<double> clean(bins);
     for (std::size_t k = 0; k < bins; ++k) clean[k] = sum.power[k] - sum.floor[k];
-    result.energy_frequency = energy_frequency(clean, result.resolution, fraction);
+    result.noise_limit = noise_limit(sum, result.resolution, cutoff_ratio);
+    result.energy_frequency = energy_frequency(clean, result.resolution, fraction, cutoff_ratio * result.noise_limit);
     if (!(result.energy_frequency > 0.0)) {
         throw InputError(fmt::format("the positions move but hold nothing above their noise floor ({}): no motion bandwidth can be estimated; "
                                      "give --bandwidth (the motion's bandwidth in Hz)", joint_list(result.joints, true)));
     }
     result.moving = true;
-    result.noise_limit = noise_limit(sum, result.resolution, cutoff_ratio);
     result.noise_limited = result.noise_limit < result.energy_frequency;
     result.frequency = std::min(result.energy_frequency, result.noise_limit);
     result.description = describe(result, cutoff_ratio, fallback);
