@@ -147,17 +147,26 @@ double energy_frequency(const std::vector<double>& c, double resolution, double 
 
 // Highest bandwidth B whose differentiator cutoff (ratio x B) admits at most kAccelerationNoiseShare of
 // floor in the acceleration energy: acceleration spectrum = position spectrum (P / g) x f^4, signal
-// P - F, noise F (docs/method.md).
+// P - F, noise at noise_level (docs/method.md). The last cutoff that satisfies the bound, not the first
+// that breaks it: below the lowest motion line the share is all noise. When no cutoff satisfies it, the
+// cutoff with the smallest share. Infinity when the bound holds up to fs / 2.
 double noise_limit(const Spectrum& s, double resolution, double ratio) {
-    double signal = 0.0, noise = 0.0;
+    double signal = 0.0, noise = 0.0, best_share = kInfinity;
+    std::size_t last_ok = 0, best = 1;
     for (std::size_t k = 1; k < s.power.size(); ++k) {
         const double f = static_cast<double>(k) * resolution;
         const double f4 = f * f * f * f;
         if (s.g[k] > 0.0) signal += (s.power[k] - s.floor[k]) / s.g[k] * f4;
         noise += s.noise_level * f4;
-        if (k >= 2 && noise > kAccelerationNoiseShare * signal) return f / ratio;
+        const double share = signal > 0.0 ? noise / signal : kInfinity;
+        if (share <= kAccelerationNoiseShare) last_ok = k;
+        if (share < best_share) {
+            best_share = share;
+            best = k;
+        }
     }
-    return kInfinity;
+    if (last_ok + 1 == s.power.size()) return kInfinity;
+    return static_cast<double>(last_ok > 0 ? last_ok + 1 : best) * resolution / ratio;
 }
 
 std::string joint_list(const std::vector<JointBandwidth>& joints, bool used) {
