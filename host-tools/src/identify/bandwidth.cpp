@@ -1,57 +1,323 @@
 // SPDX-License-Identifier: MIT
 #include "identify/bandwidth.hpp"
 
+#include "core/errors.hpp"
+
 #include <fftw3.h>
+#include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace jacobid::identify {
+namespace {
 
-BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<double>*>& positions, double sample_period,
-                                            double fraction) {
-    BandwidthEstimate result;
-    if (positions.empty() || positions.front()->size() < 16) return result;
-    const std::size_t n = positions.front()->size() - 1;  // differences
-    // Segments of ~20 s (resolution 0.05 Hz), a power of two, at most the record.
-    std::size_t seg = 256;
-    while (seg * 2 <= n && static_cast<double>(seg) * sample_period < 20.0) seg *= 2;
-    seg = std::min(seg, n);
-    const std::size_t hop = seg / 2;
-    const std::size_t segments = n >= seg ? (n - seg) / hop + 1 : 1;
-    // At most 64 segments spread over the record: enough averaging, bounded cost on hour-long logs.
-    const std::size_t used = std::min<std::size_t>(segments, 64);
-    std::vector<double> in(seg), window(seg), power(seg / 2 + 1, 0.0);
-    auto* out = static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * (seg / 2 + 1)));
-    std::unique_ptr<fftw_complex, decltype(&fftw_free)> out_guard(out, &fftw_free);
-    fftw_plan plan = fftw_plan_dft_r2c_1d(static_cast<int>(seg), in.data(), out, FFTW_ESTIMATE);
-    for (std::size_t k = 0; k < seg; ++k) window[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(seg));
-    for (const auto* q : positions) {
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Jump rule (docs/method.md): smooth motion never changes by 10 x its 99th-percentile step in one sample,
+// and real motion lasts longer than 3 samples; a run of at most kJumpRun such differences is a break.
+constexpr double kJumpFactor = 10.0;
+constexpr std::size_t kJumpRun = 3;
+// A joint counts when its motion's position variance is at least 100 x that of its noise floor (RMS 10 x).
+constexpr double kMotionToNoise = 100.0;
+
+double quantile(std::vector<double> v, double p) {
+    if (v.empty()) return 0.0;
+    const auto k = static_cast<std::size_t>(p * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    return v[k];
+}
+
+// Bridges isolated jumps in the differences `d` (in place) by linear interpolation between the differences
+// on either side; returns how many runs it bridged.
+std::size_t bridge_jumps(std::vector<double>& d) {
+    const double median = quantile(d, 0.5);
+    std::vector<double> deviation(d.size());
+    for (std::size_t k = 0; k < d.size(); ++k) deviation[k] = std::abs(d[k] - median);
+    const double spread = quantile(deviation, 0.99);
+    if (!(spread > 0.0)) return 0;  // 99 % of the log at one step: motion and jumps cannot be told apart
+    const double threshold = kJumpFactor * spread;
+    std::size_t runs = 0;
+    for (std::size_t k = 0; k < d.size();) {
+        if (deviation[k] <= threshold) {
+            ++k;
+            continue;
+        }
+        std::size_t end = k;
+        while (end < d.size() && deviation[end] > threshold) ++end;
+        if (end - k <= kJumpRun) {
+            const double before = k > 0 ? d[k - 1] : (end < d.size() ? d[end] : median);
+            const double after = end < d.size() ? d[end] : before;
+            for (std::size_t i = k; i < end; ++i) {
+                const double t = static_cast<double>(i - k + 1) / static_cast<double>(end - k + 1);
+                d[i] = before + t * (after - before);
+            }
+            ++runs;
+        }
+        k = end;
+    }
+    return runs;
+}
+
+// Step of the grid the positions lie on: the smallest nonzero difference, if (nearly) every nonzero
+// difference is a whole multiple of it; 0 otherwise (e.g. after interpolation onto a new time grid).
+double quantization_step(const std::vector<double>& q) {
+    double step = kInfinity;
+    std::size_t nonzero = 0;
+    for (std::size_t k = 1; k < q.size(); ++k) {
+        const double a = std::abs(q[k] - q[k - 1]);
+        if (a > 0.0) {
+            step = std::min(step, a);
+            ++nonzero;
+        }
+    }
+    if (nonzero < 16 || !std::isfinite(step)) return 0.0;
+    std::size_t on_grid = 0;
+    for (std::size_t k = 1; k < q.size(); ++k) {
+        const double r = std::abs(q[k] - q[k - 1]) / step;
+        if (r > 0.0 && std::abs(r - std::round(r)) < 0.01) ++on_grid;
+    }
+    return static_cast<double>(on_grid) >= 0.95 * static_cast<double>(nonzero) ? step : 0.0;
+}
+
+// Welch spectrum (sum over segments) of the first difference `d`: segments of ~20 s (resolution 0.05 Hz),
+// a power of two, at most the record, at most 64 spread over it (bounded cost on hour-long logs).
+struct Welch {
+    std::size_t seg = 0, hop = 0, segments = 0, used = 0;
+    double window_power = 0.0;  // sum of w^2
+    std::vector<double> window;
+    Welch(std::size_t n, double ts) {
+        seg = 256;
+        while (seg * 2 <= n && static_cast<double>(seg) * ts < 20.0) seg *= 2;
+        seg = std::min(seg, n);
+        hop = seg / 2;
+        segments = n >= seg ? (n - seg) / hop + 1 : 1;
+        used = std::min<std::size_t>(segments, 64);
+        window.resize(seg);
+        for (std::size_t k = 0; k < seg; ++k) {
+            window[k] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(seg));
+            window_power += window[k] * window[k];
+        }
+    }
+    std::vector<double> power(const std::vector<double>& d) const {
+        std::vector<double> in(seg), p(seg / 2 + 1, 0.0);
+        auto* out = static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * (seg / 2 + 1)));
+        std::unique_ptr<fftw_complex, decltype(&fftw_free)> out_guard(out, &fftw_free);
+        fftw_plan plan = fftw_plan_dft_r2c_1d(static_cast<int>(seg), in.data(), out, FFTW_ESTIMATE);
         for (std::size_t s = 0; s < used; ++s) {
             const std::size_t start = used > 1 ? (segments - 1) * s / (used - 1) * hop : 0;
             double mean = 0.0;
-            for (std::size_t k = 0; k < seg; ++k) mean += (*q)[start + k + 1] - (*q)[start + k];
+            for (std::size_t k = 0; k < seg; ++k) mean += d[start + k];
             mean /= static_cast<double>(seg);
-            for (std::size_t k = 0; k < seg; ++k) in[k] = ((*q)[start + k + 1] - (*q)[start + k] - mean) * window[k];
+            for (std::size_t k = 0; k < seg; ++k) in[k] = (d[start + k] - mean) * window[k];
             fftw_execute(plan);
-            for (std::size_t f = 0; f < power.size(); ++f) power[f] += out[f][0] * out[f][0] + out[f][1] * out[f][1];
+            for (std::size_t f = 0; f < p.size(); ++f) p[f] += out[f][0] * out[f][0] + out[f][1] * out[f][1];
         }
+        fftw_destroy_plan(plan);
+        return p;
     }
-    fftw_destroy_plan(plan);
+};
+
+// The spectra of one joint (or of the sum over joints): velocity-difference power P, the noise floor F
+// in it, and g = |1 - e^{-i 2 pi f Ts}|^2 (a white position noise of level L gives F = L g).
+struct Spectrum {
+    std::vector<double> power, floor, g;
+    double level = 0.0;        // of the floor F
+    double noise_level = 0.0;  // of the noise the bandwidth limit counts (>= level)
+};
+
+// First frequency where the cumulative sum of c (power minus floor) reaches `fraction` of its total; 0 when
+// the total is not positive. Not clipped at 0 per bin: the noise's positive fluctuations about its floor
+// would add up over thousands of bins (docs/method.md).
+// Only bins up to `highest` count: above the widest differentiator cutoff the noise allows, a coloured
+// floor (a coarse quantizer's) that the white model leaves behind would pass for motion.
+double energy_frequency(const std::vector<double>& c, double resolution, double fraction, double highest) {
+    const std::size_t bins = std::isfinite(highest) ? std::min(c.size(), static_cast<std::size_t>(highest / resolution) + 1) : c.size();
     double total = 0.0;
-    for (double p : power) total += p;
-    result.resolution = 1.0 / (static_cast<double>(seg) * sample_period);
-    if (!(total > 0.0)) return result;
-    result.moving = true;
+    for (std::size_t f = 0; f < bins; ++f) total += c[f];
+    if (!(total > 0.0)) return 0.0;
     double cumulative = 0.0;
-    for (std::size_t f = 0; f < power.size(); ++f) {
-        cumulative += power[f];
-        if (cumulative >= fraction * total) {
-            result.frequency = std::max(static_cast<double>(f), 1.0) * result.resolution;
-            break;
+    for (std::size_t f = 0; f < bins; ++f) {
+        cumulative += c[f];
+        if (cumulative >= fraction * total) return std::max(static_cast<double>(f), 1.0) * resolution;
+    }
+    return static_cast<double>(bins - 1) * resolution;
+}
+
+// Highest bandwidth B whose differentiator cutoff (ratio x B) admits at most kAccelerationNoiseShare of
+// floor in the acceleration energy: acceleration spectrum = position spectrum (P / g) x f^4, signal
+// P - F, noise at noise_level (docs/method.md). The last cutoff that satisfies the bound, not the first
+// that breaks it: below the lowest motion line the share is all noise. When no cutoff satisfies it, the
+// cutoff with the smallest share. Infinity when the bound holds up to fs / 2.
+double noise_limit(const Spectrum& s, double resolution, double ratio) {
+    double signal = 0.0, noise = 0.0, best_share = kInfinity;
+    std::size_t last_ok = 0, best = 1;
+    for (std::size_t k = 1; k < s.power.size(); ++k) {
+        const double f = static_cast<double>(k) * resolution;
+        const double f4 = f * f * f * f;
+        if (s.g[k] > 0.0) signal += (s.power[k] - s.floor[k]) / s.g[k] * f4;
+        noise += s.noise_level * f4;
+        const double share = signal > 0.0 ? noise / signal : kInfinity;
+        if (share <= kAccelerationNoiseShare) last_ok = k;
+        if (share < best_share) {
+            best_share = share;
+            best = k;
         }
     }
+    if (last_ok + 1 == s.power.size()) return kInfinity;
+    return static_cast<double>(last_ok > 0 ? last_ok + 1 : best) * resolution / ratio;
+}
+
+std::string joint_list(const std::vector<JointBandwidth>& joints, bool used) {
+    std::string s;
+    for (const auto& j : joints) {
+        if (j.used != used || !j.moving) continue;
+        s += (s.empty() ? "" : ", ") + j.name;
+    }
+    return s;
+}
+
+std::string describe(const BandwidthEstimate& e, double ratio, bool fallback) {
+    std::string s;
+    if (e.noise_limited) {
+        s = fmt::format("{:.3g} Hz, limited by the position noise (its share of the acceleration below the {:.3g} Hz differentiator "
+                        "cutoff kept under {:.2g}); 99 % of the velocity energy lies below {:.3g} Hz",
+                        e.frequency, ratio * e.frequency, kAccelerationNoiseShare, e.energy_frequency);
+    } else {
+        s = fmt::format("{:.3g} Hz: 99 % of the velocity energy lies below it", e.frequency);
+    }
+    s += fmt::format(" (noise floor removed; joints used: {}", joint_list(e.joints, true));
+    if (fallback) s += ", all below their noise floor";
+    s += ")";
+    std::string floors;
+    for (const auto& j : e.joints) {
+        if (!j.moving) continue;
+        floors += fmt::format("{}{} {:.2g} % (noise {:.2g} rad rms{})", floors.empty() ? "" : ", ", j.name, 100.0 * j.floor_fraction,
+                              j.noise_rms, j.quantization_step > 0.0 ? fmt::format(", steps of {:.3g} rad", j.quantization_step) : "");
+    }
+    if (!floors.empty()) s += "; floor share: " + floors;
+    const std::string unused = joint_list(e.joints, false);
+    if (!unused.empty()) s += "; not used (motion within 10 x noise RMS): " + unused;
+    if (e.jumps > 0) {
+        std::string where;
+        for (const auto& j : e.joints) {
+            if (j.jumps > 0) where += fmt::format("{}{} {}", where.empty() ? "" : ", ", j.name, j.jumps);
+        }
+        s += fmt::format("; {} isolated jump(s) ignored ({})", e.jumps, where);
+    }
+    return s;
+}
+
+}  // namespace
+
+BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<double>*>& positions, double sample_period,
+                                            const std::vector<std::string>& names, double cutoff_ratio, double fraction) {
+    BandwidthEstimate result;
+    if (positions.empty() || positions.front()->size() < 16) return result;
+    const std::size_t n = positions.front()->size() - 1;  // differences
+    const double ts = sample_period;
+    const Welch welch(n, ts);
+    const std::size_t bins = welch.seg / 2 + 1;
+    result.resolution = 1.0 / (static_cast<double>(welch.seg) * ts);
+    const double fs = 1.0 / ts;
+    std::vector<double> g(bins);
+    for (std::size_t k = 0; k < bins; ++k) {
+        const double s = std::sin(M_PI * static_cast<double>(k) / static_cast<double>(welch.seg));
+        g[k] = 4.0 * s * s;
+    }
+    // Floor band 0.25..0.4 fs: above any motion a position loop follows, below the roll-off that
+    // interpolation onto a uniform grid or an anti-aliasing filter puts near fs / 2 (docs/method.md).
+    const auto band_lo = static_cast<std::size_t>(std::ceil(0.25 * fs / result.resolution));
+    const auto band_hi = std::min(bins - 1, static_cast<std::size_t>(std::floor(0.4 * fs / result.resolution)));
+    // Each bin sums `used` periodograms: chi-square with 2 x used degrees of freedom, whose median is
+    // nu (1 - 2 / (9 nu))^3 of its mean nu (Wilson-Hilferty).
+    const double nu = 2.0 * static_cast<double>(welch.used);
+    const double median_to_mean = 1.0 / std::pow(1.0 - 2.0 / (9.0 * nu), 3.0);
+
+    std::vector<Spectrum> spectra;
+    for (std::size_t j = 0; j < positions.size(); ++j) {
+        const std::vector<double>& q = *positions[j];
+        JointBandwidth jb;
+        jb.name = j < names.size() ? names[j] : fmt::format("joint {}", j + 1);
+        std::vector<double> d(n);
+        for (std::size_t k = 0; k < n; ++k) d[k] = q[k + 1] - q[k];
+        jb.moving = std::any_of(d.begin(), d.end(), [](double x) { return x != 0.0; });
+        Spectrum s;
+        s.g = g;
+        if (jb.moving) {
+            jb.jumps = bridge_jumps(d);
+            jb.quantization_step = quantization_step(q);
+            s.power = welch.power(d);
+            if (band_hi > band_lo + 8) {
+                std::vector<double> ratio;
+                for (std::size_t k = band_lo; k <= band_hi; ++k) ratio.push_back(s.power[k] / g[k]);
+                s.level = quantile(ratio, 0.5) * median_to_mean;
+            }
+            // A coarse quantizer's error is not white when the motion crosses few steps per sample: it
+            // piles up at low frequencies, below the floor band, which then underestimates it there. Its
+            // variance is D^2 / 12 all the same: a detected step sets the noise the bandwidth limit counts
+            // to at least that, spread white. The floor subtracted from the velocity energy stays the band's:
+            // D^2 / 12 spread white would over-subtract at high frequencies (docs/method.md).
+            const double step = jb.quantization_step;
+            s.noise_level = std::max(s.level, step * step / 12.0 * static_cast<double>(welch.used) * welch.window_power);
+        } else {
+            s.power.assign(bins, 0.0);
+        }
+        s.floor.resize(bins);
+        double total = 0.0, removed = 0.0, motion_variance = 0.0;
+        std::vector<double> clean(bins);
+        for (std::size_t k = 0; k < bins; ++k) {
+            s.floor[k] = s.level * g[k];
+            clean[k] = s.power[k] - s.floor[k];
+            total += s.power[k];
+            removed += std::min(s.floor[k], s.power[k]);
+            if (k > 0) motion_variance += std::max(clean[k], 0.0) / g[k];
+        }
+        jb.floor_fraction = total > 0.0 ? removed / total : 0.0;
+        jb.noise_rms = std::sqrt(s.noise_level / (static_cast<double>(welch.used) * welch.window_power));
+        jb.noise_limit = noise_limit(s, result.resolution, cutoff_ratio);
+        jb.energy_frequency = energy_frequency(clean, result.resolution, fraction, cutoff_ratio * jb.noise_limit);
+        jb.frequency = std::min(jb.energy_frequency, jb.noise_limit);
+        jb.used = jb.moving && motion_variance >= kMotionToNoise * s.level * static_cast<double>(bins - 1);
+        result.jumps += jb.jumps;
+        result.joints.push_back(jb);
+        spectra.push_back(std::move(s));
+    }
+    const bool any_moving = std::any_of(result.joints.begin(), result.joints.end(), [](const JointBandwidth& j) { return j.moving; });
+    if (!any_moving) return result;
+    // Joints whose motion is lost in their own noise would only add noise; if every moving joint is such a
+    // joint, they are all the information there is.
+    const bool fallback = std::none_of(result.joints.begin(), result.joints.end(), [](const JointBandwidth& j) { return j.used; });
+    if (fallback) {
+        for (auto& j : result.joints) j.used = j.moving;
+    }
+    // Combined over the joints used: spectra summed, so each joint weighs by its own motion energy.
+    Spectrum sum;
+    sum.g = g;
+    sum.power.assign(bins, 0.0);
+    sum.floor.assign(bins, 0.0);
+    for (std::size_t j = 0; j < spectra.size(); ++j) {
+        if (!result.joints[j].used) continue;
+        sum.level += spectra[j].level;
+        sum.noise_level += spectra[j].noise_level;
+        for (std::size_t k = 0; k < bins; ++k) {
+            sum.power[k] += spectra[j].power[k];
+            sum.floor[k] += spectra[j].floor[k];
+        }
+    }
+    std::vector<double> clean(bins);
+    for (std::size_t k = 0; k < bins; ++k) clean[k] = sum.power[k] - sum.floor[k];
+    result.noise_limit = noise_limit(sum, result.resolution, cutoff_ratio);
+    result.energy_frequency = energy_frequency(clean, result.resolution, fraction, cutoff_ratio * result.noise_limit);
+    if (!(result.energy_frequency > 0.0)) {
+        throw InputError(fmt::format("the positions move but hold nothing above their noise floor ({}): no motion bandwidth can be estimated; "
+                                     "give --bandwidth (the motion's bandwidth in Hz)", joint_list(result.joints, true)));
+    }
+    result.moving = true;
+    result.noise_limited = result.noise_limit < result.energy_frequency;
+    result.frequency = std::min(result.energy_frequency, result.noise_limit);
+    result.description = describe(result, cutoff_ratio, fallback);
     return result;
 }
 

@@ -77,13 +77,15 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
         throw InputError(fmt::format("{}: the robot stands still (every joint's position range is below {} rad): no parameter can be identified",
                                      log.source, s.min_joint_motion));
     }
+    std::string bandwidth_description;  // what the automatic estimate saw, for the errors below
     if (s.bandwidth > 0.0) {
         info.bandwidth = s.bandwidth;
     } else {
-        const BandwidthEstimate b = estimate_motion_bandwidth(log.q, ts);
+        const BandwidthEstimate b = estimate_motion_bandwidth(log.q, ts, log.q_names, s.differentiator_ratio);
         if (!b.moving) throw InputError(fmt::format("{}: the positions are constant: no parameter can be identified", log.source));
         info.bandwidth = b.frequency;
         info.bandwidth_estimated = true;
+        bandwidth_description = b.description;
     }
     info.differentiator_cutoff = s.differentiator_cutoff > 0.0 ? s.differentiator_cutoff : s.differentiator_ratio * info.bandwidth;
     info.differentiator_cutoff = std::min(info.differentiator_cutoff, 0.4 * fs);
@@ -125,6 +127,11 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
         info.last = n - edge;
     }
     info.decimation_cutoff = s.decimation_cutoff > 0.0 ? s.decimation_cutoff : s.decimation_ratio * info.bandwidth;
+    if (info.decimation_cutoff >= 0.5 * fs && info.bandwidth_estimated && s.decimation_cutoff <= 0.0) {
+        throw InputError(fmt::format("{}: the estimated motion bandwidth, {}, puts the decimation filter ({} x bandwidth = {:.4g} Hz) above "
+                                     "half the sample rate ({:.4g} Hz); give --bandwidth (the motion's bandwidth in Hz)",
+                                     log.source, bandwidth_description, s.decimation_ratio, info.decimation_cutoff, 0.5 * fs));
+    }
     if (info.decimation_cutoff >= 0.5 * fs) {
         throw InputError(fmt::format("decimation filter cutoff {:.4g} Hz must be below half the sample rate ({:.4g} Hz); lower --decimation-cutoff",
                                      info.decimation_cutoff, 0.5 * fs));

@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+// Motion bandwidth estimate (identify/bandwidth.hpp, docs/method.md "Motion bandwidth estimate") against
+// references computed from the signal's construction, never from the estimator: a sum of sines of known
+// amplitudes has its 99 % velocity-energy frequency in closed form, and with a known white position noise
+// (Gaussian, or a quantizer of step D: variance D^2 / 12) the noise-limited bandwidth is closed form too.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "identify/bandwidth.hpp"
+
+namespace {
+
+using jacobid::identify::BandwidthEstimate;
+using jacobid::identify::estimate_motion_bandwidth;
+using jacobid::identify::kAccelerationNoiseShare;
+
+struct Sine {
+    double amplitude, frequency, phase;
+};
+// Velocity energies (A 2 pi f)^2 / 2 in the ratio 0.09 : 0.078 : 0.023 : 0.0056: cumulative 46 %, 86 %,
+// 97.3 %, 100 %, so 99 % of the velocity energy is reached only by the 2.5 Hz line.
+const std::vector<Sine> kSines = {{1.0, 0.3, 0.1}, {0.4, 0.7, 1.3}, {0.1, 1.5, 2.0}, {0.03, 2.5, 0.7}};
+constexpr double kTrue99 = 2.5;
+
+std::vector<double> sines(double fs, double seconds, const std::vector<Sine>& s = kSines) {
+    std::vector<double> q(static_cast<std::size_t>(fs * seconds));
+    for (std::size_t k = 0; k < q.size(); ++k) {
+        const double t = static_cast<double>(k) / fs;
+        for (const auto& c : s) q[k] += c.amplitude * std::sin(2.0 * M_PI * c.frequency * t + c.phase);
+    }
+    return q;
+}
+
+// Bandwidth B at which white position noise of variance `variance` (flat up to fs / 2) holds
+// kAccelerationNoiseShare of the acceleration energy below the cutoff 10 B, the cutoff above every line:
+// noise variance / (fs / 2) (2 pi)^4 c^5 / 5 = share x sum_i A_i^2 (2 pi f_i)^4 / 2.
+double analytic_noise_limit(double variance, double fs) {
+    double signal = 0.0;
+    for (const auto& c : kSines) signal += 0.5 * std::pow(c.amplitude * std::pow(2.0 * M_PI * c.frequency, 2), 2);
+    const double c5 = kAccelerationNoiseShare * signal * 5.0 / (variance / (0.5 * fs) * std::pow(2.0 * M_PI, 4));
+    return std::pow(c5, 0.2) / 10.0;
+}
+
+BandwidthEstimate estimate(const std::vector<std::vector<double>>& q, double fs) {
+    std::vector<const std::vector<double>*> p;
+    for (const auto& x : q) p.push_back(&x);
+    return estimate_motion_bandwidth(p, 1.0 / fs, {"q1", "q2"});
+}
+
+TEST(MotionBandwidth, CleanSinesGiveTheAnalytic99PercentFrequency) {
+    const BandwidthEstimate b = estimate({sines(1000.0, 60.0)}, 1000.0);
+    ASSERT_TRUE(b.moving);
+    EXPECT_NEAR(b.frequency, kTrue99, 2 * b.resolution);
+    EXPECT_FALSE(b.noise_limited);
+    EXPECT_EQ(b.jumps, 0u);
+    ASSERT_EQ(b.joints.size(), 1u);
+    EXPECT_TRUE(b.joints[0].used);
+    EXPECT_LT(b.joints[0].floor_fraction, 1e-6);
+    EXPECT_FALSE(b.description.empty());
+}
+
+TEST(MotionBandwidth, WhiteNoiseFloorIsRemovedAndLimitsTheBandwidth) {
+    const double fs = 1000.0, sigma = 1e-3;
+    std::vector<double> q = sines(fs, 60.0);
+    std::mt19937 rng(5);
+    std::normal_distribution<double> noise(0.0, sigma);
+    for (double& x : q) x += noise(rng);
+    const BandwidthEstimate b = estimate({q}, fs);
+    ASSERT_TRUE(b.moving);
+    // The noise holds a third of the velocity-difference energy (2 sigma^2 against 3.9e-6 rad^2 of motion):
+    // without the floor removed, 99 % of the energy lies at hundreds of Hz.
+    EXPECT_GT(b.joints[0].floor_fraction, 0.2);
+    EXPECT_NEAR(b.energy_frequency, kTrue99, 2 * b.resolution);
+    EXPECT_NEAR(b.joints[0].noise_rms, sigma, 0.1 * sigma);
+    EXPECT_TRUE(b.noise_limited);
+    EXPECT_NEAR(b.frequency, analytic_noise_limit(sigma * sigma, fs), 0.05 * analytic_noise_limit(sigma * sigma, fs));
+    EXPECT_NE(b.description.find("noise"), std::string::npos) << b.description;
+}
+
+TEST(MotionBandwidth, CoarseQuantizerIsDetectedAndItsFloorRemoved) {
+    const double fs = 100.0, step = 0.01;  // the pendubot's second encoder; ~2 steps per sample: white
+    std::vector<double> q = sines(fs, 120.0);
+    for (double& x : q) x = step * std::round(x / step);
+    const BandwidthEstimate b = estimate({q}, fs);
+    ASSERT_TRUE(b.moving);
+    EXPECT_NEAR(b.joints[0].quantization_step, step, 1e-9);
+    EXPECT_NEAR(b.joints[0].noise_rms, step / std::sqrt(12.0), 0.15 * step / std::sqrt(12.0));
+    EXPECT_NEAR(b.energy_frequency, kTrue99, 2 * b.resolution);
+    const double limit = analytic_noise_limit(step * step / 12.0, fs);
+    EXPECT_NEAR(b.frequency, limit, 0.06 * limit);
+}
+
+TEST(MotionBandwidth, JumpsAndOutliersAreBreaksNotMotion) {
+    const double fs = 1000.0;
+    const std::vector<double> clean = sines(fs, 60.0);
+    std::vector<double> jumped = clean;
+    // Five runs joined end to end: the position shifts by up to 2 rad between two samples.
+    const double shifts[] = {2.0, -1.5, 0.9, 1.9, -0.6};
+    for (int j = 0; j < 5; ++j) {
+        for (std::size_t k = static_cast<std::size_t>((j + 1) * 10'000); k < jumped.size(); ++k) jumped[k] += shifts[j];
+    }
+    jumped[33'333] += 0.5;  // and one glitch (one sample off)
+    const BandwidthEstimate a = estimate({clean}, fs), b = estimate({jumped}, fs);
+    EXPECT_EQ(b.jumps, 6u);
+    EXPECT_EQ(b.joints[0].jumps, 6u);
+    EXPECT_NEAR(b.frequency, a.frequency, b.resolution);
+    EXPECT_NE(b.description.find("jump"), std::string::npos) << b.description;
+}
+
+TEST(MotionBandwidth, AJointLostInItsNoiseIsNotUsed) {
+    const double fs = 100.0;
+    const std::vector<double> moving = sines(fs, 120.0);
+    // Second joint: a 5 mrad wobble under a 10 mrad quantizer plus noise; its motion is within its noise.
+    std::vector<double> still = sines(fs, 120.0, {{0.005, 9.0, 0.0}});
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.01);
+    for (double& x : still) x = 0.01 * std::round((x + noise(rng)) / 0.01);
+    const BandwidthEstimate one = estimate({moving}, fs), two = estimate({moving, still}, fs);
+    ASSERT_EQ(two.joints.size(), 2u);
+    EXPECT_TRUE(two.joints[0].used);
+    EXPECT_TRUE(two.joints[1].moving);
+    EXPECT_FALSE(two.joints[1].used);
+    EXPECT_DOUBLE_EQ(two.frequency, one.frequency);
+}
+
+// Real data (../shared/realdata/pendubot, README there): Unix time ~5 ms non-uniform, q1, q2 (0.01 rad
+// steps); resampled linearly onto 5 ms. With --bandwidth 0.5 / 1 / 2 / 3 Hz the data_06 -> data_08
+// validation relative error is 14.8 / 16.9 / 21.3 / 27.3 % (docs/method.md), best below ~1 Hz.
+TEST(MotionBandwidth, PendubotCoarseEncoderGivesANoiseLimitedBandwidthBelow1Hz) {
+    const std::filesystem::path file = std::filesystem::path(JACOBID_REALDATA_DIR) / "pendubot" / "data_06.csv";
+    if (!std::filesystem::exists(file)) GTEST_SKIP() << "../shared/realdata absent (" << file.string() << ")";
+    std::ifstream in(file);
+    std::vector<double> t, q1, q2;
+    for (std::string line; std::getline(in, line);) {
+        std::stringstream s(line);
+        std::string cell;
+        std::vector<double> row;
+        while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
+        ASSERT_GE(row.size(), 3u) << line;
+        t.push_back(row[0]);
+        q1.push_back(row[1]);
+        q2.push_back(row[2]);
+    }
+    ASSERT_GT(t.size(), 1000u);
+    const double ts = 0.005;
+    std::vector<std::vector<double>> q(2);
+    std::size_t i = 0;
+    for (double time = t.front(); time <= t.back(); time += ts) {
+        while (t[i + 1] < time) ++i;
+        const double w = (time - t[i]) / (t[i + 1] - t[i]);
+        q[0].push_back(q1[i] + w * (q1[i + 1] - q1[i]));
+        q[1].push_back(q2[i] + w * (q2[i + 1] - q2[i]));
+    }
+    const BandwidthEstimate b = estimate(q, 1.0 / ts);
+    ASSERT_TRUE(b.moving);
+    EXPECT_GT(b.frequency, 0.5);
+    EXPECT_LT(b.frequency, 1.0);
+    EXPECT_TRUE(b.noise_limited);
+    // The motion itself reaches the 3.6 Hz harmonic (6 x the 0.6 Hz excitation).
+    EXPECT_GT(b.energy_frequency, 3.0);
+    EXPECT_LT(b.energy_frequency, 6.0);
+    EXPECT_TRUE(b.joints[0].used);
+    EXPECT_TRUE(b.joints[1].used);
+    EXPECT_GT(b.joints[1].noise_rms, b.joints[0].noise_rms);  // the coarse encoder
+    std::cout << "pendubot data_06: " << b.description << "\n";
+}
+
+}  // namespace
