@@ -19,6 +19,7 @@
 #include "identify/pipeline.hpp"
 #include "identify/plausibility.hpp"
 #include "identify/report.hpp"
+#include "identify/static_validation.hpp"
 #include "identify/torque_delay.hpp"
 #include "identify/validation.hpp"
 #include "io/candump_joints.hpp"
@@ -175,7 +176,10 @@ void run(IdentifyOptions o) {
         r.solution = identify::solve_least_squares(out.factors, model->parameter_names(), solve);
         r.violations = identify::plausibility_violations(identify::sign_constraints(*model), r.solution);
         if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, model->parameter_names(), o.essential, solve);
-        if (!o.validate.empty()) {
+        if (!o.validate.empty() && identify::is_static(validation_log, o.pipeline.min_joint_motion)) {
+            // A log that holds a pose: the gravity check (static_validation.hpp).
+            r.static_validation = identify::validate_static(*model, validation_log, r.solution.x);
+        } else if (!o.validate.empty()) {
             identify::PipelineSettings v = settings;
             // Same differentiators (in seconds) on the validation log; the bandwidth is that of the
             // identification log so the windows do not change.
@@ -237,14 +241,14 @@ void add_identify_command(CLI::App& app) {
     cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
     cmd->add_option("--report", o->report, "also write DIR/report.md and PNG plots (torque measured vs model)");
     cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table");
-    cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors");
+    cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors; a log that holds a pose gets the static (gravity) check per joint");
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
     cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
         ->capture_default_str();
     cmd->add_option("--can-config", o->can_config,
                     "jacobid-fw config (YAML) whose joints' CAN profiles, ids, gear ratios and torque constants decode --in and "
                     "--validate as candump -L captures instead of CSV");
-    cmd->add_option("--bandwidth", o->pipeline.bandwidth, "motion bandwidth in Hz (default: estimated, 99 % of the velocity energy)");
+    cmd->add_option("--bandwidth", o->pipeline.bandwidth, "motion bandwidth in Hz (default: estimated from the data: 99 % of the velocity energy above the noise floor, limited by the noise; docs/method.md)");
     cmd->add_option("--cutoff", o->pipeline.differentiator_cutoff,
                     "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)");
     cmd->add_option("--velocity-window", o->pipeline.velocity_window, "Jacobi velocity window T in s (overrides --cutoff)");

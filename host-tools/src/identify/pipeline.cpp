@@ -86,6 +86,7 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
         info.bandwidth = b.frequency;
         info.bandwidth_estimated = true;
         bandwidth_description = b.description;
+        info.bandwidth_estimate = b;
     }
     info.differentiator_cutoff = s.differentiator_cutoff > 0.0 ? s.differentiator_cutoff : s.differentiator_ratio * info.bandwidth;
     info.differentiator_cutoff = std::min(info.differentiator_cutoff, 0.4 * fs);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "identify/bandwidth.hpp"
 #include "identify/least_squares.hpp"
 #include "robot/robot_model.hpp"
 
@@ -26,7 +27,7 @@ const char* to_string(Method m);
 
 struct PipelineSettings {
     Method method = Method::Jacobi;
-    double bandwidth = 0.0;              // Hz; 0: estimated (99 % of the velocity energy)
+    double bandwidth = 0.0;              // Hz; 0: estimated (bandwidth.hpp: energy above the noise floor, limited by the noise)
     double differentiator_ratio = 10.0;  // differentiator / F_q cutoff = ratio x bandwidth
     double decimation_ratio = 5.0;       // F_p cutoff = ratio x bandwidth
     double differentiator_cutoff = 0.0;  // Hz; overrides the ratio
@@ -64,6 +65,7 @@ struct PipelineInfo {
     std::size_t samples = 0;
     double bandwidth = 0.0;
     bool bandwidth_estimated = false;
+    BandwidthEstimate bandwidth_estimate;  // what the automatic estimate saw (when bandwidth_estimated)
     double differentiator_cutoff = 0.0;  // wanted
     double velocity_window = 0.0, acceleration_window = 0.0;  // Jacobi, s
     double velocity_cutoff = 0.0, acceleration_cutoff = 0.0;  // achieved, Hz

@@ -121,6 +121,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
     }
     for (const auto& r : results) {
         s += fmt::format("{}: {}; {}\n", method_title(r), settings_line(r.info), describe(r.torque_delay));
+        if (r.info.bandwidth_estimated) s += fmt::format("{} bandwidth estimate: {}\n", method_title(r), r.info.bandwidth_estimate.description);
         if (r.essential) {
             s += fmt::format("{} essential parameters (drop largest %sigma_r above threshold):\n", method_title(r));
             for (const auto& step : r.essential->steps) {
@@ -128,6 +129,17 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
                 else s += fmt::format("  - {} (%sigma_r {:.3g}) -> {} parameters, relative error norm {:.4g} %\n", step.removed, step.removed_rel_std,
                                       step.parameters, 100 * step.relative_error_norm);
             }
+        }
+        if (r.static_validation) {
+            const auto& v = *r.static_validation;
+            s += fmt::format("{} static validation on {} ({} samples at rest): measured - model torque", method_title(r), v.source, v.samples);
+            for (std::size_t j = 0; j < v.joints.size(); ++j) {
+                const auto& e = v.joints[j];
+                s += fmt::format(" joint {} {:+.4g} N.m ({:.4g} vs {:.4g}{});", j + 1, e.error, e.measured, e.predicted,
+                                 std::isnan(e.coulomb) ? "" : e.within_friction ? fmt::format(", within friction +-{:.3g}", e.coulomb)
+                                                                                : fmt::format(", OUTSIDE friction +-{:.3g}", e.coulomb));
+            }
+            s += fmt::format(" relative error {:.4g} %\n", 100 * v.relative_error);
         }
         if (r.validation) {
             const auto& v = *r.validation;
@@ -188,6 +200,19 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                                {"why", v.why}});
     }
     j["plausibility_violations"] = implausible;
+    if (r.static_validation) {
+        const auto& v = *r.static_validation;
+        json joints = json::array();
+        for (const auto& e : v.joints) {
+            joints.push_back({{"measured", e.measured},
+                              {"measured_std", e.measured_std},
+                              {"predicted", e.predicted},
+                              {"error", e.error},
+                              {"coulomb", std::isnan(e.coulomb) ? json(nullptr) : json(e.coulomb)},
+                              {"within_friction", e.within_friction}});
+        }
+        j["static_validation"] = {{"log", v.source}, {"samples", v.samples}, {"pose", v.pose}, {"joints", joints}, {"relative_error", v.relative_error}};
+    }
     const auto finite = [](double d) { return std::isfinite(d) ? json(d) : json(nullptr); };
     j["torque_delay"] = {{"seconds", r.torque_delay.estimate.delay},      {"std", finite(r.torque_delay.estimate.std_dev)},
                          {"estimated", !r.torque_delay.given},           {"compensated", r.torque_delay.estimate.compensated},
@@ -209,6 +234,27 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                      {"valid_first", i.first},
                      {"valid_last", i.last},
                      {"crop", i.crop}};
+    if (i.bandwidth_estimated) {
+        const auto& b = i.bandwidth_estimate;
+        const auto finite = [](double d) { return std::isfinite(d) ? json(d) : json(nullptr); };
+        json joints = json::array();
+        for (const auto& jb : b.joints) {
+            joints.push_back({{"name", jb.name},
+                              {"frequency_hz", finite(jb.frequency)},
+                              {"energy_frequency_hz", finite(jb.energy_frequency)},
+                              {"noise_limit_hz", finite(jb.noise_limit)},
+                              {"noise_rms", finite(jb.noise_rms)},
+                              {"floor_fraction", finite(jb.floor_fraction)},
+                              {"quantization_step", jb.quantization_step},
+                              {"jumps", jb.jumps},
+                              {"moving", jb.moving},
+                              {"used", jb.used}});
+        }
+        j["settings"]["bandwidth_estimate"] = {{"frequency_hz", finite(b.frequency)},         {"energy_frequency_hz", finite(b.energy_frequency)},
+                                               {"noise_limit_hz", finite(b.noise_limit)},     {"noise_limited", b.noise_limited},
+                                               {"jumps", b.jumps},                            {"resolution_hz", b.resolution},
+                                               {"description", b.description},                {"joints", joints}};
+    }
     j["timing_seconds"] = {{"differentiate", i.seconds_differentiate}, {"regressor_filter", i.seconds_regressor_filter}, {"ls", i.seconds_ls}};
     if (r.essential) {
         json steps = json::array();

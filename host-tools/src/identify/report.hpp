@@ -12,6 +12,7 @@
 #include "identify/least_squares.hpp"
 #include "identify/pipeline.hpp"
 #include "identify/plausibility.hpp"
+#include "identify/static_validation.hpp"
 #include "identify/torque_delay.hpp"
 #include "identify/validation.hpp"
 
@@ -22,6 +23,7 @@ struct MethodResult {
     LsSolution solution;
     std::optional<EssentialResult> essential;
     std::optional<ValidationResult> validation;
+    std::optional<StaticValidationResult> static_validation;  // --validate with a log that holds a pose
     std::vector<PlausibilityViolation> violations;
     TorqueDelayResult torque_delay;  // sign-constrained parameters identified negative
     PlotRows plot;
