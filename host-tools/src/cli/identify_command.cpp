@@ -206,11 +206,10 @@ void run(IdentifyOptions o) {
     std::string text;
     if (o.format == "json") {
         nlohmann::json j;
-        if (results.size() == 1) {
-            j = identify::to_json(results.front(), ctx);
-        } else {
-            for (const auto& r : results) j["methods"][identify::to_string(r.info.method)] = identify::to_json(r, ctx);
-        }
+        // One layout whatever --method: every method under "methods" (what scripts should read), and the first
+        // method's fields also at the top level, as single-method output always had them.
+        j = identify::to_json(results.front(), ctx);
+        for (const auto& r : results) j["methods"][identify::to_string(r.info.method)] = identify::to_json(r, ctx);
         j["log"] = o.in;
         j["model"] = model->model_name();
         j["parse_seconds"] = parse_seconds;

@@ -106,6 +106,25 @@ TEST(IdentifyAcceptance, ButterworthSideBySideAndTruthColumn) {
     EXPECT_LT(jacobid::test::relative_error(j, "MX2", 0.124), 0.01);
 }
 
+// Scripts read "methods.<name>" whatever --method; the top level repeats the first method (as single-method
+// output always had it).
+TEST(IdentifyAcceptance, JsonLayoutIsTheSameWithOneMethodOrBoth) {
+    const std::string log = simulate("noisy1k", kNoisy + " --rate 1000");
+    const json one = identify_json(log, "--method butterworth");
+    const json both = identify_json(log, "--method both");
+    ASSERT_TRUE(one.contains("methods"));
+    EXPECT_EQ(one["methods"].size(), 1u);
+    EXPECT_EQ(one["methods"]["butterworth"]["parameters"], one["parameters"]);
+    EXPECT_EQ(both["methods"].size(), 2u);
+    EXPECT_EQ(both["methods"]["butterworth"]["parameters"], one["parameters"]);
+    EXPECT_EQ(both["methods"]["jacobi"]["parameters"], both["parameters"]);
+    for (const json* j : {&one, &both}) {
+        for (const char* key : {"parameters", "warnings", "plausibility_violations", "torque_delay", "settings", "log", "model"}) {
+            EXPECT_TRUE(j->contains(key)) << key;
+        }
+    }
+}
+
 TEST(IdentifyAcceptance, ValidationOnASecondTrajectoryIsWithinTwiceTheNoise) {
     const std::string log = simulate("noisy1k", kNoisy + " --rate 1000");
     const std::string other = simulate("other1k", "--duration 20 --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 99 --noise-seed 98");
