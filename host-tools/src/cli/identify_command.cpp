@@ -150,18 +150,7 @@ void run(IdentifyOptions o) {
         r.solution = identify::solve_least_squares(out.factors, model->parameter_names(), solve);
         if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, model->parameter_names(), o.essential, solve);
         if (!o.validate.empty()) {
-            identify::PipelineSettings v = settings;
-            // Same differentiators (in seconds) on the validation log; the bandwidth is that of the
-            // identification log so the windows do not change.
-            v.bandwidth = r.info.bandwidth;
-            if (m == identify::Method::Jacobi) {
-                v.velocity_window = r.info.velocity_window;
-                v.acceleration_window = r.info.acceleration_window;
-            }
-            v.differentiator_cutoff = r.info.differentiator_cutoff;
-            v.decimation_cutoff = r.info.decimation_cutoff;
-            v.progress = false;
-            r.validation = identify::validate_prediction(*model, validation_log, v, r.solution.x);
+            r.validation = identify::validate_prediction(*model, validation_log, identify::validation_settings(settings, r.info), r.solution.x);
         }
         for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
             ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));

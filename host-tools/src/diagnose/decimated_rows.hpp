@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The identification's decimated, filtered rows (Y_j and W_j per joint, exactly as `jacobid identify` builds
-// them: run_pipeline keeps them when plot_rows is unlimited), plus what the diagnosis needs beside them:
-// the estimated state at each row (for binning residuals by velocity, position, acceleration) and the
-// full-rate filtered torque F_p(tau), from which Y is re-sampled when the torque channel is shifted in time.
+// The identification's decimated, filtered rows (Y_j and W_j per joint, exactly as `jacobid identify` folds
+// them into its least squares: run_pipeline hands them out through identify::RowSink), plus what the
+// diagnosis needs beside them, from the same run: each row's sample index and estimated state (for binning
+// residuals by velocity, position, acceleration) and the full-rate filtered torque F_p(tau), from which Y is
+// re-sampled when the torque channel is shifted in time.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
