@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-# ctest driver: install the build tree into a scratch prefix, then configure, build and run the consumer.
+# ctest driver: install the build tree into a scratch prefix, then configure, build and run the consumer
+# (and, with -DWITH_HOST=ON, the jacobid::host consumer).
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "${var} not set")
@@ -10,7 +11,13 @@ execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WO
 if(rc)
   message(FATAL_ERROR "install failed: ${rc}")
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/build" -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix RESULT_VARIABLE rc)
+set(toolchain)
+if(CONSUMER_CXX_COMPILER)
+  list(APPEND toolchain "-DCMAKE_CXX_COMPILER=${CONSUMER_CXX_COMPILER}" "-DCMAKE_CXX_FLAGS=${CONSUMER_CXX_FLAGS}"
+       "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_LINKER_FLAGS}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/build" -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix ${toolchain}
+  RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "consumer configure failed: ${rc}")
 endif()
@@ -21,4 +28,11 @@ endif()
 execute_process(COMMAND "${WORK_DIR}/build/consumer" RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "consumer run failed: ${rc}")
+endif()
+# jacobid::host (built with the host tools): simulate and identify a 2R log from code.
+if(WITH_HOST)
+  execute_process(COMMAND "${WORK_DIR}/build/consumer_host" RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "consumer_host run failed: ${rc}")
+  endif()
 endif()

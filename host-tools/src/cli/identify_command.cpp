@@ -180,21 +180,10 @@ void run(IdentifyOptions o) {
             // A log that holds a pose: the gravity check (static_validation.hpp).
             r.static_validation = identify::validate_static(*model, validation_log, r.solution.x);
         } else if (!o.validate.empty()) {
-            identify::PipelineSettings v = settings;
-            // Same differentiators (in seconds) on the validation log; the bandwidth is that of the
-            // identification log so the windows do not change.
-            v.bandwidth = r.info.bandwidth;
-            if (m == identify::Method::Jacobi) {
-                v.velocity_window = r.info.velocity_window;
-                v.acceleration_window = r.info.acceleration_window;
-            }
-            v.differentiator_cutoff = r.info.differentiator_cutoff;
-            v.decimation_cutoff = r.info.decimation_cutoff;
-            v.progress = false;
             // The same hardware, the same offset between its channels.
             const identify::ShiftedTorques validation_aligned = identify::shift_torques(validation_log, r.torque_delay.applied());
-            r.validation = identify::validate_prediction(*model, r.torque_delay.applied() != 0.0 ? validation_aligned.log : validation_log, v,
-                                                         r.solution.x);
+            r.validation = identify::validate_prediction(*model, r.torque_delay.applied() != 0.0 ? validation_aligned.log : validation_log,
+                                                         identify::validation_settings(settings, r.info), r.solution.x);
         }
         for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
             ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));

@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The identification's decimated, filtered rows (Y_j and W_j per joint, exactly as `jacobid identify` builds
-// them: run_pipeline keeps them when plot_rows is unlimited), plus what the diagnosis needs beside them:
-// the estimated state at each row (for binning residuals by velocity, position, acceleration) and the
-// full-rate filtered torque F_p(tau), from which Y is re-sampled when the torque channel is shifted in time.
+// The identification's decimated, filtered rows (Y_j and W_j per joint, exactly as `jacobid identify` folds
+// them into its least squares: run_pipeline hands them out through identify::RowSink), plus what the
+// diagnosis needs beside them, from the same run: each row's sample index and estimated state (for binning
+// residuals by velocity, position, acceleration) and the full-rate filtered torque F_p(tau), from which Y is
+// re-sampled when the torque channel is shifted in time.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "identify/pipeline.hpp"
+#include "identify/torque_delay.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::diagnose {
@@ -34,12 +36,8 @@ struct DecimatedRows {
 
 DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::LogColumns& log, const identify::PipelineSettings& settings);
 
-// Torque columns of `log` read `delay` seconds later (linear interpolation, held at the end), and a view
-// of the log that uses them.
-struct ShiftedTorques {
-    std::vector<std::vector<double>> tau;
-    identify::LogColumns log;
-};
-ShiftedTorques shift_torques(const identify::LogColumns& log, double delay);
+// Torque columns read later: identify::shift_torques (identify/torque_delay.hpp).
+using identify::ShiftedTorques;
+using identify::shift_torques;
 
 }  // namespace jacobid::diagnose

@@ -11,25 +11,13 @@
 #include "diagnose/decimated_rows.hpp"
 #include "diagnose/heldout.hpp"
 #include "diagnose/statistics.hpp"
+#include "identify/validation.hpp"
 #include "sim/augmented_model.hpp"
 
 namespace jacobid::diagnose {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Validation settings as `jacobid identify --validate` uses them: the identification log's bandwidth,
-// windows and cutoffs, so both logs go through the same filters.
-identify::PipelineSettings validation_settings(const identify::PipelineSettings& s, const identify::PipelineInfo& info) {
-    identify::PipelineSettings v = s;
-    v.bandwidth = info.bandwidth;
-    v.velocity_window = info.velocity_window;
-    v.acceleration_window = info.acceleration_window;
-    v.differentiator_cutoff = info.differentiator_cutoff;
-    v.decimation_cutoff = info.decimation_cutoff;
-    v.progress = false;
-    return v;
-}
 
 // Catalogue columns of a model's parameters (matched by name).
 std::vector<int> catalogue_columns(const robot::RobotModel& model, const DecimatedRows& rows) {
@@ -72,8 +60,9 @@ ModelSnapshot measure(const robot::RobotModel& model, const identify::LogColumns
     for (int j = 0; j < train.joints(); ++j) m.heldout_rms.push_back(heldout.rms(cols, j));
     m.heldout_weighted = heldout.rms(cols);
 
-    identify::PipelineInfo info = identify::plan_pipeline(horizon_log, validation_settings(ps, train.info));
-    const identify::StateEstimates states = identify::estimate_states(horizon_log, validation_settings(ps, train.info), info);
+    const identify::PipelineSettings horizon_settings = identify::validation_settings(ps, train.info);
+    identify::PipelineInfo info = identify::plan_pipeline(horizon_log, horizon_settings);
+    const identify::StateEstimates states = identify::estimate_states(horizon_log, horizon_settings, info);
     m.horizon = simulate_horizons(model, x, horizon_log, states, delay, s.horizon);
     return m;
 }
@@ -105,7 +94,7 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
     std::unique_ptr<DecimatedRows> vrows;
     if (validation) {
         say(fmt::format("same regressor on the validation log {}", validation->source));
-        vrows = std::make_unique<DecimatedRows>(decimated_rows(cat, *validation, validation_settings(s.pipeline, train.info)));
+        vrows = std::make_unique<DecimatedRows>(decimated_rows(cat, *validation, identify::validation_settings(s.pipeline, train.info)));
     }
     say(fmt::format("{} decimated rows per joint (decimation {}, F_p {:.3g} Hz); stepwise selection", train.rows(), train.info.decimation,
                     train.info.decimation_cutoff));

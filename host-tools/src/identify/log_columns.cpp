@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "identify/log_columns.hpp"
 
+#include <fmt/core.h>
+
+#include "core/errors.hpp"
 #include "io/time_axis.hpp"
 
 namespace jacobid::identify {
@@ -19,6 +22,29 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
     for (const auto& j : robot.joints) {
         log.tau.push_back(&table.column(j.torque_column));
         log.tau_names.push_back(j.torque_column);
+    }
+    return log;
+}
+
+LogColumns log_columns(const std::vector<std::vector<double>>& q, const std::vector<std::vector<double>>& tau, double sample_period,
+                       const std::string& source, double start_time) {
+    if (q.empty() || q.size() != tau.size()) {
+        throw InputError(fmt::format("{}: {} position and {} torque columns (one of each per joint, at least one joint)", source, q.size(), tau.size()));
+    }
+    if (!(sample_period > 0.0)) throw InputError(fmt::format("{}: sample period {} s must be > 0", source, sample_period));
+    LogColumns log;
+    log.source = source;
+    log.sample_period = sample_period;
+    log.start_time = start_time;
+    for (std::size_t j = 0; j < q.size(); ++j) {
+        if (q[j].size() != q.front().size() || tau[j].size() != q.front().size()) {
+            throw InputError(fmt::format("{}: joint {} has {} positions and {} torques, joint 1 has {} samples", source, j + 1, q[j].size(),
+                                         tau[j].size(), q.front().size()));
+        }
+        log.q.push_back(&q[j]);
+        log.q_names.push_back(fmt::format("q{}", j + 1));
+        log.tau.push_back(&tau[j]);
+        log.tau_names.push_back(fmt::format("tau{}", j + 1));
     }
     return log;
 }

@@ -3,6 +3,7 @@
 // The joints' position and torque columns of a CSV log, as a robot description names them, with the
 // log's uniform time axis checked (shared by `jacobid identify` and `jacobid diagnose`).
 #include <string>
+#include <vector>
 
 #include "identify/pipeline.hpp"
 #include "io/csv_table.hpp"
@@ -14,5 +15,12 @@ namespace jacobid::identify {
 // or the time column's first non-uniform step.
 LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
                        double time_tolerance);
+
+// A log held in memory (e.g. simulated from code): joint j's positions q[j] (rad) and torques tau[j] (N.m),
+// all of one length, sampled every `sample_period` seconds from `start_time`. Columns are named q1.., tau1..;
+// pointers into q and tau, which must outlive the result. InputError for mismatched lengths or joint
+// counts, or a sample period that is not positive.
+LogColumns log_columns(const std::vector<std::vector<double>>& q, const std::vector<std::vector<double>>& tau, double sample_period,
+                       const std::string& source, double start_time = 0.0);
 
 }  // namespace jacobid::identify

@@ -60,6 +60,8 @@ void filtfilt_or_throw(const Lowpass& sos, const double* x, double* y, std::size
 
 const char* to_string(Method m) { return m == Method::Jacobi ? "jacobi" : "butterworth"; }
 
+void RowSink::filtered_torque(std::size_t, std::size_t, const std::vector<const double*>&) {}
+
 PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
     PipelineInfo info;
     info.method = s.method;
@@ -211,7 +213,7 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     return e;
 }
 
-PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s) {
+PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, RowSink* sink) {
     PipelineOutput out;
     out.info = plan_pipeline(log, s);
     PipelineInfo& info = out.info;
@@ -243,6 +245,15 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
     std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs), row(static_cast<std::size_t>(c + 1));
     out.plot.y.resize(static_cast<std::size_t>(joints));
     out.plot.w.resize(static_cast<std::size_t>(joints));
+    DecimatedRow decimated;
+    std::vector<const double*> torque_piece(static_cast<std::size_t>(joints));
+    if (sink) {
+        decimated.w.resize(joints, c);
+        decimated.y.resize(joints);
+        decimated.q.resize(joints);
+        decimated.qd.resize(joints);
+        decimated.qdd.resize(joints);
+    }
     double regressor_seconds = 0.0, ls_seconds = 0.0;
     int reported_tenth = 0;
     // Decimated samples are k = a0 + m d; the first kept one is the first such k >= keep0.
@@ -271,11 +282,23 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
         for (auto& col : buffer) filtfilt_or_throw(fp, col.data(), col.data(), len, workspace);
         const auto t1 = Clock::now();
         regressor_seconds += std::chrono::duration<double>(t1 - t0).count();
+        if (sink) {
+            // Each chunk hands out its kept samples [c0, c1); the first chunk also its leading margin and the
+            // last its trailing one, which start at a0 and end at a1 (margin > crop), so the pieces tile
+            // [a0, a1) once, every sample taken where its chunk's transients have died out.
+            const std::size_t lo = c0 == keep0 ? e0 : c0, hi = c1 == keep1 ? e1 : c1;
+            for (int j = 0; j < joints; ++j) {
+                const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
+                torque_piece[static_cast<std::size_t>(j)] = buffer[base + static_cast<std::size_t>(c)].data() + (lo - e0);
+            }
+            sink->filtered_torque(lo, hi - lo, torque_piece);
+        }
         std::size_t k = c0 + (d - (c0 - a0) % d) % d;
         for (; k < c1; k += d) {
             const std::size_t i = k - e0;
             const bool keep_for_plot = out.plot.t.size() < s.plot_rows;
-            if (keep_for_plot) out.plot.t.push_back(log.start_time + static_cast<double>(k) * log.sample_period);
+            const double t = log.start_time + static_cast<double>(k) * log.sample_period;
+            if (keep_for_plot) out.plot.t.push_back(t);
             for (int j = 0; j < joints; ++j) {
                 const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
                 for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][i];
@@ -284,6 +307,19 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
                     out.plot.y[static_cast<std::size_t>(j)].push_back(row[static_cast<std::size_t>(c)]);
                     out.plot.w[static_cast<std::size_t>(j)].insert(out.plot.w[static_cast<std::size_t>(j)].end(), row.begin(), row.end() - 1);
                 }
+                if (sink) {
+                    const auto js = static_cast<std::size_t>(j);
+                    for (int p = 0; p < c; ++p) decimated.w(j, p) = row[static_cast<std::size_t>(p)];
+                    decimated.y[j] = row[static_cast<std::size_t>(c)];
+                    decimated.q[j] = e.q[js][k];
+                    decimated.qd[j] = e.qd[js][k];
+                    decimated.qdd[j] = e.qdd[js][k];
+                }
+            }
+            if (sink) {
+                decimated.sample = k;
+                decimated.t = t;
+                sink->row(decimated);
             }
         }
         ls_seconds += seconds_since(t1);

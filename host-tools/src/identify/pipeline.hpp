@@ -13,6 +13,7 @@
 // (to ~1e-20), so the whole W is never held in memory and the result equals a whole-record filtfilt.
 // Cutoffs default to multiples of the motion bandwidth estimated from the data (bandwidth.hpp): the
 // differentiators (or F_q) at 10x, F_p at 5x (the paper's rules of thumb, F_p below the differentiators).
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,30 @@ struct PipelineOutput {
     PlotRows plot;
 };
 
+// One decimated sample as it enters the least squares: every joint's F_p-filtered regressor row and
+// torque at full-rate sample `sample` of the log, and the unfiltered estimates the regressor was built from.
+struct DecimatedRow {
+    std::size_t sample = 0;      // index into the log's columns: the row's own sample, no time rounding
+    double t = 0.0;              // s, log.start_time + sample * sample_period
+    Eigen::MatrixXd w;           // joints x parameters: W after F_p
+    Eigen::VectorXd y;           // joints: the torque after F_p (after F_q as well in the Butterworth method)
+    Eigen::VectorXd q, qd, qdd;  // joints: the estimates at `sample` before F_p
+};
+
+// Receives what run_pipeline folds into the least squares, while it runs (the pipeline itself keeps no
+// rows, so the sink decides what to store). Calls come from the calling thread, in increasing sample order;
+// what they pass is valid during the call only (the pipeline reuses its buffers).
+class RowSink {
+public:
+    virtual ~RowSink() = default;
+    // Every decimated row, exactly the rows of the factors (the same numbers, not a recomputation).
+    virtual void row(const DecimatedRow& row) = 0;
+    // The full-rate torque after F_p (the signal Y is sampled from), joint j's samples
+    // [first, first + count) at tau[j][0 .. count). The pieces arrive in order and cover the valid
+    // derivative range [info.first, info.last) exactly once. Default: ignored.
+    virtual void filtered_torque(std::size_t first, std::size_t count, const std::vector<const double*>& tau);
+};
+
 // Full-rate estimates on the valid range, shared by the pipeline and validation.
 struct StateEstimates {
     std::size_t first = 0, last = 0;  // valid input samples [first, last)
@@ -102,6 +127,8 @@ struct StateEstimates {
 // enough; InputError names the option or the file otherwise.
 PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& settings);
 StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& settings, PipelineInfo& info);
-PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings);
+// `rows`, if given, receives every decimated row and the filtered torque (RowSink above).
+PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings,
+                            RowSink* rows = nullptr);
 
 }  // namespace jacobid::identify

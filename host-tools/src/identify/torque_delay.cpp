@@ -7,10 +7,9 @@
 #include <cmath>
 #include <limits>
 
-namespace jacobid::identify {
-namespace {
+#include "identify/validation.hpp"
 
-// Linear interpolation of x at fractional index `at`, clamped to the record.
+namespace jacobid::identify {
 double sample_at(const std::vector<double>& x, double at) {
     if (!(at > 0.0)) return x.front();
     const auto i = static_cast<std::size_t>(std::floor(at));
@@ -18,8 +17,6 @@ double sample_at(const std::vector<double>& x, double at) {
     const double f = at - static_cast<double>(i);
     return (1.0 - f) * x[i] + f * x[i + 1];
 }
-
-}  // namespace
 
 ShiftedTorques shift_torques(const LogColumns& log, double delay) {
     ShiftedTorques s;
@@ -46,14 +43,7 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
     // The first identification fixes the automatic choices (bandwidth, windows, decimation) so that every
     // shifted torque is fitted with the same equations and RSS values are comparable.
     const PipelineOutput first = run_pipeline(model, log, quiet);
-    quiet.bandwidth = first.info.bandwidth;
-    quiet.differentiator_cutoff = first.info.differentiator_cutoff;
-    quiet.decimation_cutoff = first.info.decimation_cutoff;
-    quiet.decimation = first.info.decimation;
-    if (pipeline.method == Method::Jacobi) {
-        quiet.velocity_window = first.info.velocity_window;
-        quiet.acceleration_window = first.info.acceleration_window;
-    }
+    quiet = validation_settings(quiet, first.info);
     const std::vector<std::string>& names = model.parameter_names();
     std::size_t equations = 0;
     int parameters = 0;

@@ -20,6 +20,9 @@
 
 namespace jacobid::identify {
 
+// Linear interpolation of x at fractional index `at`, held at the ends of the record.
+double sample_at(const std::vector<double>& x, double at);
+
 // Torque columns of `log` read `delay` seconds later (linear interpolation, held at the ends), and a view
 // of the log that uses them (positions shared with `log`, which must outlive it).
 struct ShiftedTorques {

@@ -7,6 +7,20 @@
 
 namespace jacobid::identify {
 
+PipelineSettings validation_settings(const PipelineSettings& identification, const PipelineInfo& info) {
+    PipelineSettings v = identification;
+    v.method = info.method;
+    v.bandwidth = info.bandwidth;
+    // plan_pipeline resolves windows for the Jacobi method only (0 otherwise, which the Butterworth path
+    // never reads), so copying them whatever the method changes nothing for Butterworth.
+    v.velocity_window = info.velocity_window;
+    v.acceleration_window = info.acceleration_window;
+    v.differentiator_cutoff = info.differentiator_cutoff;
+    v.decimation_cutoff = info.decimation_cutoff;
+    v.progress = false;
+    return v;
+}
+
 ValidationResult validate_prediction(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings,
                                      const Eigen::VectorXd& x_in) {
     PipelineInfo info = plan_pipeline(log, settings);

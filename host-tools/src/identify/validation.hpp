@@ -25,8 +25,14 @@ struct ValidationResult {
     std::vector<std::vector<double>> measured, predicted;
 };
 
+// The settings for a second log (a validation log, or a log compared with an identification, as in
+// `jacobid diagnose`): `identification` with the identification's resolved choices from `info` (bandwidth,
+// Jacobi windows in seconds, differentiator and F_p cutoffs in Hz), so that both logs go through the same
+// differentiators and the same F_p even when their own motion bandwidths differ. Progress messages off.
+PipelineSettings validation_settings(const PipelineSettings& identification, const PipelineInfo& info);
+
 // Parameters not identified (NaN in x) count as 0. `settings` should carry the windows used for the
-// identification (same cutoffs in Hz).
+// identification (same cutoffs in Hz): validation_settings().
 ValidationResult validate_prediction(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings,
                                      const Eigen::VectorXd& x);
 

@@ -12,6 +12,8 @@ target_sources(jacobid_host PRIVATE
 )
 # urdfdom's headers are not warning-clean under -Wshadow/-Wconversion: include them as system headers.
 target_include_directories(jacobid_host SYSTEM PRIVATE ${urdfdom_INCLUDE_DIRS})
-target_link_libraries(jacobid_host PRIVATE ${urdfdom_LIBRARIES})
+# The imported target (not urdfdom_LIBRARIES, absolute paths) so that the exported jacobid::host names
+# it and jacobidConfig.cmake finds it with find_dependency(urdfdom); urdf_parser lives in urdfdom_model.
+target_link_libraries(jacobid_host PRIVATE urdfdom::urdfdom_model)
 # Robot descriptions are read with the YAML idiom shared with the firmware (yaml/).
 target_link_libraries(jacobid_host PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)

@@ -148,4 +148,25 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     }
 }
 
+MeasuredLog simulate_log(const robot::RobotModel& model, const Eigen::VectorXd& parameters, const std::vector<robot::JointDescription>& joints,
+                         const SimulationSettings& settings, MeasurementModel& measurement) {
+    MeasuredLog log;
+    log.sample_period = 1.0 / settings.output_rate;
+    const auto n = static_cast<std::size_t>(model.joint_count());
+    log.q.resize(n);
+    log.tau.resize(n);
+    const std::size_t samples = simulated_sample_count(settings);
+    for (std::size_t j = 0; j < n; ++j) {
+        log.q[j].reserve(samples);
+        log.tau[j].reserve(samples);
+    }
+    simulate(model, parameters, joints, settings, measurement, [&](const SimulatedSample& s) {
+        for (std::size_t j = 0; j < n; ++j) {
+            log.q[j].push_back(s.q_measured[static_cast<Eigen::Index>(j)]);
+            log.tau[j].push_back(s.tau_measured[static_cast<Eigen::Index>(j)]);
+        }
+    });
+    return log;
+}
+
 }  // namespace jacobid::sim

@@ -55,4 +55,15 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
               const SimulationSettings& settings, MeasurementModel& measurement,
               const std::function<void(const SimulatedSample&)>& sink);
 
+// What a logger on the robot would have recorded: the measured positions (rad) and torques (N.m), one
+// vector per joint, every 1 / output_rate seconds from t = 0 (for identify::log_columns).
+struct MeasuredLog {
+    double sample_period = 0.0;
+    std::vector<std::vector<double>> q, tau;
+};
+
+// simulate() kept in memory as a MeasuredLog.
+MeasuredLog simulate_log(const robot::RobotModel& model, const Eigen::VectorXd& parameters, const std::vector<robot::JointDescription>& joints,
+                         const SimulationSettings& settings, MeasurementModel& measurement);
+
 }  // namespace jacobid::sim
