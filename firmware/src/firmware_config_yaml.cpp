@@ -29,8 +29,8 @@ std::string one_of(const std::vector<std::string>& names) {
     return all;
 }
 
-// A joint: its profile's defaults, then the profile's own keys (Profile::read in hal/profiles/*.hpp),
-// then the HAL's validation reported at the key it is about (Profile::key_of). Which profiles exist is
+// A joint: its profile's defaults, then the profile's own keys (read_config in hal/profiles/*.hpp),
+// then the HAL's validation reported at the key it is about (config_key_of). Which profiles exist is
 // the registry's business (hal/profile_registry.hpp): no profile is named here.
 JointConfig read_joint(const std::string& source, const YAML::Node& node, std::size_t index) {
     Section s(source, node, fmt::format("joints[{}]", index));
@@ -42,10 +42,11 @@ JointConfig read_joint(const std::string& source, const YAML::Node& node, std::s
     hal::with_profile_named(profile.c_str(), [&](auto tag) {
         using P = typename decltype(tag)::type;
         if constexpr (P::kInFirmwareConfig) {
-            typename P::Config c = P::defaults(index);
-            P::read(s, c);
+            typename P::Config c;
+            apply_firmware_defaults(c, index);
+            read_config(s, c);
             s.reject_unknown();
-            if (const hal::ConfigStatus st = validate(c); st != hal::ConfigStatus::Ok) s.fail(P::key_of(st), hal::describe(st));
+            if (const hal::ConfigStatus st = validate(c); st != hal::ConfigStatus::Ok) s.fail(config_key_of(c, st), hal::describe(st));
             j.decoder = c;
         }
     });

@@ -22,7 +22,9 @@ bool default_profile_config(const std::string& profile, std::size_t index, hal::
     hal::with_profile_named(profile.c_str(), [&](auto tag) {
         using P = typename decltype(tag)::type;
         if constexpr (P::kInFirmwareConfig) {
-            out = P::defaults(index);
+            typename P::Config c;
+            apply_firmware_defaults(c, index);
+            out = c;
             offered = true;
         }
     });

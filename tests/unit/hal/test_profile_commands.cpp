@@ -57,7 +57,7 @@ TEST(HalMitCommand, PacksEveryFieldAtItsBits) {
     c.ranges.t_min = 0.0, c.ranges.t_max = 4095.0;
     c.ranges.kp_max = 4095.0, c.ranges.kd_max = 4095.0;
     CanFrame f;
-    mit::encode_command(c, position_command(0x1234, 0xABC, 0x789, 0x123, 0x456), f);
+    mit::encode_command(c, position_command(0x1234, 0xABC, 0x789, 0x123, 0x456), &f);
     expect_frame(f, frame(0x003, {0x12, 0x34, 0xAB, 0xC1, 0x23, 0x45, 0x67, 0x89}));
 }
 
@@ -65,10 +65,10 @@ TEST(HalMitCommand, ScalesOverTheConfiguredRanges) {
     CanFrame f;
     // p_max -> 0xFFFF; v = 0 -> (0 + 50) * 4095 / 100 = 2047.5 -> 0x800; kp 500 -> 0xFFF; kd 0 -> 0;
     // t = -18 -> 0.  Bytes: FF FF | 80 | 0F | FF | 00 | 00 | 00.
-    mit::encode_command(mit_motor(1), position_command(12.5, 0.0, -18.0, 500.0, 0.0), f);
+    mit::encode_command(mit_motor(1), position_command(12.5, 0.0, -18.0, 500.0, 0.0), &f);
     expect_frame(f, frame(0x001, {0xFF, 0xFF, 0x80, 0x0F, 0xFF, 0x00, 0x00, 0x00}));
     // p_min -> 0; v_max -> 0xFFF; kp 0; kd 5 -> 0xFFF; t_max -> 0xFFF.  Bytes: 00 00 | FF | F0 | 00 | FF | FF | FF.
-    mit::encode_command(mit_motor(1), position_command(-12.5, 50.0, 18.0, 0.0, 5.0), f);
+    mit::encode_command(mit_motor(1), position_command(-12.5, 50.0, 18.0, 0.0, 5.0), &f);
     expect_frame(f, frame(0x001, {0x00, 0x00, 0xFF, 0xF0, 0x00, 0xFF, 0xFF, 0xFF}));
 }
 
@@ -79,7 +79,7 @@ TEST(HalMitCommand, MapsTheLinkSideAndSaturates) {
     CanFrame f;
     // Link 6.25 rad -> motor -12.5 rad (p_min, 0x0000); link 100 rad/s -> motor -200 rad/s, clamped to
     // v_min (0x000); link -36 N.m -> motor +18 N.m (t_max, 0xFFF); kp 1000 clamps to 0xFFF, kd -1 to 0.
-    mit::encode_command(c, position_command(6.25, 100.0, -36.0, 1000.0, -1.0), f);
+    mit::encode_command(c, position_command(6.25, 100.0, -36.0, 1000.0, -1.0), &f);
     expect_frame(f, frame(0x002, {0x00, 0x00, 0x00, 0x0F, 0xFF, 0x00, 0x0F, 0xFF}));
 }
 
@@ -87,7 +87,7 @@ TEST(HalMitCommand, TorqueModeSendsZeroGains) {
     CanFrame f;
     // Mid position 0 rad -> 32767.5 -> 0x8000, v 0 -> 0x800, kp = kd = 0, t 9 N.m -> 27 * 4095 / 36 =
     // 3071.25 -> 0xBFF.  Bytes: 80 00 | 80 | 00 | 00 | 00 | 0B | FF.
-    mit::encode_command(mit_motor(1), torque_command(9.0), f);
+    mit::encode_command(mit_motor(1), torque_command(9.0), &f);
     expect_frame(f, frame(0x001, {0x80, 0x00, 0x80, 0x00, 0x00, 0x00, 0x0B, 0xFF}));
 }
 
@@ -126,21 +126,21 @@ TEST(HalOdriveCommand, SetInputPosWithFeedForwards) {
     CanFrame f;
     // Node 3, cmd 0x00C -> id 3 << 5 | 0x0C = 0x06C. Input_Pos 1.5 turns = float 0x3FC00000 -> 00 00 C0 3F;
     // Vel_FF -2 turn/s -> -2000 = 0xF830 -> 30 F8; Torque_FF 0.5 N.m -> 500 = 0x01F4 -> F4 01.
-    odrive::encode_command(axis(3, 1.0), position_command(1.5 * kTwoPi, -2.0 * kTwoPi, 0.5), f);
+    odrive::encode_command(axis(3, 1.0), position_command(1.5 * kTwoPi, -2.0 * kTwoPi, 0.5), &f);
     expect_frame(f, frame(0x06C, {0x00, 0x00, 0xC0, 0x3F, 0x30, 0xF8, 0xF4, 0x01}));
     // Gear 10: link 0.15 turn -> motor 1.5 turns; link 5 N.m -> motor 0.5 N.m; feed-forwards saturate at
     // int16: 40 turn/s -> 32767 = 7F FF -> FF 7F.
-    odrive::encode_command(axis(3, 10.0), position_command(0.15 * kTwoPi, 4.0 * kTwoPi, 5.0), f);
+    odrive::encode_command(axis(3, 10.0), position_command(0.15 * kTwoPi, 4.0 * kTwoPi, 5.0), &f);
     expect_frame(f, frame(0x06C, {0x00, 0x00, 0xC0, 0x3F, 0xFF, 0x7F, 0xF4, 0x01}));
 }
 
 TEST(HalOdriveCommand, SetInputTorqueAndAxisState) {
     CanFrame f;
     // Node 3, cmd 0x00E -> 0x06E. Input_Torque: link 15 N.m / gear 10 = 1.5 N.m = 0x3FC00000.
-    odrive::encode_command(axis(3, 10.0), torque_command(15.0), f);
+    odrive::encode_command(axis(3, 10.0), torque_command(15.0), &f);
     expect_frame(f, frame(0x06E, {0x00, 0x00, 0xC0, 0x3F}));
     // -2.0 N.m = 0xC0000000.
-    odrive::encode_command(axis(3, 1.0), torque_command(-2.0), f);
+    odrive::encode_command(axis(3, 1.0), torque_command(-2.0), &f);
     expect_frame(f, frame(0x06E, {0x00, 0x00, 0x00, 0xC0}));
     // Set_Axis_State (0x007), node 3 -> 0x067: CLOSED_LOOP_CONTROL (8) as uint32 LE, then IDLE (1).
     odrive::pack_axis_state(3, odrive::kAxisStateClosedLoopControl, f);
@@ -154,7 +154,7 @@ TEST(HalOdriveCommand, CircularSetpointsAreSentWrapped) {
     c.position_wrap_turns = 1.0;
     CanFrame f;
     // 2.25 turns -> 0.25 turn = 0x3E800000 -> 00 00 80 3E; node 1 -> id 0x02C.
-    odrive::encode_command(c, position_command(2.25 * kTwoPi, 0.0, 0.0), f);
+    odrive::encode_command(c, position_command(2.25 * kTwoPi, 0.0, 0.0), &f);
     expect_frame(f, frame(0x02C, {0x00, 0x00, 0x80, 0x3E, 0x00, 0x00, 0x00, 0x00}));
 }
 

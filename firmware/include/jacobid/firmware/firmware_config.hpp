@@ -88,7 +88,7 @@ KernelParams kernel_params(const EstimatorConfig& e, double sample_period, int c
 std::vector<std::string> firmware_profile_names();
 
 // Defaults of a joint given only its profile name and its index (0-based): the same on the firmware and
-// the simulator side, each profile's Profile::defaults (hal/profiles/*.hpp; why these values:
+// the simulator side, each profile's apply_firmware_defaults (hal/profiles/*.hpp; why these values:
 // docs/firmware.md, "Profiles and resolution"). False when fw.yaml offers no profile of that name.
 bool default_profile_config(const std::string& profile, std::size_t index, hal::ProfileConfig& out);
 

@@ -5,14 +5,7 @@
 // (telemetry) and the trajectory playback (commands). Adding a profile is its header plus one line in
 // `Profiles` below (walkthrough: docs/profiles.md).
 //
-// A profile is a struct (see mit::Profile) with
-//   Config, Decoder                    the joint's configuration and its JointDecoder
-//   kName                              the fw.yaml / CLI name
-//   kInFirmwareConfig                  whether fw.yaml offers it; then also defaults(index) and
-//                                      read(fields, config) (mapping_fields.hpp) and key_of(status)
-//   kTelemetryFrames                   frames per sample the drive side sends
-//   encode_telemetry(config, q, qd, tau, out)   drive side (sim-can): the frames of one sample
-//   encode_command(config, command, out)        controller side: the command frames of one cycle
+// What a profile header defines: profiles/profile_entry.hpp.
 // Dispatch is a compile-time index recursion with std::get_if: no std::visit (its bad_variant_access
 // path), no virtual calls, nothing allocated; the cycle stays exception- and heap-free.
 #include <cstddef>
@@ -128,12 +121,12 @@ inline void reset_unwrapping(AnyJointDecoder& d) noexcept {
 // Drive side: the frames of one sample (link-side q, qd, tau) into out[0..kMaxTelemetryFrames); returns how many.
 inline std::size_t encode_telemetry(const ProfileConfig& c, double q, double qd, double tau, CanFrame* out) noexcept {
     return visit_profile<std::size_t>(
-        c, [&](auto tag, const auto& config) { return decltype(tag)::type::encode_telemetry(config, q, qd, tau, out); }, 0);
+        c, [&](auto, const auto& config) { return encode_telemetry(config, q, qd, tau, out); }, 0);
 }
 
 // Controller side: the command frames of one cycle into out[0..kMaxCommandFrames); returns how many.
 inline std::size_t encode_command(const ProfileConfig& c, const JointCommand& cmd, CanFrame* out) noexcept {
-    return visit_profile<std::size_t>(c, [&](auto tag, const auto& config) { return decltype(tag)::type::encode_command(config, cmd, out); }, 0);
+    return visit_profile<std::size_t>(c, [&](auto, const auto& config) { return encode_command(config, cmd, out); }, 0);
 }
 
 }  // namespace jacobid::hal

@@ -24,25 +24,13 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "jacobid/hal/byte_codec.hpp"
-#include "jacobid/hal/can_frame.hpp"
-#include "jacobid/hal/joint_command.hpp"
-#include "jacobid/hal/joint_state.hpp"
-#include "jacobid/hal/profiles/joint_decoder_base.hpp"
-#include "jacobid/hal/profiles/mapping_fields.hpp"
-#include "jacobid/hal/profiles/plausibility.hpp"
-#include "jacobid/hal/unwrap.hpp"
+#include "jacobid/hal/profiles/profile_entry.hpp"
 
 namespace jacobid::hal::cia402 {
 
 constexpr std::uint16_t kPositionActualValue = 0x6064;
 constexpr std::uint16_t kTorqueActualValue = 0x6077;
 constexpr std::uint16_t kCurrentActualValue = 0x6078;
-
-constexpr std::uint16_t kControlword = 0x6040;
-constexpr std::uint16_t kStatusword = 0x6041;
-constexpr std::uint16_t kTargetTorque = 0x6071;
-constexpr std::uint16_t kTargetPosition = 0x607A;
 
 // Default COB-ID of TPDO n (1..4) of a node (CiA 301 predefined connection set).
 constexpr std::uint32_t tpdo_cob_id(unsigned pdo, std::uint8_t node) noexcept {
@@ -143,6 +131,48 @@ inline ConfigStatus validate(const JointConfig& c) noexcept {
     if (cw + 2u > kCanMaxDataLength || target + 4u > kCanMaxDataLength || (cw < target + 4u && target < cw + 2u))
         return ConfigStatus::InvalidLayout;
     return validate(c.mapping, c.layout.effort == EffortObject::None ? EffortKind::Torque : c.effort_kind());
+}
+
+// Defaults of joint `index` (0-based), the same for jacobid-fw and sim-can (docs/firmware.md): node
+// index + 1, TPDO1, 2^16 counts per motor turn, torque actual value in per mille of 2 N.m; gear ratio 4.
+inline void apply_firmware_defaults(JointConfig& c, std::size_t index) noexcept {
+    c.node_id = static_cast<std::uint8_t>(index + 1);
+    c.layout.effort = EffortObject::TorqueActual;
+    c.counts_per_revolution = 65536.0;
+    c.rated_torque = 2.0;
+    c.mapping.gear_ratio = 4.0;
+}
+
+template <typename Fields>
+void read_config(Fields& s, JointConfig& c) {
+    c.node_id = static_cast<std::uint8_t>(s.integer("node_id", c.node_id, 1, 127));
+    c.layout.cob_id = static_cast<std::uint32_t>(s.integer("cob_id", 0, 0, kCanStandardIdMask));
+    c.counts_per_revolution = s.positive("counts_per_rev", c.counts_per_revolution);
+    const auto effort = s.choice("effort", "torque", {"torque", "current", "none"});
+    c.layout.effort = effort == "torque"    ? EffortObject::TorqueActual
+                      : effort == "current" ? EffortObject::CurrentActual
+                                            : EffortObject::None;
+    c.rated_torque = s.number("rated_torque", c.rated_torque);
+    c.rated_current = s.number("rated_current", c.rated_current);
+    c.layout.position_byte = static_cast<std::uint8_t>(s.integer("position_byte", c.layout.position_byte, 0, 4));
+    c.layout.effort_byte = static_cast<std::uint8_t>(s.integer("effort_byte", c.layout.effort_byte, 0, 6));
+    c.mapping = read_mapping(s, c.mapping);
+    if (c.layout.effort == EffortObject::CurrentActual && !(c.rated_current > 0.0))
+        s.fail(s.node(), "rated_current", "required (> 0 A) with effort: current");
+    if (c.layout.effort == EffortObject::TorqueActual && !(c.rated_torque > 0.0)) s.fail("rated_torque", "must be > 0 N.m with effort: torque");
+    if (c.layout.effort == EffortObject::CurrentActual && !s.has("torque_constant"))
+        s.fail(s.node(), "torque_constant", "required (N.m/A) with effort: current");
+}
+
+inline const char* config_key_of(const JointConfig&, ConfigStatus s) noexcept {
+    if (const char* k = mapping_key_of(s)) return k;
+    switch (s) {
+        case ConfigStatus::InvalidCanId: return "cob_id";
+        case ConfigStatus::InvalidNodeId: return "node_id";
+        case ConfigStatus::InvalidScale: return "counts_per_rev";
+        case ConfigStatus::InvalidLayout: return "effort_byte";
+        default: return "profile";
+    }
 }
 
 // 0x6064 wraps at 2^32 counts, or at the modulo range.
@@ -335,66 +365,20 @@ inline void encode_command(const JointConfig& c, std::uint16_t controlword, cons
     pack_rpdo(c.command, c.command_cob_id(), r, f);
 }
 
-// The registry entry (hal/profile_registry.hpp, docs/profiles.md).
-struct Profile {
-    using Config = JointConfig;
-    using Decoder = JointDecoder;
-    static constexpr const char* kName = "cia402";
-    static constexpr bool kInFirmwareConfig = true;  // `profile: cia402` in fw.yaml
-    static constexpr std::size_t kTelemetryFrames = 1;
+// Registry functions (profile_entry.hpp). The registry's command is "operation enabled" (0x0F): the
+// frame a playback sends once DriveEnabler has brought the drive there.
+inline std::size_t encode_telemetry(const JointConfig& c, double q, double /*qd*/, double tau, CanFrame* out) noexcept {
+    encode_tpdo(c, q, tau, out[0]);
+    return 1;
+}
+inline std::size_t encode_command(const JointConfig& c, const JointCommand& cmd, CanFrame* out) noexcept {
+    encode_command(c, kEnableOperation, cmd, out[0]);
+    return 1;
+}
 
-    // Defaults of joint `index` (0-based), the same for jacobid-fw and sim-can (docs/firmware.md):
-    // node index + 1, TPDO1, 2^16 counts per motor turn, torque actual value in per mille of 2 N.m;
-    // gear ratio 4.
-    static Config defaults(std::size_t index) noexcept {
-        Config c;
-        c.node_id = static_cast<std::uint8_t>(index + 1);
-        c.layout.effort = EffortObject::TorqueActual;
-        c.counts_per_revolution = 65536.0;
-        c.rated_torque = 2.0;
-        c.mapping.gear_ratio = 4.0;
-        return c;
-    }
-    template <typename Fields>
-    static void read(Fields& s, Config& c) {
-        c.node_id = static_cast<std::uint8_t>(s.integer("node_id", c.node_id, 1, 127));
-        c.layout.cob_id = static_cast<std::uint32_t>(s.integer("cob_id", 0, 0, kCanStandardIdMask));
-        c.counts_per_revolution = s.positive("counts_per_rev", c.counts_per_revolution);
-        const auto effort = s.choice("effort", "torque", {"torque", "current", "none"});
-        c.layout.effort = effort == "torque"    ? EffortObject::TorqueActual
-                          : effort == "current" ? EffortObject::CurrentActual
-                                                : EffortObject::None;
-        c.rated_torque = s.number("rated_torque", c.rated_torque);
-        c.rated_current = s.number("rated_current", c.rated_current);
-        c.layout.position_byte = static_cast<std::uint8_t>(s.integer("position_byte", c.layout.position_byte, 0, 4));
-        c.layout.effort_byte = static_cast<std::uint8_t>(s.integer("effort_byte", c.layout.effort_byte, 0, 6));
-        c.mapping = read_mapping(s, c.mapping);
-        if (c.layout.effort == EffortObject::CurrentActual && !(c.rated_current > 0.0))
-            s.fail(s.node(), "rated_current", "required (> 0 A) with effort: current");
-        if (c.layout.effort == EffortObject::TorqueActual && !(c.rated_torque > 0.0))
-            s.fail("rated_torque", "must be > 0 N.m with effort: torque");
-        if (c.layout.effort == EffortObject::CurrentActual && !s.has("torque_constant"))
-            s.fail(s.node(), "torque_constant", "required (N.m/A) with effort: current");
-    }
-    static const char* key_of(ConfigStatus s) noexcept {
-        if (const char* k = mapping_key_of(s)) return k;
-        switch (s) {
-            case ConfigStatus::InvalidCanId: return "cob_id";
-            case ConfigStatus::InvalidNodeId: return "node_id";
-            case ConfigStatus::InvalidScale: return "counts_per_rev";
-            case ConfigStatus::InvalidLayout: return "effort_byte";
-            default: return "profile";
-        }
-    }
-    static std::size_t encode_telemetry(const Config& c, double q, double /*qd*/, double tau, CanFrame* out) noexcept {
-        encode_tpdo(c, q, tau, out[0]);
-        return 1;
-    }
-    // Operation enabled: the frame a playback sends once DriveEnabler has brought the drive there.
-    static std::size_t encode_command(const Config& c, const JointCommand& cmd, CanFrame* out) noexcept {
-        cia402::encode_command(c, kEnableOperation, cmd, out[0]);
-        return 1;
-    }
+// The registry entry (hal/profile_registry.hpp, docs/profiles.md).
+struct Profile : ProfileEntry<JointConfig, JointDecoder, 1, true> {
+    static constexpr const char* kName = "cia402";
 };
 
 }  // namespace jacobid::hal::cia402

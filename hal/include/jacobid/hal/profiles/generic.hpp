@@ -18,13 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "jacobid/hal/byte_codec.hpp"
-#include "jacobid/hal/can_frame.hpp"
-#include "jacobid/hal/joint_command.hpp"
-#include "jacobid/hal/joint_state.hpp"
-#include "jacobid/hal/profiles/joint_decoder_base.hpp"
-#include "jacobid/hal/profiles/plausibility.hpp"
-#include "jacobid/hal/unwrap.hpp"
+#include "jacobid/hal/profiles/profile_entry.hpp"
 
 namespace jacobid::hal::generic {
 
@@ -241,20 +235,9 @@ inline std::size_t encode_command(const JointConfig& c, const JointCommand& cmd,
 }
 
 // The registry entry (hal/profile_registry.hpp, docs/profiles.md). Not offered in fw.yaml: a signal
-// layout is written in C++ (or a future DBC-like section) rather than guessed from defaults.
-struct Profile {
-    using Config = JointConfig;
-    using Decoder = JointDecoder;
+// layout is written in C++ rather than guessed from defaults.
+struct Profile : ProfileEntry<JointConfig, JointDecoder, 3, false> {
     static constexpr const char* kName = "generic";
-    static constexpr bool kInFirmwareConfig = false;
-    static constexpr std::size_t kTelemetryFrames = 3;
-
-    static std::size_t encode_telemetry(const Config& c, double q, double qd, double tau, CanFrame* out) noexcept {
-        return generic::encode_telemetry(c, q, qd, tau, out);
-    }
-    static std::size_t encode_command(const Config& c, const JointCommand& cmd, CanFrame* out) noexcept {
-        return generic::encode_command(c, cmd, out);
-    }
 };
 
 }  // namespace jacobid::hal::generic

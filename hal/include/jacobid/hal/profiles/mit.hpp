@@ -25,13 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "jacobid/hal/can_frame.hpp"
-#include "jacobid/hal/joint_command.hpp"
-#include "jacobid/hal/joint_state.hpp"
-#include "jacobid/hal/profiles/joint_decoder_base.hpp"
-#include "jacobid/hal/profiles/mapping_fields.hpp"
-#include "jacobid/hal/profiles/plausibility.hpp"
-#include "jacobid/hal/unwrap.hpp"
+#include "jacobid/hal/profiles/profile_entry.hpp"
 
 namespace jacobid::hal::mit {
 
@@ -142,6 +136,39 @@ inline ConfigStatus validate(const JointConfig& c) noexcept {
     if (const ConfigStatus s = validate(c.ranges); s != ConfigStatus::Ok) return s;
     return validate(c.mapping, c.effort);
 }
+
+// Defaults of joint `index` (0-based), the same for jacobid-fw and sim-can (docs/firmware.md, "Profiles
+// and resolution"): every motor replies on id 0 with data[0] = index + 1 (8-byte replies); +-12.5 rad,
+// +-65 rad/s, +-30 N.m; gear ratio 4.
+inline void apply_firmware_defaults(JointConfig& c, std::size_t index) noexcept {
+    c.motor_id = static_cast<std::uint8_t>(index + 1);
+    c.ranges.v_min = -65.0, c.ranges.v_max = 65.0;
+    c.ranges.t_min = -30.0, c.ranges.t_max = 30.0;
+    c.require_status = true;
+    c.mapping.gear_ratio = 4.0;
+}
+
+// The profile's keys of a fw.yaml joint (Fields: yaml_section.hpp's interface).
+template <typename Fields>
+void read_config(Fields& s, JointConfig& c) {
+    c.reply_can_id = static_cast<std::uint32_t>(s.integer("reply_id", static_cast<long>(c.reply_can_id), 0, kCanExtendedIdMask));
+    c.extended_id = s.boolean("extended_id", c.extended_id);
+    c.motor_id = static_cast<std::uint8_t>(s.integer("motor_id", c.motor_id, 0, 255));
+    const auto p = s.range("position_range", {c.ranges.p_min, c.ranges.p_max});
+    const auto v = s.range("velocity_range", {c.ranges.v_min, c.ranges.v_max});
+    const auto t = s.range("effort_range", {c.ranges.t_min, c.ranges.t_max});
+    c.ranges.p_min = p.first, c.ranges.p_max = p.second;
+    c.ranges.v_min = v.first, c.ranges.v_max = v.second;
+    c.ranges.t_min = t.first, c.ranges.t_max = t.second;
+    c.effort = s.choice("effort", "torque", {"torque", "current"}) == "current" ? EffortKind::Current : EffortKind::Torque;
+    c.require_status = s.boolean("require_status", c.require_status);
+    c.mapping = read_mapping(s, c.mapping);
+}
+
+inline const char* config_key_of(const JointConfig&, ConfigStatus s) noexcept {
+    if (const char* k = mapping_key_of(s)) return k;
+    return s == ConfigStatus::InvalidCanId ? "reply_id" : s == ConfigStatus::InvalidRange ? "effort_range" : "profile";
+}
 // The firmware's position code wraps at 2^16 codes.
 inline std::uint64_t unwrap_period(const JointConfig&) noexcept { return 1u << kPositionBits; }
 
@@ -241,7 +268,7 @@ inline DecodeStatus unpack_command(const CanFrame& f, RawCommand& out) noexcept 
 // A link-side command as the drive's codes: every field saturates at its range (a setpoint beyond the
 // position range is clamped, never wrapped: the drive would otherwise jump a turn). Torque mode sends
 // kp = kd = 0, so the drive applies the feed-forward torque alone.
-inline void encode_command(const JointConfig& c, const JointCommand& cmd, CanFrame& f) noexcept {
+inline std::size_t encode_command(const JointConfig& c, const JointCommand& cmd, CanFrame* out) noexcept {
     const JointMapping& m = c.mapping;
     const Ranges& g = c.ranges;
     const bool torque_only = cmd.mode == CommandMode::Torque;
@@ -252,7 +279,8 @@ inline void encode_command(const JointConfig& c, const JointCommand& cmd, CanFra
     r.kp = static_cast<std::uint16_t>(value_to_code(torque_only ? 0.0 : cmd.kp, 0.0, g.kp_max, kGainBits));
     r.kd = static_cast<std::uint16_t>(value_to_code(torque_only ? 0.0 : cmd.kd, 0.0, g.kd_max, kGainBits));
     r.torque = static_cast<std::uint16_t>(value_to_code(device_effort(m, c.effort, cmd.torque), g.t_min, g.t_max, kEffortBits));
-    pack_command(r, c.motor_id, f);
+    pack_command(r, c.motor_id, out[0]);
+    return 1;
 }
 
 // The mode frames of the MIT protocol: seven 0xFF bytes, then FC (enter motor mode: the drive starts
@@ -266,58 +294,15 @@ inline void encode_mode_request(const JointConfig& c, ModeRequest request, CanFr
     f.data[7] = static_cast<std::uint8_t>(request);
 }
 
-// The registry entry (hal/profile_registry.hpp, docs/profiles.md).
-struct Profile {
-    using Config = JointConfig;
-    using Decoder = JointDecoder;
-    static constexpr const char* kName = "mit";
-    static constexpr bool kInFirmwareConfig = true;  // `profile: mit` in fw.yaml
-    static constexpr std::size_t kTelemetryFrames = 1;
+// The registry's drive side (profile_entry.hpp).
+inline std::size_t encode_telemetry(const JointConfig& c, double q, double qd, double tau, CanFrame* out) noexcept {
+    encode_reply(c, q, qd, tau, out[0], c.require_status);
+    return 1;
+}
 
-    // Defaults of joint `index` (0-based), the same for jacobid-fw and sim-can (docs/firmware.md,
-    // "Profiles and resolution"): every motor replies on id 0 with data[0] = index + 1 (8-byte
-    // replies); +-12.5 rad, +-65 rad/s, +-30 N.m; gear ratio 4.
-    static Config defaults(std::size_t index) noexcept {
-        Config c;
-        c.reply_can_id = 0;
-        c.motor_id = static_cast<std::uint8_t>(index + 1);
-        c.ranges.p_min = -12.5, c.ranges.p_max = 12.5;
-        c.ranges.v_min = -65.0, c.ranges.v_max = 65.0;
-        c.ranges.t_min = -30.0, c.ranges.t_max = 30.0;
-        c.effort = EffortKind::Torque;
-        c.require_status = true;
-        c.mapping.gear_ratio = 4.0;
-        return c;
-    }
-    // The profile's keys of a fw.yaml joint (Fields: yaml_section.hpp's interface).
-    template <typename Fields>
-    static void read(Fields& s, Config& c) {
-        c.reply_can_id = static_cast<std::uint32_t>(s.integer("reply_id", static_cast<long>(c.reply_can_id), 0, kCanExtendedIdMask));
-        c.extended_id = s.boolean("extended_id", c.extended_id);
-        c.motor_id = static_cast<std::uint8_t>(s.integer("motor_id", c.motor_id, 0, 255));
-        const auto p = s.range("position_range", {c.ranges.p_min, c.ranges.p_max});
-        const auto v = s.range("velocity_range", {c.ranges.v_min, c.ranges.v_max});
-        const auto t = s.range("effort_range", {c.ranges.t_min, c.ranges.t_max});
-        c.ranges.p_min = p.first, c.ranges.p_max = p.second;
-        c.ranges.v_min = v.first, c.ranges.v_max = v.second;
-        c.ranges.t_min = t.first, c.ranges.t_max = t.second;
-        c.effort = s.choice("effort", "torque", {"torque", "current"}) == "current" ? EffortKind::Current : EffortKind::Torque;
-        c.require_status = s.boolean("require_status", c.require_status);
-        c.mapping = read_mapping(s, c.mapping);
-    }
-    // The key a validate() status is about, so a config error points at its line.
-    static const char* key_of(ConfigStatus s) noexcept {
-        if (const char* k = mapping_key_of(s)) return k;
-        return s == ConfigStatus::InvalidCanId ? "reply_id" : s == ConfigStatus::InvalidRange ? "effort_range" : "profile";
-    }
-    static std::size_t encode_telemetry(const Config& c, double q, double qd, double tau, CanFrame* out) noexcept {
-        encode_reply(c, q, qd, tau, out[0], c.require_status);
-        return 1;
-    }
-    static std::size_t encode_command(const Config& c, const JointCommand& cmd, CanFrame* out) noexcept {
-        mit::encode_command(c, cmd, out[0]);
-        return 1;
-    }
+// The registry entry (hal/profile_registry.hpp, docs/profiles.md).
+struct Profile : ProfileEntry<JointConfig, JointDecoder, 1, true> {
+    static constexpr const char* kName = "mit";
 };
 
 }  // namespace jacobid::hal::mit

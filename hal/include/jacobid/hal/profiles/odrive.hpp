@@ -22,14 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "jacobid/hal/byte_codec.hpp"
-#include "jacobid/hal/can_frame.hpp"
-#include "jacobid/hal/joint_command.hpp"
-#include "jacobid/hal/joint_state.hpp"
-#include "jacobid/hal/profiles/joint_decoder_base.hpp"
-#include "jacobid/hal/profiles/mapping_fields.hpp"
-#include "jacobid/hal/profiles/plausibility.hpp"
-#include "jacobid/hal/unwrap.hpp"
+#include "jacobid/hal/profiles/profile_entry.hpp"
 
 namespace jacobid::hal::odrive {
 
@@ -97,6 +90,26 @@ inline ConfigStatus validate(const JointConfig& c) noexcept {
     if (c.node_id > kMaxNodeId) return ConfigStatus::InvalidNodeId;
     if (!std::isfinite(c.position_wrap_turns) || c.position_wrap_turns < 0.0) return ConfigStatus::InvalidScale;
     return validate(c.mapping, EffortKind::Current);
+}
+
+// Defaults of joint `index` (0-based), the same for jacobid-fw and sim-can (docs/firmware.md): node
+// index + 1, encoder estimates and Iq; Kt 0.083 N.m/A (8.27 / Kv, Kv = 100 rpm/V); gear ratio 4.
+inline void apply_firmware_defaults(JointConfig& c, std::size_t index) noexcept {
+    c.node_id = static_cast<std::uint8_t>(index + 1);
+    c.mapping.torque_constant = 8.27 / 100.0;
+    c.mapping.gear_ratio = 4.0;
+}
+
+template <typename Fields>
+void read_config(Fields& s, JointConfig& c) {
+    c.node_id = static_cast<std::uint8_t>(s.integer("node_id", c.node_id, 0, kMaxNodeId));
+    c.position_wrap_turns = s.number("position_wrap_turns", c.position_wrap_turns);
+    c.mapping = read_mapping(s, c.mapping);
+}
+
+inline const char* config_key_of(const JointConfig&, ConfigStatus s) noexcept {
+    if (const char* k = mapping_key_of(s)) return k;
+    return s == ConfigStatus::InvalidNodeId ? "node_id" : s == ConfigStatus::InvalidScale ? "position_wrap_turns" : "profile";
 }
 
 // Pos_Estimate wraps every position_wrap_turns turns (0: continuous).
@@ -192,12 +205,12 @@ inline std::int16_t to_milli_int16(double x) noexcept {
 
 // Link-side command -> Set_Input_Pos (Position mode) or Set_Input_Torque (Torque mode). With circular
 // setpoints the position is sent wrapped to [0, position_wrap_turns), as the axis expects it.
-inline void encode_command(const JointConfig& c, const JointCommand& cmd, CanFrame& f) noexcept {
+inline std::size_t encode_command(const JointConfig& c, const JointCommand& cmd, CanFrame* out) noexcept {
     const JointMapping& m = c.mapping;
     const double motor_torque = device_effort(m, EffortKind::Torque, cmd.torque);
     if (cmd.mode == CommandMode::Torque) {
-        pack_input_torque(c.node_id, static_cast<float>(motor_torque), f);
-        return;
+        pack_input_torque(c.node_id, static_cast<float>(motor_torque), out[0]);
+        return 1;
     }
     double turns = motor_position(m, cmd.position) / kTwoPi;
     if (c.position_wrap_turns > 0.0) turns -= c.position_wrap_turns * std::floor(turns / c.position_wrap_turns);
@@ -205,49 +218,20 @@ inline void encode_command(const JointConfig& c, const JointCommand& cmd, CanFra
     r.position_turns = static_cast<float>(turns);
     r.velocity_ff = to_milli_int16(motor_velocity(m, cmd.velocity) / kTwoPi);
     r.torque_ff = to_milli_int16(motor_torque);
-    pack_input_pos(c.node_id, r, f);
+    pack_input_pos(c.node_id, r, out[0]);
+    return 1;
+}
+
+// The registry's drive side (profile_entry.hpp): one sample is both messages.
+inline std::size_t encode_telemetry(const JointConfig& c, double q, double qd, double tau, CanFrame* out) noexcept {
+    encode_encoder_estimates(c, q, qd, out[0]);
+    encode_iq(c, tau, out[1]);
+    return 2;
 }
 
 // The registry entry (hal/profile_registry.hpp, docs/profiles.md).
-struct Profile {
-    using Config = JointConfig;
-    using Decoder = JointDecoder;
+struct Profile : ProfileEntry<JointConfig, JointDecoder, 2, true> {
     static constexpr const char* kName = "odrive";
-    static constexpr bool kInFirmwareConfig = true;  // `profile: odrive` in fw.yaml
-    static constexpr std::size_t kTelemetryFrames = 2;
-
-    // Defaults of joint `index` (0-based), the same for jacobid-fw and sim-can (docs/firmware.md):
-    // node index + 1, encoder estimates and Iq; Kt 0.083 N.m/A (8.27 / Kv, Kv = 100 rpm/V); gear ratio 4.
-    static Config defaults(std::size_t index) noexcept {
-        Config c;
-        c.node_id = static_cast<std::uint8_t>(index + 1);
-        c.mapping.gear_ratio = 4.0;
-        c.mapping.torque_constant = 8.27 / 100.0;
-        return c;
-    }
-    template <typename Fields>
-    static void read(Fields& s, Config& c) {
-        c.node_id = static_cast<std::uint8_t>(s.integer("node_id", c.node_id, 0, kMaxNodeId));
-        c.position_wrap_turns = s.number("position_wrap_turns", c.position_wrap_turns);
-        c.mapping = read_mapping(s, c.mapping);
-    }
-    static const char* key_of(ConfigStatus s) noexcept {
-        if (const char* k = mapping_key_of(s)) return k;
-        switch (s) {
-            case ConfigStatus::InvalidNodeId: return "node_id";
-            case ConfigStatus::InvalidScale: return "position_wrap_turns";
-            default: return "profile";
-        }
-    }
-    static std::size_t encode_telemetry(const Config& c, double q, double qd, double tau, CanFrame* out) noexcept {
-        encode_encoder_estimates(c, q, qd, out[0]);
-        encode_iq(c, tau, out[1]);
-        return 2;
-    }
-    static std::size_t encode_command(const Config& c, const JointCommand& cmd, CanFrame* out) noexcept {
-        odrive::encode_command(c, cmd, out[0]);
-        return 1;
-    }
 };
 
 }  // namespace jacobid::hal::odrive
