@@ -8,8 +8,8 @@
 // What a profile header defines: profiles/profile_entry.hpp.
 // Dispatch is a compile-time index recursion with std::get_if: no std::visit (its bad_variant_access
 // path), no virtual calls, nothing allocated; the cycle stays exception- and heap-free.
-#include <cstddef>
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <tuple>
 #include <type_traits>
