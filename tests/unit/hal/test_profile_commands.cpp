@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <string>
 
 #include "hal_test_util.hpp"
 #include "jacobid/hal/profile_registry.hpp"
@@ -318,6 +319,50 @@ TEST(HalProfileRegistry, NamesAndTelemetryFrameCounts) {
     EXPECT_TRUE(with_profile_named("odrive", [&](auto tag) { found = static_cast<int>(decltype(tag)::type::kTelemetryFrames); }));
     EXPECT_EQ(found, 2);
     EXPECT_FALSE(with_profile_named("canopen", [](auto) {}));
+}
+
+// The drive side (what a simulated drive following commands reads) decodes the controller side's frames
+// back to the link-side command, within each field's quantization.
+TEST(HalProfileRegistry, DriveSideDecodesTheCommandFrames) {
+    mit::JointConfig m = mit_motor(2);
+    m.mapping.gear_ratio = 4.0;
+    cia402::JointConfig d = drive(5);
+    d.mapping.gear_ratio = 10.0;
+    const std::array<ProfileConfig, 4> joints = {m, axis(3, 10.0), d, generic_joint()};
+    for (const ProfileConfig& joint : joints) {
+        for (const JointCommand& sent : {position_command(0.7, -0.4, 1.5, 120.0, 2.5), torque_command(-1.25)}) {
+            std::array<CanFrame, kMaxCommandFrames> out{};
+            const std::size_t n = encode_command(joint, sent, out.data());
+            ASSERT_GE(n, 1u) << profile_name(joint);
+            JointCommand got;
+            for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(decode_command(joint, sent.mode, out[i], got), DecodeStatus::Ok) << profile_name(joint);
+            SCOPED_TRACE(profile_name(joint));
+            EXPECT_EQ(got.mode, sent.mode);
+            // CiA 402's position RPDO carries no torque feed-forward (docs/profiles.md).
+            const bool has_torque = sent.mode == CommandMode::Torque || std::string(profile_name(joint)) != "cia402";
+            if (has_torque) {
+                EXPECT_NEAR(got.torque, sent.torque, 0.05);
+            }
+            if (sent.mode == CommandMode::Position) {
+                EXPECT_NEAR(got.position, sent.position, 1e-3);
+            }
+        }
+    }
+    // MIT gains and velocity, from the hand-written frame of PacksEveryFieldAtItsBits' scaling test:
+    // kp 0xFFF = 500, kd 0 -> still Position mode; a mode request is not a setpoint.
+    JointCommand got;
+    ASSERT_EQ(mit::decode_command(mit_motor(1), CommandMode::Position, frame(0x001, {0xFF, 0xFF, 0x80, 0x0F, 0xFF, 0x00, 0x00, 0x00}), got),
+              DecodeStatus::Ok);
+    EXPECT_EQ(got.mode, CommandMode::Position);
+    EXPECT_DOUBLE_EQ(got.position, 12.5);
+    EXPECT_DOUBLE_EQ(got.kp, 500.0);
+    EXPECT_DOUBLE_EQ(got.torque, -18.0);
+    EXPECT_EQ(mit::decode_command(mit_motor(1), CommandMode::Position, frame(0x001, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC}), got),
+              DecodeStatus::NotMine);
+    // Another node's or another message's frames are not the joint's.
+    EXPECT_EQ(odrive::decode_command(axis(3, 1.0), CommandMode::Position, frame(0x08C, {0, 0, 0, 0, 0, 0, 0, 0}), got), DecodeStatus::NotMine);
+    EXPECT_EQ(odrive::decode_command(axis(3, 1.0), CommandMode::Position, frame(0x069, {0, 0, 0, 0, 0, 0, 0, 0}), got), DecodeStatus::NotMine);
+    EXPECT_EQ(cia402::decode_command(drive(5), CommandMode::Position, frame(0x206, {0x0F, 0x00, 0, 0, 0, 0}), got), DecodeStatus::NotMine);
 }
 
 }  // namespace

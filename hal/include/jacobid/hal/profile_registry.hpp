@@ -129,4 +129,10 @@ inline std::size_t encode_command(const ProfileConfig& c, const JointCommand& cm
     return visit_profile<std::size_t>(c, [&](auto, const auto& config) { return encode_command(config, cmd, out); }, 0);
 }
 
+// Drive side: a command frame as the joint's device reads it (link side). NotMine when it is not the
+// joint's; `drive_mode` is the device's own mode where the frame does not say (CiA 402: 0x6060).
+inline DecodeStatus decode_command(const ProfileConfig& c, CommandMode drive_mode, const CanFrame& f, JointCommand& out) noexcept {
+    return visit_profile<DecodeStatus>(c, [&](auto, const auto& config) { return decode_command(config, drive_mode, f, out); }, DecodeStatus::NotMine);
+}
+
 }  // namespace jacobid::hal

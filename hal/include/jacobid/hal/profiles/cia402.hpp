@@ -365,6 +365,25 @@ inline void encode_command(const JointConfig& c, std::uint16_t controlword, cons
     pack_rpdo(c.command, c.command_cob_id(), r, f);
 }
 
+// Drive side (a simulated drive following commands): this node's RPDO as a link-side JointCommand. The
+// drive's mode of operation (0x6060) says which target is mapped; the controlword is unpack_rpdo's.
+inline DecodeStatus decode_command(const JointConfig& c, CommandMode drive_mode, const CanFrame& f, JointCommand& out) noexcept {
+    if (f.extended() || f.id != c.command_cob_id()) return DecodeStatus::NotMine;
+    RawRpdo r;
+    if (const DecodeStatus st = unpack_rpdo(c.command, drive_mode, f, r); st != DecodeStatus::Ok) return st;
+    out.mode = drive_mode;
+    if (drive_mode == CommandMode::Torque) {
+        if (validate_command(c, CommandMode::Torque) != ConfigStatus::Ok) return DecodeStatus::OutOfRange;
+        out.torque = link_torque(c.mapping, EffortKind::Torque, static_cast<double>(r.target_torque_per_mille) / 1000.0 * c.rated_torque);
+        return DecodeStatus::Ok;
+    }
+    // As 0x6064: signed over the full INT32 range, unsigned within a modulo range.
+    const double counts = c.position_modulus == (1ull << 32) ? static_cast<double>(r.target_position)
+                                                             : static_cast<double>(static_cast<std::uint32_t>(r.target_position));
+    out.position = link_position(c.mapping, kTwoPi * counts / c.counts_per_revolution);
+    return DecodeStatus::Ok;
+}
+
 // Registry functions (profile_entry.hpp). The registry's command is "operation enabled" (0x0F): the
 // frame a playback sends once DriveEnabler has brought the drive there.
 inline std::size_t encode_telemetry(const JointConfig& c, double q, double /*qd*/, double tau, CanFrame* out) noexcept {

@@ -234,6 +234,33 @@ inline std::size_t encode_command(const JointConfig& c, const JointCommand& cmd,
     return n;
 }
 
+// Drive side (a simulated device following commands): the setpoints this frame carries, link side; the
+// other fields keep their values (a layout may spread a command over several frames). Every field is
+// checked before any is written.
+inline DecodeStatus decode_command(const JointConfig& c, CommandMode drive_mode, const CanFrame& f, JointCommand& out) noexcept {
+    const CommandLayout& k = c.command;
+    const bool pos = k.has_position && is_signal_frame(k.position, f);
+    const bool vel = k.has_velocity && is_signal_frame(k.velocity, f);
+    const bool tau = k.has_torque && is_signal_frame(k.torque, f);
+    if (!pos && !vel && !tau) return DecodeStatus::NotMine;
+    std::int64_t raw_p = 0, raw_v = 0, raw_t = 0;
+    if (pos) {
+        if (const DecodeStatus st = extract_raw(k.position, f, raw_p); st != DecodeStatus::Ok) return st;
+    }
+    if (vel) {
+        if (const DecodeStatus st = extract_raw(k.velocity, f, raw_v); st != DecodeStatus::Ok) return st;
+    }
+    if (tau) {
+        if (const DecodeStatus st = extract_raw(k.torque, f, raw_t); st != DecodeStatus::Ok) return st;
+    }
+    const JointMapping& m = c.mapping;
+    out.mode = drive_mode;
+    if (pos) out.position = link_position(m, to_physical(k.position, raw_p));
+    if (vel) out.velocity = link_velocity(m, to_physical(k.velocity, raw_v));
+    if (tau) out.torque = link_torque(m, c.effort_kind, to_physical(k.torque, raw_t));
+    return DecodeStatus::Ok;
+}
+
 // The registry entry (hal/profile_registry.hpp, docs/profiles.md). Not offered in fw.yaml: a signal
 // layout is written in C++ rather than guessed from defaults.
 struct Profile : ProfileEntry<JointConfig, JointDecoder, 3, false> {

@@ -294,6 +294,32 @@ inline void encode_mode_request(const JointConfig& c, ModeRequest request, CanFr
     f.data[7] = static_cast<std::uint8_t>(request);
 }
 
+// Whether `f` is one of the mode frames above rather than a setpoint.
+inline bool is_mode_request(const CanFrame& f) noexcept {
+    if (f.len != kCommandLength || f.data[7] < 0xFC || f.data[7] > 0xFE) return false;
+    for (std::size_t i = 0; i < 7; ++i) {
+        if (f.data[i] != 0xFF) return false;
+    }
+    return true;
+}
+
+// Drive side (a simulated motor following commands): this motor's command frame as a link-side
+// JointCommand; kp = kd = 0 reads as Torque mode. Mode frames are not setpoints (NotMine; is_mode_request).
+inline DecodeStatus decode_command(const JointConfig& c, CommandMode /*drive_mode*/, const CanFrame& f, JointCommand& out) noexcept {
+    if (f.extended() || f.id != c.motor_id || is_mode_request(f)) return DecodeStatus::NotMine;
+    RawCommand r;
+    if (const DecodeStatus st = unpack_command(f, r); st != DecodeStatus::Ok) return st;
+    const JointMapping& m = c.mapping;
+    const Ranges& g = c.ranges;
+    out.mode = r.kp == 0 && r.kd == 0 ? CommandMode::Torque : CommandMode::Position;
+    out.position = link_position(m, code_to_value(r.position, g.p_min, g.p_max, kPositionBits));
+    out.velocity = link_velocity(m, code_to_value(r.velocity, g.v_min, g.v_max, kVelocityBits));
+    out.torque = link_torque(m, c.effort, code_to_value(r.torque, g.t_min, g.t_max, kEffortBits));
+    out.kp = code_to_value(r.kp, 0.0, g.kp_max, kGainBits);
+    out.kd = code_to_value(r.kd, 0.0, g.kd_max, kGainBits);
+    return DecodeStatus::Ok;
+}
+
 // The registry's drive side (profile_entry.hpp).
 inline std::size_t encode_telemetry(const JointConfig& c, double q, double qd, double tau, CanFrame* out) noexcept {
     encode_reply(c, q, qd, tau, out[0], c.require_status);

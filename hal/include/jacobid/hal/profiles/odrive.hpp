@@ -222,6 +222,30 @@ inline std::size_t encode_command(const JointConfig& c, const JointCommand& cmd,
     return 1;
 }
 
+// Drive side (a simulated axis following commands): Set_Input_Pos or Set_Input_Torque of this node as
+// a link-side JointCommand; only the fields the message carries (and the mode) are written.
+inline DecodeStatus decode_command(const JointConfig& c, CommandMode /*drive_mode*/, const CanFrame& f, JointCommand& out) noexcept {
+    if (f.extended() || (f.id & ~kCanStandardIdMask) != 0 || node_of(f.id) != c.node_id) return DecodeStatus::NotMine;
+    const JointMapping& m = c.mapping;
+    if (command_of(f.id) == kSetInputPos) {
+        InputPos r;
+        if (const DecodeStatus st = unpack_input_pos(f, r); st != DecodeStatus::Ok) return st;
+        out.mode = CommandMode::Position;
+        out.position = link_position(m, kTwoPi * static_cast<double>(r.position_turns));
+        out.velocity = link_velocity(m, kTwoPi * 0.001 * r.velocity_ff);
+        out.torque = link_torque(m, EffortKind::Torque, 0.001 * r.torque_ff);
+        return DecodeStatus::Ok;
+    }
+    if (command_of(f.id) != kSetInputTorque) return DecodeStatus::NotMine;  // other messages of the node
+    if (f.remote() || f.fd() || f.error() || f.len > kCanMaxDataLength) return DecodeStatus::Malformed;
+    if (f.len < 4) return DecodeStatus::Short;
+    const float torque = load_float32_le(&f.data[0]);
+    if (!std::isfinite(torque)) return DecodeStatus::OutOfRange;
+    out.mode = CommandMode::Torque;
+    out.torque = link_torque(m, EffortKind::Torque, static_cast<double>(torque));
+    return DecodeStatus::Ok;
+}
+
 // The registry's drive side (profile_entry.hpp): one sample is both messages.
 inline std::size_t encode_telemetry(const JointConfig& c, double q, double qd, double tau, CanFrame* out) noexcept {
     encode_encoder_estimates(c, q, qd, out[0]);

@@ -8,6 +8,8 @@
 //   JointDecoder (a JointDecoderBase) whose decode() alone decides whether a frame is the joint's
 //   std::size_t encode_telemetry(const JointConfig&, q, qd, tau, CanFrame* out)   drive side (sim-can)
 //   std::size_t encode_command(const JointConfig&, const JointCommand&, CanFrame* out)
+//   DecodeStatus decode_command(const JointConfig&, CommandMode drive_mode, const CanFrame&, JointCommand&)
+//                                                               drive side: a command as the device reads it
 // and, when fw.yaml offers it (kInFirmwareConfig):
 //   void apply_firmware_defaults(JointConfig&, std::size_t joint_index)
 //   template <class Fields> void read_config(Fields&, JointConfig&)   (mapping_fields.hpp)
