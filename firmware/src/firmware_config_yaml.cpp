@@ -10,8 +10,11 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "jacobid/differentiator_bank.hpp"
+#include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 
 namespace jacobid::firmware {
@@ -19,84 +22,34 @@ namespace {
 
 using Section = yaml::YamlSection<ConfigError>;
 
-// The joint key a HAL config status is about, so the error points at the right line.
-const char* key_of(hal::ConfigStatus s, ProfileKind kind) {
-    switch (s) {
-        case hal::ConfigStatus::InvalidGearRatio: return "gear_ratio";
-        case hal::ConfigStatus::InvalidDirection: return "direction";
-        case hal::ConfigStatus::InvalidTorqueConstant: return "torque_constant";
-        case hal::ConfigStatus::InvalidLimits: return "max_torque";
-        case hal::ConfigStatus::InvalidRange: return "effort_range";
-        case hal::ConfigStatus::InvalidCanId: return kind == ProfileKind::Mit ? "reply_id" : "cob_id";
-        case hal::ConfigStatus::InvalidNodeId: return "node_id";
-        case hal::ConfigStatus::InvalidScale: return kind == ProfileKind::Cia402 ? "counts_per_rev" : "position_wrap_turns";
-        case hal::ConfigStatus::InvalidLayout: return "effort_byte";
-        default: return "profile";
-    }
+// "a, b or c" for the missing-key message.
+std::string one_of(const std::vector<std::string>& names) {
+    std::string all;
+    for (std::size_t i = 0; i < names.size(); ++i) all += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return all;
 }
 
-hal::JointMapping read_mapping(Section& s, hal::JointMapping m) {
-    m.gear_ratio = s.number("gear_ratio", m.gear_ratio);
-    m.direction = s.number("direction", m.direction);
-    if (m.direction != 1.0 && m.direction != -1.0) s.fail("direction", "must be 1 or -1");
-    m.position_offset = s.number("offset", m.position_offset);
-    m.torque_constant = s.number("torque_constant", m.torque_constant);
-    m.max_abs_velocity = s.positive("max_velocity", m.max_abs_velocity);
-    m.max_abs_torque = s.positive("max_torque", m.max_abs_torque);
-    return m;
-}
-
+// A joint: its profile's defaults, then the profile's own keys (read_config in hal/profiles/*.hpp),
+// then the HAL's validation reported at the key it is about (config_key_of). Which profiles exist is
+// the registry's business (hal/profile_registry.hpp): no profile is named here.
 JointConfig read_joint(const std::string& source, const YAML::Node& node, std::size_t index) {
     Section s(source, node, fmt::format("joints[{}]", index));
     JointConfig j;
     j.name = s.text("name", fmt::format("j{}", index + 1));
-    if (!s.has("profile")) s.fail(node, "profile", "missing (required): mit, cia402 or odrive");
-    const std::string profile = s.choice("profile", "", {"mit", "cia402", "odrive"});
-    j.profile = profile == "mit" ? ProfileKind::Mit : profile == "cia402" ? ProfileKind::Cia402 : ProfileKind::Odrive;
-    hal::ProfileConfig decoder = default_profile_config(j.profile, index);
-    if (auto* m = std::get_if<hal::mit::JointConfig>(&decoder)) {
-        m->reply_can_id = static_cast<std::uint32_t>(s.integer("reply_id", static_cast<long>(m->reply_can_id), 0, hal::kCanExtendedIdMask));
-        m->extended_id = s.boolean("extended_id", m->extended_id);
-        m->motor_id = static_cast<std::uint8_t>(s.integer("motor_id", m->motor_id, 0, 255));
-        const auto p = s.range("position_range", {m->ranges.p_min, m->ranges.p_max});
-        const auto v = s.range("velocity_range", {m->ranges.v_min, m->ranges.v_max});
-        const auto t = s.range("effort_range", {m->ranges.t_min, m->ranges.t_max});
-        m->ranges = {p.first, p.second, v.first, v.second, t.first, t.second};
-        m->effort = s.choice("effort", "torque", {"torque", "current"}) == "current" ? hal::EffortKind::Current : hal::EffortKind::Torque;
-        m->require_status = s.boolean("require_status", m->require_status);
-        m->mapping = read_mapping(s, m->mapping);
-    } else if (auto* c = std::get_if<hal::cia402::JointConfig>(&decoder)) {
-        c->node_id = static_cast<std::uint8_t>(s.integer("node_id", c->node_id, 1, 127));
-        c->layout.cob_id = static_cast<std::uint32_t>(s.integer("cob_id", 0, 0, hal::kCanStandardIdMask));
-        c->counts_per_revolution = s.positive("counts_per_rev", c->counts_per_revolution);
-        const std::string effort = s.choice("effort", "torque", {"torque", "current", "none"});
-        c->layout.effort = effort == "torque"    ? hal::cia402::EffortObject::TorqueActual
-                           : effort == "current" ? hal::cia402::EffortObject::CurrentActual
-                                                 : hal::cia402::EffortObject::None;
-        c->rated_torque = s.number("rated_torque", c->rated_torque);
-        c->rated_current = s.number("rated_current", c->rated_current);
-        c->layout.position_byte = static_cast<std::uint8_t>(s.integer("position_byte", c->layout.position_byte, 0, 4));
-        c->layout.effort_byte = static_cast<std::uint8_t>(s.integer("effort_byte", c->layout.effort_byte, 0, 6));
-        c->mapping = read_mapping(s, c->mapping);
-        if (c->layout.effort == hal::cia402::EffortObject::CurrentActual && !(c->rated_current > 0.0))
-            s.fail(node, "rated_current", "required (> 0 A) with effort: current");
-        if (c->layout.effort == hal::cia402::EffortObject::TorqueActual && !(c->rated_torque > 0.0))
-            s.fail("rated_torque", "must be > 0 N.m with effort: torque");
-        if (c->layout.effort == hal::cia402::EffortObject::CurrentActual && !s.has("torque_constant"))
-            s.fail(node, "torque_constant", "required (N.m/A) with effort: current");
-    } else if (auto* o = std::get_if<hal::odrive::JointConfig>(&decoder)) {
-        o->node_id = static_cast<std::uint8_t>(s.integer("node_id", o->node_id, 0, hal::odrive::kMaxNodeId));
-        o->position_wrap_turns = s.number("position_wrap_turns", o->position_wrap_turns);
-        o->mapping = read_mapping(s, o->mapping);
-    }
-    s.reject_unknown();
-    // The HAL's own validation, reported at the key it is about.
-    hal::ConfigStatus st = hal::ConfigStatus::Ok;
-    if (const auto* m = std::get_if<hal::mit::JointConfig>(&decoder)) st = hal::mit::validate(*m);
-    if (const auto* c = std::get_if<hal::cia402::JointConfig>(&decoder)) st = hal::cia402::validate(*c);
-    if (const auto* o = std::get_if<hal::odrive::JointConfig>(&decoder)) st = hal::odrive::validate(*o);
-    if (st != hal::ConfigStatus::Ok) s.fail(key_of(st, j.profile), hal::describe(st));
-    j.decoder = decoder;
+    const std::vector<std::string> names = firmware_profile_names();
+    if (!s.has("profile")) s.fail(node, "profile", "missing (required): " + one_of(names));
+    const std::string profile = s.choice("profile", "", names);
+    hal::with_profile_named(profile.c_str(), [&](auto tag) {
+        using P = typename decltype(tag)::type;
+        if constexpr (P::kInFirmwareConfig) {
+            typename P::Config c;
+            apply_firmware_defaults(c, index);
+            read_config(s, c);
+            s.reject_unknown();
+            if (const hal::ConfigStatus st = validate(c); st != hal::ConfigStatus::Ok) s.fail(config_key_of(c, st), hal::describe(st));
+            j.decoder = c;
+        }
+    });
     return j;
 }
 

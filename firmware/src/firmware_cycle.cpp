@@ -7,38 +7,6 @@
 
 namespace jacobid::firmware {
 
-namespace {
-
-// Whether `f` is addressed to the joint configured by `p`: the same tests as the decoders' NotMine path
-// (hal/profiles/*.hpp), used only to attribute frames to joints for duplicate detection.
-bool claims(const hal::ProfileConfig& p, const hal::CanFrame& f) noexcept {
-    if (const auto* m = std::get_if<hal::mit::JointConfig>(&p)) {
-        return f.id == m->reply_can_id && f.extended() == m->extended_id && f.len >= 1 && f.data[0] == m->motor_id;
-    }
-    if (const auto* c = std::get_if<hal::cia402::JointConfig>(&p)) return !f.extended() && f.id == c->cob_id();
-    if (const auto* o = std::get_if<hal::odrive::JointConfig>(&p)) {
-        const std::uint8_t cmd = hal::odrive::command_of(f.id);
-        return !f.extended() && hal::odrive::node_of(f.id) == o->node_id &&
-               (cmd == hal::odrive::kGetEncoderEstimates || cmd == hal::odrive::kGetIq);
-    }
-    if (const auto* g = std::get_if<hal::generic::JointConfig>(&p)) {
-        return hal::generic::is_signal_frame(g->position, f) || (g->has_velocity && hal::generic::is_signal_frame(g->velocity, f)) ||
-               (g->has_effort && hal::generic::is_signal_frame(g->effort, f));
-    }
-    return false;
-}
-
-}  // namespace
-
-const char* to_string(ProfileKind p) noexcept {
-    switch (p) {
-        case ProfileKind::Mit: return "mit";
-        case ProfileKind::Cia402: return "cia402";
-        case ProfileKind::Odrive: return "odrive";
-    }
-    return "unknown";
-}
-
 KernelParams kernel_params(const EstimatorConfig& e, double sample_period, int channel) noexcept {
     KernelParams p;
     p.order = channel;
@@ -52,41 +20,6 @@ KernelParams kernel_params(const EstimatorConfig& e, double sample_period, int c
     return p;
 }
 
-hal::ProfileConfig default_profile_config(ProfileKind kind, std::size_t index) noexcept {
-    const auto id = static_cast<std::uint8_t>(index + 1);
-    hal::JointMapping mapping;
-    mapping.gear_ratio = 4.0;
-    switch (kind) {
-        case ProfileKind::Mit: {
-            hal::mit::JointConfig c;
-            c.reply_can_id = 0;
-            c.motor_id = id;
-            c.ranges = hal::mit::Ranges{-12.5, 12.5, -65.0, 65.0, -30.0, 30.0};
-            c.effort = hal::EffortKind::Torque;
-            c.require_status = true;
-            c.mapping = mapping;
-            return c;
-        }
-        case ProfileKind::Cia402: {
-            hal::cia402::JointConfig c;
-            c.node_id = id;
-            c.layout.effort = hal::cia402::EffortObject::TorqueActual;
-            c.counts_per_revolution = 65536.0;
-            c.rated_torque = 2.0;
-            c.mapping = mapping;
-            return c;
-        }
-        case ProfileKind::Odrive: {
-            hal::odrive::JointConfig c;
-            c.node_id = id;
-            mapping.torque_constant = 8.27 / 100.0;  // Kt = 8.27 / Kv with Kv = 100 rpm/V
-            c.mapping = mapping;
-            return c;
-        }
-    }
-    return hal::mit::JointConfig{};
-}
-
 FirmwareCycle::FirmwareCycle(hal::CanTransport& can, Publisher& publisher, hal::SafetyIo* safety) noexcept
     : can_(can), publisher_(publisher), safety_(safety) {}
 
@@ -97,9 +30,10 @@ std::string FirmwareCycle::configure(const FirmwareConfig& config) {
     if (!(config.rate > 0.0)) return "rate must be > 0 Hz";
     joint_count_ = config.joints.size();
     sample_period_ = config.sample_period();
-    for (std::size_t j = 0; j < joint_count_; ++j) profiles_[j] = config.joints[j].decoder;
+    std::array<hal::ProfileConfig, kMaxJoints> profiles{};
+    for (std::size_t j = 0; j < joint_count_; ++j) profiles[j] = config.joints[j].decoder;
     const hal::DecoderSetConfigResult d =
-        decoders_.configure(Span<const hal::ProfileConfig>(profiles_.data(), joint_count_), config.max_age);
+        decoders_.configure(Span<const hal::ProfileConfig>(profiles.data(), joint_count_), config.max_age);
     if (d.status != hal::ConfigStatus::Ok) {
         return "joints[" + std::to_string(d.joint) + "]: " + hal::describe(d.status);
     }
@@ -139,19 +73,14 @@ std::string FirmwareCycle::configure(const FirmwareConfig& config) {
     return {};
 }
 
-int FirmwareCycle::owner_of(const hal::CanFrame& f) const noexcept {
-    for (std::size_t j = 0; j < joint_count_; ++j) {
-        if (claims(profiles_[j], f)) return static_cast<int>(j);
-    }
-    return -1;
-}
-
 // Frames of one CAN id twice in a cycle for the same joint: a retransmission or a bus-level duplicate.
+// The joint is the one whose decoder took the frame (JointDecoderSet::route): no second "is it mine"
+// test that could drift from the decoders' (docs/profiles.md).
 // An identical payload changes nothing (counted only); a different one means two measurements claim one
 // sample, so the sample is flagged as a decode error rather than silently taking the later one.
-void FirmwareCycle::note_decoded(int joint, const hal::CanFrame& f) noexcept {
-    JointCycle& jc = joint_cycle_[static_cast<std::size_t>(joint)];
-    JointCounters& c = counters_.joints[static_cast<std::size_t>(joint)];
+void FirmwareCycle::note_decoded(std::size_t joint, const hal::CanFrame& f) noexcept {
+    JointCycle& jc = joint_cycle_[joint];
+    JointCounters& c = counters_.joints[joint];
     const std::size_t len = std::min<std::size_t>(f.len, hal::kCanMaxDataLength);
     for (std::size_t i = 0; i < jc.seen_count; ++i) {
         SeenFrame& s = jc.seen[i];
@@ -214,8 +143,8 @@ void FirmwareCycle::step(std::int64_t now_ns) noexcept {
     if (drained.count == frames_.size()) ++counters_.backlog_cycles;
     for (std::size_t i = 0; i < drained.count; ++i) {
         const hal::CanFrame& f = frames_[i];
-        const int owner = owner_of(f);
-        if (decoders_.dispatch(f) == hal::DecodeStatus::Ok && owner >= 0) note_decoded(owner, f);
+        const hal::RouteResult routed = decoders_.route(f);
+        if (routed.status == hal::DecodeStatus::Ok) note_decoded(routed.joint, f);
     }
     // SYNC right after the read: the drives' answers have the rest of this period to arrive and are
     // all read at the start of the next cycle, one sample per joint per cycle.

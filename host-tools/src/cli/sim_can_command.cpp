@@ -96,10 +96,11 @@ void run(SimCanOptions o) {
         for (const auto& j : fw.joints) joints.push_back(j.decoder);
         if (o.sync_id < 0) o.sync_id = fw.sync_id;
     } else {
-        const firmware::ProfileKind kind = o.profile == "mit" ? firmware::ProfileKind::Mit
-                                           : o.profile == "cia402" ? firmware::ProfileKind::Cia402
-                                                                   : firmware::ProfileKind::Odrive;
-        for (std::size_t j = 0; j < n; ++j) joints.push_back(firmware::default_profile_config(kind, j));
+        for (std::size_t j = 0; j < n; ++j) {
+            hal::ProfileConfig c;
+            if (!firmware::default_profile_config(o.profile, j, c)) throw InputError(fmt::format("--profile {}: not a device profile", o.profile));
+            joints.push_back(c);
+        }
     }
     if (o.torque_noise.size() == 1) o.torque_noise.assign(n, o.torque_noise[0]);
     if (o.torque_noise.size() != n) throw InputError(fmt::format("--torque-noise: expected 1 or {} values, got {}", n, o.torque_noise.size()));
@@ -168,6 +169,15 @@ void run(SimCanOptions o) {
 void run(const SimCanOptions&) { throw InputError("sim-can: this jacobid was built without the HAL/firmware (JACOBID_BUILD_HAL=OFF)"); }
 #endif
 
+// The profiles a firmware config can name (hal/profile_registry.hpp); sim-can offers the same.
+std::vector<std::string> profile_names() {
+#if JACOBID_WITH_FIRMWARE
+    return firmware::firmware_profile_names();
+#else
+    return {};  // sim-can needs the HAL and the firmware config (see run())
+#endif
+}
+
 }  // namespace
 
 void add_sim_can_command(CLI::App& app) {
@@ -175,7 +185,7 @@ void add_sim_can_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("sim-can", "play the closed-loop robot simulator's motor drivers on a CAN interface (SocketCAN)");
     cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction");
     cmd->add_option("--profile", o->profile, "device profile of every joint, with the firmware's defaults for it (docs/firmware.md)")
-        ->check(CLI::IsMember({"mit", "cia402", "odrive"}))
+        ->check(CLI::IsMember(profile_names()))
         ->capture_default_str();
     cmd->add_option("--config", o->config, "take the joints' profiles, ids, ranges and gear ratios from this jacobid-fw config (overrides --profile)");
     auto* iface = cmd->add_option("--iface", o->iface, "CAN interface, e.g. vcan0 or can0");

@@ -2,7 +2,8 @@
 #pragma once
 // The simulator's motor drivers on a CAN bus: each sample of the closed-loop simulation (link-side q, qd,
 // tau per joint) becomes the frames the joint's device would send, in its profile (MIT reply, CiA 402
-// TPDO, ODrive encoder estimates + Iq), encoded with the HAL's simulator-side encoders. The bus is any
+// TPDO, ODrive encoder estimates + Iq, generic signals), encoded by the profile's own drive-side encoder
+// through the registry (hal/profile_registry.hpp, docs/profiles.md). The bus is any
 // CanTransport: SocketCAN for `jacobid sim-can`, a VirtualCanBus endpoint for in-process tests.
 //
 // The profile's own quantization is the measurement model here (MIT: 16-bit position, 12-bit effort):
@@ -31,7 +32,8 @@ public:
     // Returns the number of frames the transport accepted.
     std::size_t send(const double* q, const double* qd, const double* tau);
 
-    // The frames of joint j for a sample, without sending (1 for MIT and CiA 402, 2 for ODrive).
+    // The frames of joint j for a sample, without sending (1 for MIT and CiA 402, 2 for ODrive, up to
+    // hal::kMaxTelemetryFrames); `out` holds that many.
     std::size_t encode(std::size_t joint, double q, double qd, double tau, hal::CanFrame* out) const;
 
     std::size_t joint_count() const { return joints_.size(); }

@@ -3,6 +3,7 @@
 // allocation over many cycles, and fault injection (each fault detected, counted and flagged).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -230,6 +231,79 @@ TEST(FirmwareFaults, DuplicatedFramesAreCountedAndConflictingOnesFlagged) {
     EXPECT_EQ(rig.row_for_sample(600).joints[0].flags, 0u);
     EXPECT_TRUE(rig.row_for_sample(700).joints[0].flags & stream::kJointDecodeError);
     EXPECT_EQ(rig.row_for_sample(700).joints[1].flags, 0u);
+}
+
+// A transport the test fills frame by frame: it can hand the cycle frames no bus would carry (a standard
+// frame with an id beyond 11 bits), as a faulty controller driver might.
+class ScriptedTransport final : public hal::CanTransport {
+public:
+    std::vector<hal::CanFrame> queue;
+    hal::CanStatus send(const hal::CanFrame&) noexcept override { return hal::CanStatus::Ok; }
+    hal::CanStatus receive(hal::CanFrame& frame) noexcept override {
+        if (next_ == queue.size()) {
+            queue.clear();
+            next_ = 0;
+            return hal::CanStatus::Empty;
+        }
+        frame = queue[next_++];
+        return hal::CanStatus::Ok;
+    }
+    const hal::CanCounters& counters() const noexcept override { return counters_; }
+    bool is_open() const noexcept override { return true; }
+
+private:
+    std::size_t next_ = 0;
+    hal::CanCounters counters_{};
+};
+
+// Duplicate detection attributes a frame to the joint whose own decode() took it (no second test that
+// could drift, docs/profiles.md): a frame a decoder's test rejects never lands on its joint.
+TEST(FirmwareFaults, FramesADecoderRejectsAreNeverAttributedToItsJoint) {
+    const firmware::FirmwareConfig config = firmware::parse_firmware_config(
+        "can: {interface: virtual}\njoints:\n  - {profile: mit}\n  - {profile: odrive}\nstream: {host: 127.0.0.1, port: 5005}\n", "fw.yaml");
+    ScriptedTransport can;
+    can.queue.reserve(16);
+    test::MemoryPublisher publisher;
+    firmware::FirmwareCycle cycle(can, publisher, nullptr);
+    ASSERT_EQ(cycle.configure(config), "");
+    const hal::ProfileConfig& mit = config.joints[0].decoder;    // motor 1, replies on id 0
+    const hal::ProfileConfig& odrive = config.joints[1].decoder; // node 2: 0x049 encoder, 0x054 Iq
+    std::array<hal::CanFrame, hal::kMaxTelemetryFrames> out{};
+    for (int k = 0; k < 60; ++k) {
+        const double q = 0.01 * k;
+        for (const hal::ProfileConfig* joint : {&mit, &odrive}) {
+            const std::size_t n = hal::encode_telemetry(*joint, q, 0.0, 0.5, out.data());
+            can.queue.insert(can.queue.end(), out.begin(), out.begin() + static_cast<long>(n));
+        }
+        if (k == 20) {
+            // Zero-length frames on the MIT reply id, twice: MIT's decode takes them for motor 1 (Short),
+            // so they are rejections of joint 0, never decoded frames to compare as duplicates.
+            can.queue.push_back(hal::CanFrame{});
+            can.queue.push_back(hal::CanFrame{});
+        }
+        if (k == 30) {
+            // Node 2's encoder id with bit 11 set, twice with different payloads: ODrive's decode rejects the
+            // id, so no conflicting duplicate is counted against joint 1.
+            for (float p : {1.0f, 2.0f}) {
+                hal::CanFrame f;
+                hal::odrive::pack_encoder_estimates(2, {p, 0.0f}, f);
+                f.id |= 0x800u;
+                can.queue.push_back(f);
+            }
+        }
+        cycle.step(static_cast<std::int64_t>(k) * kPeriodNs);
+    }
+    const firmware::CycleCounters& c = cycle.counters();
+    EXPECT_EQ(c.decode.rejected_short, 2u);
+    EXPECT_EQ(c.decode.rejected_unknown_id, 2u);
+    EXPECT_EQ(c.duplicate_frames, 0u);
+    EXPECT_EQ(c.conflicting_duplicates, 0u);
+    for (std::size_t j = 0; j < 2; ++j) {
+        EXPECT_EQ(c.joints[j].duplicate_frames, 0u) << j;
+        EXPECT_EQ(c.joints[j].conflicting_duplicates, 0u) << j;
+        EXPECT_EQ(c.joints[j].decode_error_samples, 0u) << j;  // each joint's own frames arrived too
+    }
+    EXPECT_EQ(c.decode.decoded, 60u * 3u);
 }
 
 TEST(FirmwareFaults, SilentJointIsStaleForItsWholeSilenceAndHeld) {

@@ -175,6 +175,59 @@ TEST(HalDecoderSet, SimulatorToVirtualBusToDecoderLoop) {
     EXPECT_EQ(fw->counters().rx_overflows, 0u);
 }
 
+// route() names the joint whose own decode() took the frame: the firmware's duplicate detection uses it
+// and has no test of its own that could drift from the decoders' (docs/profiles.md).
+TEST(HalDecoderSet, RouteAttributesAFrameOnlyByTheDecodersOwnTest) {
+    JointDecoderSet<8> set;
+    const auto cfg = robot();  // MIT motors 1, 2 on id 0; ODrive node 3; CiA 402 node 5
+    ASSERT_EQ(set.configure(cfg).status, ConfigStatus::Ok);
+    set.begin_cycle();
+    // A zero-length frame on the MIT reply id: MIT's decode cannot read data[0] and takes it (Short) for
+    // the first motor on the id; no other joint is named.
+    const RouteResult empty = set.route(frame(0x000, {}));
+    EXPECT_EQ(empty.status, DecodeStatus::Short);
+    EXPECT_EQ(empty.joint, 0u);
+    // A standard frame whose id has bits above the 11-bit mask, with node 3 and Get_Encoder_Estimates in
+    // its low bits: ODrive's decode rejects it, so no joint is named.
+    const RouteResult wide = set.route(frame(0x800 | 0x069, {0x00, 0x00, 0xC0, 0x3F, 0x00, 0x00, 0x00, 0xC0}));
+    EXPECT_EQ(wide.status, DecodeStatus::UnknownId);
+    EXPECT_EQ(wide.joint, RouteResult::kNoJoint);
+    EXPECT_FALSE(set.state(2).decode_error);
+    // The same payload on the real id is node 3's.
+    const RouteResult ok = set.route(frame(0x069, {0x00, 0x00, 0xC0, 0x3F, 0x00, 0x00, 0x00, 0xC0}));
+    EXPECT_EQ(ok.status, DecodeStatus::Ok);
+    EXPECT_EQ(ok.joint, 2u);
+}
+
+TEST(HalDecoderSet, RegistryTelemetryRoundTripsEveryProfile) {
+    generic::JointConfig g;
+    g.position.can_id = 0x280;
+    g.position.bit_width = 32;
+    g.position.scale = 1e-4;
+    g.has_velocity = true;
+    g.velocity.can_id = 0x281;
+    g.velocity.scale = 1e-3;
+    g.effort.can_id = 0x280;
+    g.effort.byte_offset = 4;
+    g.effort.scale = 1e-3;
+    const std::array<ProfileConfig, 5> joints = {mit_joint(1), mit_joint(2), odrive_joint(3), cia_joint(5), g};
+    JointDecoderSet<8> set;
+    ASSERT_EQ(set.configure(joints).status, ConfigStatus::Ok);
+    set.begin_cycle();
+    std::array<CanFrame, kMaxTelemetryFrames> out{};
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+        const std::size_t n = encode_telemetry(joints[j], 0.5, 0.25, 1.0, out.data());
+        ASSERT_GE(n, 1u);
+        for (std::size_t i = 0; i < n; ++i) {
+            const RouteResult r = set.route(out[i]);
+            EXPECT_EQ(r.status, DecodeStatus::Ok) << profile_name(joints[j]);
+            EXPECT_EQ(r.joint, j) << profile_name(joints[j]);
+        }
+        EXPECT_TRUE(set.state(j).fresh()) << profile_name(joints[j]);
+        EXPECT_NEAR(set.state(j).position, 0.5, 2e-3) << profile_name(joints[j]);
+    }
+}
+
 TEST(HalDecoderSet, DecodePathAllocatesNothing) {
     JointDecoderSet<8> set;
     const auto cfg = robot();

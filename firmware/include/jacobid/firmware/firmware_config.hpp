@@ -6,7 +6,7 @@
 // Parsing (YAML, with file:line:column errors) lives in firmware_config_yaml.hpp so that this header stays
 // free of yaml-cpp: the simulator side (jacobid sim-can) includes it for the profile defaults below, which
 // is what keeps `sim-can --profile mit` and a firmware joint written as `{profile: mit}` on the same wire
-// encoding.
+// encoding. The profiles themselves (names, defaults, keys) come from hal/profile_registry.hpp.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -24,13 +24,9 @@ constexpr std::size_t kKernelCapacity = 512;
 // Frames one cycle may drain; more stay queued for the next cycle (and are counted as backlog).
 constexpr std::size_t kMaxFramesPerCycle = 64;
 
-enum class ProfileKind { Mit, Cia402, Odrive };
-const char* to_string(ProfileKind p) noexcept;
-
 struct JointConfig {
     std::string name;
-    ProfileKind profile = ProfileKind::Mit;
-    hal::ProfileConfig decoder;  // the HAL decoder configuration, link-side mapping included
+    hal::ProfileConfig decoder;  // the HAL profile configuration, link-side mapping included (hal::profile_name)
 };
 
 // The Jacobi differentiators of the streaming bank (one design for every joint).
@@ -88,17 +84,12 @@ struct FirmwareConfig {
 // The kernel parameters of channel c (0 q^, 1 qd^, 2 qdd^) for a given estimator config and rate.
 KernelParams kernel_params(const EstimatorConfig& e, double sample_period, int channel) noexcept;
 
-// Defaults of a joint given only its profile and its index (0-based): the same on the firmware and the
-// simulator side. Chosen so that the link-side resolution is realistic for identification (see
-// docs/firmware.md, "Profiles and resolution"):
-//  - MIT: every motor replies on CAN id 0 with data[0] = index + 1 (8-byte replies); ranges +-12.5 rad,
-//    +-65 rad/s, +-30 N.m (motor side, effort = torque); gear ratio 4, so one position code is
-//    25 / 65535 / 4 = 9.5e-5 rad on the link (2^16 counts/rev is 9.6e-5) and one torque code
-//    60 / 4095 * 4 = 0.059 N.m on the link (+-120 N.m: the 2R robot's shoulder needs ~113). Small joints
-//    should narrow effort_range in fw.yaml (and sim-can --config takes the same file).
-//  - CiA 402: node index + 1, TPDO1 (0x180 + node), INT32 position with 2^16 counts per motor turn,
-//    torque actual value in per mille of a 2 N.m rated torque; gear ratio 4.
-//  - ODrive: node index + 1, encoder estimates (float turns) and Iq; Kt 0.083 N.m/A; gear ratio 4.
-hal::ProfileConfig default_profile_config(ProfileKind kind, std::size_t index) noexcept;
+// The names fw.yaml offers for `profile:` (the registry's profiles with kInFirmwareConfig), in order.
+std::vector<std::string> firmware_profile_names();
+
+// Defaults of a joint given only its profile name and its index (0-based): the same on the firmware and
+// the simulator side, each profile's apply_firmware_defaults (hal/profiles/*.hpp; why these values:
+// docs/firmware.md, "Profiles and resolution"). False when fw.yaml offers no profile of that name.
+bool default_profile_config(const std::string& profile, std::size_t index, hal::ProfileConfig& out);
 
 }  // namespace jacobid::firmware

@@ -120,8 +120,7 @@ private:
         std::array<std::uint32_t, kMaxJoints> flags{};
     };
 
-    int owner_of(const hal::CanFrame& f) const noexcept;
-    void note_decoded(int joint, const hal::CanFrame& f) noexcept;
+    void note_decoded(std::size_t joint, const hal::CanFrame& f) noexcept;
     void update_safety() noexcept;
     void publish_row(const Bank::Output& out) noexcept;
 
@@ -132,7 +131,6 @@ private:
     bool configured_ = false;
     std::size_t joint_count_ = 0;
     double sample_period_ = 0.0;
-    std::array<hal::ProfileConfig, kMaxJoints> profiles_{};
     hal::JointDecoderSet<kMaxJoints> decoders_{};
     Bank bank_{};
     Bank::Output out_{};

@@ -8,9 +8,11 @@
 //     auto r = transport.drain(frames);           // non-blocking
 //     set.dispatch(Span<const CanFrame>(frames.data(), r.count));
 //     ... read set.state(j) (use only !stale) ...
-// A frame goes to the first joint whose profile claims it (CAN id, and data[0] for MIT); if none does it
-// is counted as unknown id. A claimed frame that fails its checks is counted by reason and flags that
-// joint's decode_error; it never changes the state. Nothing allocates (std::variant holds values).
+// A frame goes to the first joint whose decoder does not answer NotMine (the decoder's own test, the
+// only one: docs/profiles.md); if none does it is counted as unknown id. route() also says which joint
+// took it, for the firmware's duplicate detection. A claimed frame that fails its checks is counted by
+// reason and flags that joint's decode_error; it never changes the state. Nothing allocates
+// (std::variant holds values; profile dispatch: profile_registry.hpp).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -18,19 +20,21 @@
 
 #include "jacobid/hal/can_frame.hpp"
 #include "jacobid/hal/joint_state.hpp"
-#include "jacobid/hal/profiles/cia402.hpp"
-#include "jacobid/hal/profiles/generic.hpp"
-#include "jacobid/hal/profiles/mit.hpp"
-#include "jacobid/hal/profiles/odrive.hpp"
+#include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/span.hpp"
 
 namespace jacobid::hal {
 
-using ProfileConfig = std::variant<mit::JointConfig, cia402::JointConfig, odrive::JointConfig, generic::JointConfig>;
-
 struct DecoderSetConfigResult {
     ConfigStatus status = ConfigStatus::Ok;
     std::size_t joint = 0;  // first offending joint
+};
+
+// Where a frame went: the joint whose decoder claimed it (kNoJoint: nobody's) and what it answered.
+struct RouteResult {
+    static constexpr std::size_t kNoJoint = static_cast<std::size_t>(-1);
+    DecodeStatus status = DecodeStatus::UnknownId;
+    std::size_t joint = kNoJoint;
 };
 
 template <std::size_t MaxJoints>
@@ -43,7 +47,7 @@ public:
         count_ = 0;
         if (joints.size() > MaxJoints) return {ConfigStatus::TooManyJoints, MaxJoints};
         for (std::size_t j = 0; j < joints.size(); ++j) {
-            const ConfigStatus s = configure_one(j, joints[j]);
+            const ConfigStatus s = hal::configure(decoders_[j], joints[j]);
             if (s != ConfigStatus::Ok) return {s, j};
         }
         count_ = joints.size();
@@ -57,10 +61,10 @@ public:
         for (std::size_t j = 0; j < count_; ++j) hal::begin_cycle(states_[j], max_age_);
     }
 
-    DecodeStatus dispatch(const CanFrame& f) noexcept {
+    RouteResult route(const CanFrame& f) noexcept {
         ++counters_.frames;
         for (std::size_t j = 0; j < count_; ++j) {
-            const DecodeStatus s = decode_one(j, f);
+            const DecodeStatus s = hal::decode(decoders_[j], f, states_[j]);
             if (s == DecodeStatus::NotMine) continue;
             if (s == DecodeStatus::Ok) {
                 ++counters_.decoded;
@@ -69,11 +73,12 @@ public:
                 count_rejection(s);
                 states_[j].decode_error = true;
             }
-            return s;
+            return {s, j};
         }
         ++counters_.rejected_unknown_id;
-        return DecodeStatus::UnknownId;
+        return {};
     }
+    DecodeStatus dispatch(const CanFrame& f) noexcept { return route(f).status; }
 
     // Dispatches every frame; returns how many were decoded.
     std::size_t dispatch(Span<const CanFrame> frames) noexcept {
@@ -84,15 +89,7 @@ public:
 
     // Forget the unwrapping history (e.g. after a drive re-homed); states are kept until refreshed.
     void reset_unwrapping() noexcept {
-        for (std::size_t j = 0; j < count_; ++j) {
-            switch (decoders_[j].index()) {
-                case 0: std::get_if<0>(&decoders_[j])->reset(); break;
-                case 1: std::get_if<1>(&decoders_[j])->reset(); break;
-                case 2: std::get_if<2>(&decoders_[j])->reset(); break;
-                case 3: std::get_if<3>(&decoders_[j])->reset(); break;
-                default: break;
-            }
-        }
+        for (std::size_t j = 0; j < count_; ++j) hal::reset_unwrapping(decoders_[j]);
     }
 
     std::size_t joint_count() const noexcept { return count_; }
@@ -101,33 +98,6 @@ public:
     const DecodeCounters& counters() const noexcept { return counters_; }
 
 private:
-    using AnyDecoder = std::variant<mit::JointDecoder, cia402::JointDecoder, odrive::JointDecoder, generic::JointDecoder>;
-
-    ConfigStatus configure_one(std::size_t j, const ProfileConfig& c) noexcept {
-        // get_if rather than std::visit on the config: the alternatives are constructed explicitly.
-        if (const auto* m = std::get_if<mit::JointConfig>(&c)) return emplace<mit::JointDecoder>(j, *m);
-        if (const auto* p = std::get_if<cia402::JointConfig>(&c)) return emplace<cia402::JointDecoder>(j, *p);
-        if (const auto* o = std::get_if<odrive::JointConfig>(&c)) return emplace<odrive::JointDecoder>(j, *o);
-        if (const auto* g = std::get_if<generic::JointConfig>(&c)) return emplace<generic::JointDecoder>(j, *g);
-        return ConfigStatus::InvalidLayout;  // valueless variant
-    }
-    template <typename Decoder, typename Config>
-    ConfigStatus emplace(std::size_t j, const Config& c) noexcept {
-        return decoders_[j].template emplace<Decoder>().configure(c);
-    }
-
-    DecodeStatus decode_one(std::size_t j, const CanFrame& f) noexcept {
-        // A switch on the index keeps std::visit's (never taken) bad_variant_access path out of the cycle.
-        JointState& s = states_[j];
-        switch (decoders_[j].index()) {
-            case 0: return std::get_if<0>(&decoders_[j])->decode(f, s);
-            case 1: return std::get_if<1>(&decoders_[j])->decode(f, s);
-            case 2: return std::get_if<2>(&decoders_[j])->decode(f, s);
-            case 3: return std::get_if<3>(&decoders_[j])->decode(f, s);
-            default: return DecodeStatus::NotMine;
-        }
-    }
-
     void count_rejection(DecodeStatus s) noexcept {
         switch (s) {
             case DecodeStatus::Short: ++counters_.rejected_short; break;
@@ -137,7 +107,7 @@ private:
         }
     }
 
-    std::array<AnyDecoder, MaxJoints> decoders_{};
+    std::array<AnyJointDecoder, MaxJoints> decoders_{};
     std::array<JointState, MaxJoints> states_{};
     DecodeCounters counters_{};
     std::size_t count_ = 0;

@@ -129,13 +129,11 @@ public:
         return text(key, "");
     }
     std::string choice(const std::string& key, const std::string& fallback, std::initializer_list<const char*> options) {
-        const std::string v = text(key, fallback);
-        std::string all;
-        for (const char* o : options) {
-            if (v == o) return v;
-            all += (all.empty() ? "" : ", ") + std::string(o);
-        }
-        fail(key, fmt::format("'{}' is not one of: {}", v, all));
+        return choose(key, fallback, options);
+    }
+    // Options known only at run time (e.g. the device profiles of hal/profile_registry.hpp).
+    std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& options) {
+        return choose(key, fallback, options);
     }
     // [lo, hi] with lo < hi.
     std::pair<double, double> range(const std::string& key, std::pair<double, double> fallback, const std::string& unit = "") {
@@ -167,6 +165,16 @@ public:
     }
 
 private:
+    template <typename Options>
+    std::string choose(const std::string& key, const std::string& fallback, const Options& options) {
+        const std::string v = text(key, fallback);
+        std::string all;
+        for (const auto& o : options) {
+            if (v == o) return v;
+            all += (all.empty() ? "" : ", ") + std::string(o);
+        }
+        fail(key, fmt::format("'{}' is not one of: {}", v, all));
+    }
     static std::string in(const std::string& unit) { return unit.empty() ? std::string() : " (" + unit + ")"; }
     bool is_used(const std::string& key) const {
         for (const auto& u : used_) {

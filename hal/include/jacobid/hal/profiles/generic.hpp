@@ -10,14 +10,15 @@
 // Physical value = raw * scale + offset. For the position that is the device angle in rad (motor side,
 // before the gear ratio); for the effort a torque in N.m or a current in A (EffortKind).
 // The position field wraps at 2^bit_width counts; it is unwrapped on counts when unwrap_position is set.
+//
+// Commands are laid out the same way (CommandLayout): the user writes one signal per setpoint (position,
+// velocity, torque), each in a frame of its own id or sharing one; encode_command fills those frames.
+// Example and byte layout: docs/profiles.md, "Generic".
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
-#include "jacobid/hal/byte_codec.hpp"
-#include "jacobid/hal/can_frame.hpp"
-#include "jacobid/hal/joint_state.hpp"
-#include "jacobid/hal/profiles/plausibility.hpp"
-#include "jacobid/hal/unwrap.hpp"
+#include "jacobid/hal/profiles/profile_entry.hpp"
 
 namespace jacobid::hal::generic {
 
@@ -88,6 +89,16 @@ inline std::int64_t to_raw(const Signal& s, double physical) noexcept {
     return static_cast<std::int64_t>(r);
 }
 
+// The command frames' signals (device side, like the telemetry's: rad, rad/s, N.m or A).
+struct CommandLayout {
+    bool has_position = false;
+    Signal position{};
+    bool has_velocity = false;
+    Signal velocity{};
+    bool has_torque = false;
+    Signal torque{};  // in the joint's effort_kind units
+};
+
 struct JointConfig {
     Signal position{};
     bool unwrap_position = true;  // the field wraps at 2^bit_width counts (needs bit_width <= 32)
@@ -97,6 +108,7 @@ struct JointConfig {
     Signal effort{};              // device N.m or A
     EffortKind effort_kind = EffortKind::Torque;
     JointMapping mapping{};
+    CommandLayout command{};  // nothing by default: the joint is only read
 };
 
 inline ConfigStatus validate(const JointConfig& c) noexcept {
@@ -104,23 +116,21 @@ inline ConfigStatus validate(const JointConfig& c) noexcept {
         if (s == nullptr) continue;
         if (const ConfigStatus st = validate(*s); st != ConfigStatus::Ok) return st;
     }
+    const CommandLayout& k = c.command;
+    for (const Signal* s : {k.has_position ? &k.position : nullptr, k.has_velocity ? &k.velocity : nullptr, k.has_torque ? &k.torque : nullptr}) {
+        if (s == nullptr) continue;
+        if (const ConfigStatus st = validate(*s); st != ConfigStatus::Ok) return st;
+    }
     if (c.unwrap_position && c.position.bit_width > 32) return ConfigStatus::InvalidLayout;
     return validate(c.mapping, c.has_effort ? c.effort_kind : EffortKind::Torque);
 }
 
-class JointDecoder {
-public:
-    ConfigStatus configure(const JointConfig& c) noexcept {
-        const ConfigStatus s = validate(c);
-        if (s == ConfigStatus::Ok) {
-            config_ = c;
-            unwrap_.set_modulus(c.unwrap_position ? (1ull << c.position.bit_width) : 0);
-        }
-        return s;
-    }
-    const JointConfig& config() const noexcept { return config_; }
-    void reset() noexcept { unwrap_.reset(); }
+// The position field wraps at 2^bit_width counts when it is unwrapped (0: no unwrapping).
+inline std::uint64_t unwrap_period(const JointConfig& c) noexcept { return c.unwrap_position ? (1ull << c.position.bit_width) : 0; }
 
+class JointDecoder : public JointDecoderBase<JointConfig, CountUnwrapper> {
+public:
+    // The one test of "is this frame mine" (docs/profiles.md): every caller goes through decode.
     // Position, velocity and effort may share a frame or come in separate ones; every field the frame
     // carries is checked before any is stored, so a rejected frame changes nothing.
     DecodeStatus decode(const CanFrame& f, JointState& s) noexcept {
@@ -146,11 +156,9 @@ public:
             if (!plausible(tau, m.max_abs_torque)) return DecodeStatus::OutOfRange;
         }
         if (pos) {
-            CountUnwrapper next = unwrap_;  // moved only by a frame that passes every check
-            const std::int64_t counts = c.unwrap_position ? next.update(raw_p) : raw_p;
-            const double position = link_position(m, to_physical(c.position, counts));
-            if (!std::isfinite(position)) return DecodeStatus::OutOfRange;
-            unwrap_ = next;
+            double position = 0.0;
+            const auto to_link = [&](std::int64_t counts) { return link_position(m, to_physical(c.position, counts)); };
+            if (!commit_position(raw_p, to_link, position)) return DecodeStatus::OutOfRange;
             s.position = position;
             mark_position(s, f.timestamp_ns);
         }
@@ -161,10 +169,6 @@ public:
         }
         return DecodeStatus::Ok;
     }
-
-private:
-    JointConfig config_{};
-    CountUnwrapper unwrap_{};
 };
 
 // Simulator side: writes the fields of `f` that belong to its id (position, velocity, effort), wrapping
@@ -182,5 +186,85 @@ inline void encode_fields(const JointConfig& c, double link_q, double link_qd, d
     if (c.has_effort && is_signal_frame(c.effort, f))
         insert_raw(c.effort, to_raw(c.effort, device_effort(m, c.effort_kind, link_tau)), f);
 }
+
+// The frame of `s`'s id among out[0..count): found, or started (zeroed, id and format set) at the end.
+inline CanFrame& frame_of(const Signal& s, CanFrame* out, std::size_t& count) noexcept {
+    for (std::size_t i = 0; i < count; ++i) {
+        if (is_signal_frame(s, out[i])) return out[i];
+    }
+    CanFrame& f = out[count++];
+    f = CanFrame{};
+    f.id = s.can_id;
+    f.flags = s.extended_id ? kCanExtended : 0;
+    return f;
+}
+
+// A field beyond byte 8 needs a CAN FD frame, of the next length FD can carry.
+inline void fit_length(CanFrame& f) noexcept {
+    if (f.len <= kCanMaxDataLength) return;
+    f.flags |= kCanFd;
+    while (!is_valid_fd_length(f.len)) ++f.len;
+}
+
+// Simulator side, every frame of the joint for one sample (one per distinct id: at most 3).
+inline std::size_t encode_telemetry(const JointConfig& c, double link_q, double link_qd, double link_tau, CanFrame* out) noexcept {
+    std::size_t n = 0;
+    for (const Signal* s : {&c.position, c.has_velocity ? &c.velocity : nullptr, c.has_effort ? &c.effort : nullptr}) {
+        if (s != nullptr) frame_of(*s, out, n);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        encode_fields(c, link_q, link_qd, link_tau, out[i]);
+        fit_length(out[i]);
+    }
+    return n;
+}
+
+// Link-side command -> the user's command frames (one per distinct id, at most 3). Position mode writes
+// every setpoint the layout has; Torque mode only the torque. Values saturate at their field (no wrap:
+// a wrapped setpoint would send the joint a turn away).
+inline std::size_t encode_command(const JointConfig& c, const JointCommand& cmd, CanFrame* out) noexcept {
+    const CommandLayout& k = c.command;
+    const JointMapping& m = c.mapping;
+    const bool position_mode = cmd.mode == CommandMode::Position;
+    std::size_t n = 0;
+    if (position_mode && k.has_position) insert_raw(k.position, to_raw(k.position, motor_position(m, cmd.position)), frame_of(k.position, out, n));
+    if (position_mode && k.has_velocity) insert_raw(k.velocity, to_raw(k.velocity, motor_velocity(m, cmd.velocity)), frame_of(k.velocity, out, n));
+    if (k.has_torque) insert_raw(k.torque, to_raw(k.torque, device_effort(m, c.effort_kind, cmd.torque)), frame_of(k.torque, out, n));
+    for (std::size_t i = 0; i < n; ++i) fit_length(out[i]);
+    return n;
+}
+
+// Drive side (a simulated device following commands): the setpoints this frame carries, link side; the
+// other fields keep their values (a layout may spread a command over several frames). Every field is
+// checked before any is written.
+inline DecodeStatus decode_command(const JointConfig& c, CommandMode drive_mode, const CanFrame& f, JointCommand& out) noexcept {
+    const CommandLayout& k = c.command;
+    const bool pos = k.has_position && is_signal_frame(k.position, f);
+    const bool vel = k.has_velocity && is_signal_frame(k.velocity, f);
+    const bool tau = k.has_torque && is_signal_frame(k.torque, f);
+    if (!pos && !vel && !tau) return DecodeStatus::NotMine;
+    std::int64_t raw_p = 0, raw_v = 0, raw_t = 0;
+    if (pos) {
+        if (const DecodeStatus st = extract_raw(k.position, f, raw_p); st != DecodeStatus::Ok) return st;
+    }
+    if (vel) {
+        if (const DecodeStatus st = extract_raw(k.velocity, f, raw_v); st != DecodeStatus::Ok) return st;
+    }
+    if (tau) {
+        if (const DecodeStatus st = extract_raw(k.torque, f, raw_t); st != DecodeStatus::Ok) return st;
+    }
+    const JointMapping& m = c.mapping;
+    out.mode = drive_mode;
+    if (pos) out.position = link_position(m, to_physical(k.position, raw_p));
+    if (vel) out.velocity = link_velocity(m, to_physical(k.velocity, raw_v));
+    if (tau) out.torque = link_torque(m, c.effort_kind, to_physical(k.torque, raw_t));
+    return DecodeStatus::Ok;
+}
+
+// The registry entry (hal/profile_registry.hpp, docs/profiles.md). Not offered in fw.yaml: a signal
+// layout is written in C++ rather than guessed from defaults.
+struct Profile : ProfileEntry<JointConfig, JointDecoder, 3, false> {
+    static constexpr const char* kName = "generic";
+};
 
 }  // namespace jacobid::hal::generic
