@@ -5,6 +5,7 @@
 target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/log_format.cpp
   ${CMAKE_CURRENT_LIST_DIR}/resample.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/nonuniform_jacobi.cpp
 )
 target_link_libraries(jacobid_host PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)
 target_sources(jacobid PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/log_format_options.cpp)
