@@ -51,7 +51,7 @@ void run(DiagnoseOptions o) {
     std::unique_ptr<io::CsvTable> vtable;
     identify::LogColumns vlog;
     if (!o.validate.empty()) {
-        vtable = std::make_unique<io::CsvTable>(read_log_table(o.validate, o.log_format, robot_column_names(robot, o.time_column), o.quiet));
+        vtable = std::make_unique<io::CsvTable>(read_log_table(o.validate, o.log_format, robot_column_names(robot, o.time_column), o.quiet, log.sample_period));
         vlog = identify::log_columns(*vtable, robot, o.time_column, o.time_tolerance);
         if (std::abs(vlog.sample_period - log.sample_period) > 1e-9 * log.sample_period) {
             throw InputError(fmt::format("--validate {}: sample period {} s differs from {} s of --in", o.validate, vlog.sample_period, log.sample_period));

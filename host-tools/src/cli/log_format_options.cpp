@@ -22,7 +22,7 @@ void add_log_format_options(CLI::App* command, LogFormatOptions& o) {
         ->capture_default_str();
 }
 
-io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet) {
+io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period) {
     if (o.file.empty()) {
         if (o.read.skip_bad_rows || o.on_gap != "error" || o.read.max_gap > 0.0) {
             throw InputError("--skip-bad-rows, --on-gap and --max-gap apply to logs read with --log-format");
@@ -36,6 +36,7 @@ io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, 
         throw InputError(fmt::format("--log-format {}: {} positions, but the robot description has {} joints", o.file, format.joints(), names.q.size()));
     }
     io::LogReadSettings settings = o.read;
+    settings.period = period;
     settings.on_gap = o.on_gap == "interpolate" ? io::GapPolicy::Interpolate : io::GapPolicy::Error;
     io::LogReadReport report;
     io::CsvTable table = io::read_formatted_log(path, format, names, settings, report);

@@ -26,7 +26,8 @@ void add_log_format_options(CLI::App* command, LogFormatOptions& o);
 // The table of `path`: with --log-format, read and resampled with it (each skipped row and a summary on stderr, each
 // irregular step too unless quiet), its columns named by `names` (q1.., qd1.., tau1.. when `names.q`
 // is empty); otherwise read_csv(path).
-io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet);
+// `period` > 0 sets the grid period (a validation log resampled like the identification log).
+io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period = 0.0);
 
 // The robot description's column names (position/torque columns, qd1.. for measured velocities).
 io::LogColumnNames robot_column_names(const robot::RobotDescription& robot, const std::string& time_column);

@@ -319,7 +319,7 @@ CsvTable parse_formatted_log(const std::string& text, const std::string& source,
     // a step farther than half of it from it is irregular and named, a step beyond max_gap is a gap.
     report.median_step = median_step(t);
     const double max_gap = settings.max_gap > 0.0 ? settings.max_gap : 3.0 * report.median_step;
-    const UniformGrid grid = uniform_grid(t, max_gap);
+    const UniformGrid grid = uniform_grid(t, max_gap, settings.period);
     for (std::size_t i = 0; i + 1 < t.size(); ++i) {
         const double step = t[i + 1] - t[i];
         const std::size_t at = raw.lines[i + 1];

@@ -49,6 +49,7 @@ struct LogReadSettings {
     GapPolicy on_gap = GapPolicy::Error;
     double max_gap = 0.0;              // s; a longer step is a gap. 0: 3 median steps
     std::size_t interpolate_max = 10;  // grid samples a gap may span with --on-gap interpolate
+    double period = 0.0;               // s, of the uniform grid; 0: the mean step (gaps excluded)
 };
 
 // What the reader found and did, printed on stderr by the commands and checked by the tests.

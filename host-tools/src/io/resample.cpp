@@ -15,7 +15,7 @@ double median_step(const std::vector<double>& t) {
     return *mid;
 }
 
-UniformGrid uniform_grid(const std::vector<double>& t, double max_step) {
+UniformGrid uniform_grid(const std::vector<double>& t, double max_step, double period) {
     UniformGrid g;
     if (t.size() < 2) return g;
     double sum = 0.0;
@@ -28,7 +28,7 @@ UniformGrid uniform_grid(const std::vector<double>& t, double max_step) {
         }
     }
     g.start = t.front();
-    g.period = count > 0 ? sum / static_cast<double>(count) : (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+    g.period = period > 0.0 ? period : count > 0 ? sum / static_cast<double>(count) : (t.back() - t.front()) / static_cast<double>(t.size() - 1);
     // The last grid point stays inside the log (no extrapolation); 1e-9 of a period absorbs rounding.
     g.samples = static_cast<std::size_t>(std::floor((t.back() - t.front()) / g.period + 1e-9)) + 1;
     return g;

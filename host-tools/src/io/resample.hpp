@@ -17,9 +17,9 @@ struct UniformGrid {
     std::size_t samples = 0;
 };
 
-// Grid period: the mean of the steps no longer than `max_step` (gaps excluded), so that the grid keeps
-// about as many samples as the log; the grid starts at the first sample.
-UniformGrid uniform_grid(const std::vector<double>& t, double max_step);
+// Grid period: `period` when > 0, else the mean of the steps no longer than `max_step` (gaps excluded), so
+// that the grid keeps about as many samples as the log; the grid starts at the first sample.
+UniformGrid uniform_grid(const std::vector<double>& t, double max_step, double period = 0.0);
 
 // Values of the interpolant of (t, x) at the grid points; t strictly increasing, at least 2 samples.
 // CubicSpline: natural cubic spline through every sample (C2, error O(h^4) inside the log).

@@ -223,3 +223,19 @@ TEST(LogFormat, GapPolicies) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(LogFormat, GridPeriodCanBeImposed) {
+    // A validation log resampled onto the identification log's period (diagnose --validate needs one period).
+    std::vector<double> steps(40, 0.005);
+    LogReadSettings settings;
+    settings.period = 0.004;
+    LogReadReport report;
+    const CsvTable t = parse_formatted_log(clock_rows(steps), "p.csv", kPendubotLike, LogColumnNames::numbered(2), settings, report);
+    EXPECT_EQ(report.grid_period, 0.004);
+    EXPECT_EQ(t.rows(), 51u);  // 0.2 s / 4 ms + 1
+    EXPECT_NEAR(t.column("q1")[25], std::sin(10.0 + 0.1), 1e-6);
+}
+
+}  // namespace
