@@ -289,6 +289,11 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
                 ok = false;
             }
             values[k] = v * uses[k].gain;
+            if (ok && !std::isfinite(values[k])) {
+                bad_row(fmt::format("column {} ({}): {} times the gain or scale {} is not finite", uses[k].column + 1, uses[k].key, printable(cell),
+                                    uses[k].gain));
+                ok = false;
+            }
         }
         if (!ok) continue;
         if (!raw.lines.empty() && !(values[0] > last_time)) {
@@ -318,19 +323,25 @@ CsvTable parse_formatted_log(const std::string& text, const std::string& source,
     // The median step is the nominal period (robust to the UR10e's 10/12 ms alternation and rare steps);
     // a step farther than half of it from it is irregular and named, a step beyond max_gap is a gap.
     report.median_step = median_step(t);
+    if (!std::isfinite(t.back() - t.front())) throw InputError(fmt::format("{}: the time span {} s to {} s is not finite", source, t.front(), t.back()));
     const double max_gap = settings.max_gap > 0.0 ? settings.max_gap : 3.0 * report.median_step;
     const UniformGrid grid = uniform_grid(t, max_gap, settings.period);
+    // A grid far denser than the log (an imposed period, or steps of 1e-300 s) would exhaust memory.
+    if (!(grid.period > 0.0) || grid.samples == 0 || !(static_cast<double>(grid.samples) <= 100.0 * static_cast<double>(t.size()) + 1e6)) {
+        throw InputError(fmt::format("{}: a uniform grid every {:.6g} s over {:.6g} s would need {:.3g} samples for {} rows", source, grid.period,
+                                     t.back() - t.front(), (t.back() - t.front()) / grid.period, t.size()));
+    }
     for (std::size_t i = 0; i + 1 < t.size(); ++i) {
         const double step = t[i + 1] - t[i];
         const std::size_t at = raw.lines[i + 1];
         if (step > max_gap) {
-            const auto missing = static_cast<std::size_t>(std::max(0.0, std::round(step / grid.period) - 1.0));
+            const double missing = std::max(0.0, std::round(step / grid.period) - 1.0);
             if (settings.on_gap == GapPolicy::Error) {
                 throw InputError(fmt::format("{}:{}: time step {} after line {} is a gap (longer than --max-gap {}); --on-gap interpolate "
                                              "fills gaps of up to --interpolate-max samples",
                                              source, at, ms(step), raw.lines[i], ms(max_gap)));
             }
-            if (missing > settings.interpolate_max) {
+            if (missing > static_cast<double>(settings.interpolate_max)) {
                 throw InputError(fmt::format("{}:{}: time step {} after line {} is a gap of {} samples, more than --interpolate-max {}", source, at,
                                              ms(step), raw.lines[i], missing, settings.interpolate_max));
             }
@@ -350,7 +361,13 @@ CsvTable parse_formatted_log(const std::string& text, const std::string& source,
     std::vector<double>& time = out.mutable_column(0);
     time.resize(grid.samples);
     for (std::size_t k = 0; k < grid.samples; ++k) time[k] = grid.start + static_cast<double>(k) * grid.period;
-    for (std::size_t c = 1; c < raw.table.columns(); ++c) out.mutable_column(c) = resample(t, raw.table.column(c), grid);
+    for (std::size_t c = 1; c < raw.table.columns(); ++c) {
+        out.mutable_column(c) = resample(t, raw.table.column(c), grid);
+        // Steps many orders of magnitude apart (1e-300 s next to 1 s) overflow the spline: say so.
+        for (const double v : out.mutable_column(c)) {
+            if (!std::isfinite(v)) throw InputError(fmt::format("{}: column '{}' is not finite after resampling (time steps of very different sizes?)", source, out.header()[c]));
+        }
+    }
     return out;
 }
 

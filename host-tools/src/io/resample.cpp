@@ -30,7 +30,8 @@ UniformGrid uniform_grid(const std::vector<double>& t, double max_step, double p
     g.start = t.front();
     g.period = period > 0.0 ? period : count > 0 ? sum / static_cast<double>(count) : (t.back() - t.front()) / static_cast<double>(t.size() - 1);
     // The last grid point stays inside the log (no extrapolation); 1e-9 of a period absorbs rounding.
-    g.samples = static_cast<std::size_t>(std::floor((t.back() - t.front()) / g.period + 1e-9)) + 1;
+    const double points = std::floor((t.back() - t.front()) / g.period + 1e-9) + 1.0;
+    g.samples = std::isfinite(points) && points > 0.0 && points < 1e15 ? static_cast<std::size_t>(points) : 0;  // 0: no usable grid
     return g;
 }
 

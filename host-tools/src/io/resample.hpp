@@ -18,7 +18,8 @@ struct UniformGrid {
 };
 
 // Grid period: `period` when > 0, else the mean of the steps no longer than `max_step` (gaps excluded), so
-// that the grid keeps about as many samples as the log; the grid starts at the first sample.
+// that the grid keeps about as many samples as the log; the grid starts at the first sample. samples = 0
+// when the period does not give a finite grid (a zero or denormal period).
 UniformGrid uniform_grid(const std::vector<double>& t, double max_step, double period = 0.0);
 
 // Values of the interpolant of (t, x) at the grid points; t strictly increasing, at least 2 samples.

@@ -239,3 +239,16 @@ TEST(LogFormat, GridPeriodCanBeImposed) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(LogFormat, ValuesThatOverflowOnceScaledAreBadRows) {
+    const LogFormat f = parse_log_format("header: false\ntime: {column: 1}\npositions: [2]\ncurrents: [3]\ngains: [10]\n", "o.yaml");
+    LogReadReport report;
+    EXPECT_EQ(error_of([&] { parse_formatted_log("1,0,1\n2,0,1e308\n3,0,1\n", "o.csv", f, LogColumnNames::numbered(1), {}, report); }),
+              "o.csv:2: column 3 (currents[0]): 1e308 times the gain or scale 10 is not finite (--skip-bad-rows skips such rows and reports them)");
+    EXPECT_EQ(error_of([&] { parse_formatted_log("-1e308,0,1\n1e308,0,1\n", "o.csv", f, LogColumnNames::numbered(1), {}, report); }),
+              "o.csv: the time span -1e+308 s to 1e+308 s is not finite");
+}
+
+}  // namespace
