@@ -9,7 +9,9 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "identify/log_columns.hpp"
 #include "io/log_format.hpp"
+#include "robot/robot_description.hpp"
 
 namespace {
 
@@ -249,6 +251,25 @@ TEST(LogFormat, ValuesThatOverflowOnceScaledAreBadRows) {
               "o.csv:2: column 3 (currents[0]): 1e308 times the gain or scale 10 is not finite (--skip-bad-rows skips such rows and reports them)");
     EXPECT_EQ(error_of([&] { parse_formatted_log("-1e308,0,1\n1e308,0,1\n", "o.csv", f, LogColumnNames::numbered(1), {}, report); }),
               "o.csv: the time span -1e+308 s to 1e+308 s is not finite");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(LogFormat, MeasuredVelocitiesReachTheLogColumns) {
+    const LogFormat f = parse_log_format("header: false\ntime: {column: 1}\npositions: [2, 3]\nvelocities: [4, null]\ntorques: [5, 6]\n", "v.yaml");
+    std::string text;
+    for (int k = 0; k < 30; ++k) text += std::to_string(0.01 * k) + ",1,2," + std::to_string(0.5 * k) + ",4,5\n";
+    LogReadReport report;
+    const CsvTable t = parse_formatted_log(text, "v.csv", f, LogColumnNames::numbered(2), {}, report);
+    const auto robot = jacobid::robot::parse_robot_description("model: planar2r\n", "r.yaml");
+    const auto log = jacobid::identify::log_columns(t, robot, "t", 0.01);
+    ASSERT_EQ(log.qd.size(), 2u);
+    ASSERT_NE(log.qd[0], nullptr);
+    EXPECT_EQ(log.qd[1], nullptr);  // velocities[1]: null, not logged
+    EXPECT_NEAR((*log.qd[0])[7], 3.5, 1e-9);
+    EXPECT_NEAR((*log.tau[1])[7], 5.0, 1e-12);
 }
 
 }  // namespace
