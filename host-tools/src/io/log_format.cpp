@@ -54,22 +54,11 @@ std::vector<ColumnRef> column_list(Section& s, const std::string& key, bool null
     return refs;
 }
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-    return s;
-}
-
-std::string printable(std::string_view cell) {
-    std::string s(cell.substr(0, 40));
-    return cell.size() > 40 ? s + "..." : s;
-}
-
 void split(std::string_view line, char delimiter, std::vector<std::string_view>& cells) {
     cells.clear();
     for (std::size_t start = 0;;) {
         const std::size_t at = line.find(delimiter, start);
-        cells.push_back(trim(line.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start)));
+        cells.push_back(trim_cell(line.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start)));
         if (at == std::string_view::npos) break;
         start = at + 1;
     }
@@ -164,15 +153,12 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         throw InputError(fmt::format("{}: the log format {} has {} joints, the column names {}", source, format.source, joints, names.q.size()));
     }
     report.source = source;
-    std::size_t pos = 0, line = 0;
+    TextLines lines(text);
+    std::size_t line = 0;
     auto next_line = [&](std::string_view& out) {
-        if (pos >= text.size()) return false;
-        std::size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        out = std::string_view(text).substr(pos, end - pos);
-        pos = end + 1;
-        ++line;
-        return true;
+        const bool more = lines.next(out);
+        line = lines.line();
+        return more;
     };
     std::string_view row;
     for (std::size_t i = 0; i < format.skip_rows; ++i) {
@@ -182,7 +168,7 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
     std::vector<std::string> header;
     std::size_t width = 0;
     if (format.header) {
-        if (!next_line(row) || trim(row).empty()) throw InputError(fmt::format("{}:{}: expected the header row (header: true in {})", source, line + 1, format.source));
+        if (!next_line(row) || trim_cell(row).empty()) throw InputError(fmt::format("{}:{}: expected the header row (header: true in {})", source, line + 1, format.source));
         split(row, format.delimiter, cells);
         for (auto c : cells) {
             if (c.size() >= 2 && c.front() == '"' && c.back() == '"') c = c.substr(1, c.size() - 2);
@@ -257,8 +243,8 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         report.skipped.push_back(message);
     };
     while (next_line(row)) {
-        if (trim(row).empty()) {
-            if (pos >= text.size()) break;  // a final empty line
+        if (trim_cell(row).empty()) {
+            if (lines.at_end()) break;  // a final empty line
             bad_row("empty line inside the data");
             continue;
         }
@@ -282,15 +268,15 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             double v = 0.0;
             const auto r = fast_float::from_chars(cell.data(), cell.data() + cell.size(), v);
             if (r.ec != std::errc() || r.ptr != cell.data() + cell.size() || cell.empty()) {
-                bad_row(fmt::format("column {} ({}): expected a number, got '{}'", uses[k].column + 1, uses[k].key, printable(cell)));
+                bad_row(fmt::format("column {} ({}): expected a number, got '{}'", uses[k].column + 1, uses[k].key, printable_cell(cell)));
                 ok = false;
             } else if (!std::isfinite(v)) {
-                bad_row(fmt::format("column {} ({}): value '{}' is not finite (NaN or Inf)", uses[k].column + 1, uses[k].key, printable(cell)));
+                bad_row(fmt::format("column {} ({}): value '{}' is not finite (NaN or Inf)", uses[k].column + 1, uses[k].key, printable_cell(cell)));
                 ok = false;
             }
             values[k] = v * uses[k].gain;
             if (ok && !std::isfinite(values[k])) {
-                bad_row(fmt::format("column {} ({}): {} times the gain or scale {} is not finite", uses[k].column + 1, uses[k].key, printable(cell),
+                bad_row(fmt::format("column {} ({}): {} times the gain or scale {} is not finite", uses[k].column + 1, uses[k].key, printable_cell(cell),
                                     uses[k].gain));
                 ok = false;
             }
