@@ -127,12 +127,14 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
     return table;
 }
 
-CsvTable read_csv(const std::string& path) {
+std::string read_text_file(const std::string& path, const std::string& what) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open file", path));
+    if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
     std::ostringstream buffer;
     buffer << in.rdbuf();
-    return parse_csv(buffer.str(), path);
+    return buffer.str();
 }
+
+CsvTable read_csv(const std::string& path) { return parse_csv(read_text_file(path, "file"), path); }
 
 }  // namespace jacobid::io

@@ -49,6 +49,9 @@ private:
     std::size_t pos_ = 0, line_ = 0;
 };
 
+// The whole file; InputError("path: cannot open <what>") when it cannot be read.
+std::string read_text_file(const std::string& path, const std::string& what);
+
 // A cell without surrounding spaces, tabs and a trailing '\r'.
 std::string_view trim_cell(std::string_view s);
 // The first 40 characters of a cell for a message, "..." when cut.

@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 
 #include "core/errors.hpp"
@@ -127,13 +125,7 @@ LogFormat parse_log_format(const std::string& yaml_text, const std::string& sour
     return f;
 }
 
-LogFormat load_log_format(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open log format", path));
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_log_format(text.str(), path);
-}
+LogFormat load_log_format(const std::string& path) { return parse_log_format(read_text_file(path, "log format"), path); }
 
 LogColumnNames LogColumnNames::numbered(std::size_t joints, const std::string& time) {
     LogColumnNames n;
@@ -359,11 +351,7 @@ CsvTable parse_formatted_log(const std::string& text, const std::string& source,
 
 CsvTable read_formatted_log(const std::string& path, const LogFormat& format, const LogColumnNames& names, const LogReadSettings& settings,
                             LogReadReport& report) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open file", path));
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_formatted_log(text.str(), path, format, names, settings, report);
+    return parse_formatted_log(read_text_file(path, "file"), path, format, names, settings, report);
 }
 
 std::string LogReadReport::summary() const {
