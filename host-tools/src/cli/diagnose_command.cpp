@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/log_format_options.hpp"
 #include "identify/log_columns.hpp"
 #include "cli/output_file.hpp"
 #include "diagnose/diagnosis.hpp"
@@ -27,6 +28,7 @@ struct DiagnoseOptions {
     diagnose::DiagnoseSettings settings;
     bool no_delay = false;
     bool quiet = false;
+    LogFormatOptions log_format;
 };
 
 void check(const DiagnoseOptions& o) {
@@ -44,12 +46,12 @@ void run(DiagnoseOptions o) {
     check(o);
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
-    const io::CsvTable table = io::read_csv(o.in);
+    const io::CsvTable table = read_log_table(o.in, o.log_format, robot_column_names(robot, o.time_column), o.quiet);
     const identify::LogColumns log = identify::log_columns(table, robot, o.time_column, o.time_tolerance);
     std::unique_ptr<io::CsvTable> vtable;
     identify::LogColumns vlog;
     if (!o.validate.empty()) {
-        vtable = std::make_unique<io::CsvTable>(io::read_csv(o.validate));
+        vtable = std::make_unique<io::CsvTable>(read_log_table(o.validate, o.log_format, robot_column_names(robot, o.time_column), o.quiet, log.sample_period));
         vlog = identify::log_columns(*vtable, robot, o.time_column, o.time_tolerance);
         if (std::abs(vlog.sample_period - log.sample_period) > 1e-9 * log.sample_period) {
             throw InputError(fmt::format("--validate {}: sample period {} s differs from {} s of --in", o.validate, vlog.sample_period, log.sample_period));
@@ -88,6 +90,7 @@ void add_diagnose_command(CLI::App& app) {
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
     cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
         ->capture_default_str();
+    add_log_format_options(cmd, o->log_format);
     cmd->add_option("--alpha", o->settings.selection.alpha, "significance level of each step (Bonferroni over all candidates tried)")
         ->capture_default_str();
     cmd->add_option("--min-gain", o->settings.selection.min_gain, "minimum relative reduction of the held-out error for a candidate to be named")

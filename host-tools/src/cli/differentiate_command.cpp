@@ -9,6 +9,7 @@
 
 #include "cli/command.hpp"
 #include "cli/kernel_options.hpp"
+#include "cli/log_format_options.hpp"
 #include "cli/output_file.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
@@ -30,6 +31,7 @@ struct DifferentiateOptions {
     double crop = -1.0;
     double time_tolerance = io::kDefaultTimeTolerance;
     std::string output = "-";
+    LogFormatOptions log_format;
 };
 
 struct Channel {
@@ -56,7 +58,9 @@ KernelParams jacobi_params_for(const DifferentiateOptions& o, int order, double 
 }
 
 void run(const DifferentiateOptions& o) {
-    const io::CsvTable table = io::read_csv(o.input);
+    io::LogColumnNames names;  // q1.., qd1.., tau1.. from the log format's joints
+    names.time = o.time_column;
+    const io::CsvTable table = read_log_table(o.input, o.log_format, names, false);
     const io::TimeAxis time = io::check_uniform_time(table, o.time_column, o.time_tolerance);
     const double ts = time.sample_period;
     for (int n : o.orders) {
@@ -131,6 +135,7 @@ void add_differentiate_command(CLI::App& app) {
     cmd->add_option("--crop-edges", o->crop, "Butterworth method: seconds dropped at each end (default 3/cutoff, the filter's end transient)");
     cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
         ->capture_default_str();
+    add_log_format_options(cmd, o->log_format);
     cmd->add_option("--out,-o", o->output, "output CSV ('-' = stdout): time, then <column>_d<order> for each column and order")->capture_default_str();
     cmd->callback([o] { run(*o); });
 }

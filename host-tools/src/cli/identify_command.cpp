@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/log_format_options.hpp"
 #include "cli/output_file.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
@@ -55,11 +56,13 @@ struct IdentifyOptions {
     double time_tolerance = io::kDefaultTimeTolerance;
     std::string can_config;
     std::string torque_delay = "auto";  // auto | seconds
+    LogFormatOptions log_format;
 };
 
 // A CSV log, or with --can-config a candump capture decoded by the firmware's joint profiles.
 io::CsvTable read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
-    if (o.can_config.empty()) return io::read_csv(path);
+    if (o.can_config.empty()) return read_log_table(path, o.log_format, robot_column_names(robot, o.time_column), o.quiet);
+    if (!o.log_format.file.empty()) throw InputError("--log-format and --can-config: give one of them");
 #if JACOBID_WITH_FIRMWARE
     firmware::FirmwareConfig fw;
     try {
@@ -236,6 +239,7 @@ void add_identify_command(CLI::App& app) {
     cmd->add_option("--can-config", o->can_config,
                     "jacobid-fw config (YAML) whose joints' CAN profiles, ids, gear ratios and torque constants decode --in and "
                     "--validate as candump -L captures instead of CSV");
+    add_log_format_options(cmd, o->log_format);
     cmd->add_option("--bandwidth", o->pipeline.bandwidth, "motion bandwidth in Hz (default: estimated from the data: 99 % of the velocity energy above the noise floor, limited by the noise; docs/method.md)");
     cmd->add_option("--cutoff", o->pipeline.differentiator_cutoff,
                     "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)");

@@ -23,6 +23,10 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
         log.tau.push_back(&table.column(j.torque_column));
         log.tau_names.push_back(j.torque_column);
     }
+    for (std::size_t j = 1; j <= robot.joints.size(); ++j) {
+        const std::string name = "qd" + std::to_string(j);  // as io::LogColumnNames and simulate --states name them
+        log.qd.push_back(table.has_column(name) ? &table.column(name) : nullptr);
+    }
     return log;
 }
 

@@ -56,6 +56,9 @@ struct LogColumns {
     double sample_period = 0.0;
     double start_time = 0.0;
     std::vector<const std::vector<double>*> q, tau;
+    // Measured velocities (column qdJ, e.g. from --log-format's velocities), nullptr where not logged; for a
+    // later --velocity measured, not used by the pipeline yet.
+    std::vector<const std::vector<double>*> qd;
     std::vector<std::string> q_names, tau_names;
     std::size_t samples() const { return q.empty() ? 0 : q.front()->size(); }
 };

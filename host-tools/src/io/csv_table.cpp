@@ -17,18 +17,28 @@ namespace {
 
 bool is_space(char c) { return c == ' ' || c == '\t'; }
 
-std::string_view trim(std::string_view s) {
+}  // namespace
+
+bool TextLines::next(std::string_view& out) {
+    if (pos_ >= text_.size()) return false;
+    std::size_t end = text_.find('\n', pos_);
+    if (end == std::string::npos) end = text_.size();
+    out = std::string_view(text_).substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++line_;
+    return true;
+}
+
+std::string_view trim_cell(std::string_view s) {
     while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
     while (!s.empty() && (is_space(s.back()) || s.back() == '\r')) s.remove_suffix(1);
     return s;
 }
 
-std::string printable(std::string_view cell) {
+std::string printable_cell(std::string_view cell) {
     std::string s(cell.substr(0, 40));
     return cell.size() > 40 ? s + "..." : s;
 }
-
-}  // namespace
 
 CsvTable::CsvTable(std::string source, std::vector<std::string> header)
     : source_(std::move(source)), header_(std::move(header)), columns_(header_.size()) {}
@@ -48,28 +58,19 @@ std::size_t CsvTable::column_index(const std::string& name) const {
 }
 
 CsvTable parse_csv(const std::string& text, const std::string& source) {
-    std::size_t pos = 0;
-    std::size_t line = 0;
-    auto next_line = [&](std::string_view& out) {
-        if (pos >= text.size()) return false;
-        std::size_t end = text.find('\n', pos);
-        if (end == std::string::npos) end = text.size();
-        out = std::string_view(text).substr(pos, end - pos);
-        pos = end + 1;
-        ++line;
-        return true;
-    };
+    TextLines lines(text);
+    auto next_line = [&](std::string_view& out) { return lines.next(out); };
     std::string_view row;
-    if (!next_line(row) || trim(row).empty()) throw InputError(fmt::format("{}:1: empty file, expected a header row", source));
+    if (!next_line(row) || trim_cell(row).empty()) throw InputError(fmt::format("{}:1: empty file, expected a header row", source));
     std::vector<std::string> header;
     for (std::size_t start = 0;;) {
         const std::size_t comma = row.find(',', start);
-        const std::string_view cell = trim(row.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+        const std::string_view cell = trim_cell(row.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
         if (cell.empty()) throw InputError(fmt::format("{}:1: column {} has an empty name in the header", source, header.size() + 1));
         double dummy;
         const auto r = fast_float::from_chars(cell.data(), cell.data() + cell.size(), dummy);
         if (r.ec == std::errc() && r.ptr == cell.data() + cell.size()) {
-            throw InputError(fmt::format("{}:1: expected a header row of column names, found the number '{}'", source, printable(cell)));
+            throw InputError(fmt::format("{}:1: expected a header row of column names, found the number '{}'", source, printable_cell(cell)));
         }
         if (std::find(header.begin(), header.end(), cell) != header.end()) {
             throw InputError(fmt::format("{}:1: duplicate column name '{}'", source, cell));
@@ -81,11 +82,12 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
     CsvTable table(source, header);
     const std::size_t width = header.size();
     // Reserve from a cheap estimate of the row count to avoid repeated growth on long logs.
-    const std::size_t estimate = static_cast<std::size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(std::min(pos, text.size())), text.end(), '\n')) + 1;
+    const std::size_t estimate = static_cast<std::size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(std::min(lines.offset(), text.size())), text.end(), '\n')) + 1;
     for (std::size_t c = 0; c < width; ++c) table.mutable_column(c).reserve(estimate);
     while (next_line(row)) {
-        if (trim(row).empty()) {
-            if (pos >= text.size()) break;  // trailing empty line
+        const std::size_t line = lines.line();
+        if (trim_cell(row).empty()) {
+            if (lines.at_end()) break;  // trailing empty line
             throw InputError(fmt::format("{}:{}: empty line inside the data", source, line));
         }
         const char* p = row.data();
@@ -98,17 +100,17 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
             while (cell_end < end && *cell_end != ',') ++cell_end;
             if (r.ec != std::errc()) {
                 throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", source, line, header[c],
-                                             printable(trim(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
+                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
             }
             const char* q = r.ptr;
             while (q < end && (is_space(*q) || *q == '\r')) ++q;
             if (q != cell_end) {
                 throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", source, line, header[c],
-                                             printable(trim(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
+                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
             }
             if (!std::isfinite(value)) {
                 throw InputError(fmt::format("{}:{}: column '{}': value '{}' is not finite (NaN or Inf)", source, line, header[c],
-                                             printable(trim(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
+                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
             }
             table.mutable_column(c).push_back(value);
             if (c + 1 < width) {
@@ -125,12 +127,14 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
     return table;
 }
 
-CsvTable read_csv(const std::string& path) {
+std::string read_text_file(const std::string& path, const std::string& what) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open file", path));
+    if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
     std::ostringstream buffer;
     buffer << in.rdbuf();
-    return parse_csv(buffer.str(), path);
+    return buffer.str();
 }
+
+CsvTable read_csv(const std::string& path) { return parse_csv(read_text_file(path, "file"), path); }
 
 }  // namespace jacobid::io

@@ -4,6 +4,7 @@
 // Anything else is an InputError naming the file, line and column; nothing is skipped or guessed.
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace jacobid::io {
@@ -32,6 +33,29 @@ private:
     std::vector<std::string> header_;
     std::vector<std::vector<double>> columns_;  // column-major: what the numerics consume
 };
+
+// The lines of a text one at a time, numbered from 1 (a final line without '\n' counts; a '\r' before the
+// '\n' stays, trim_cell drops it). Shared by the CSV reader and the raw-log reader (io/log_format.hpp).
+class TextLines {
+public:
+    explicit TextLines(const std::string& text) : text_(text) {}
+    bool next(std::string_view& out);
+    std::size_t line() const { return line_; }    // number of the line last returned
+    std::size_t offset() const { return pos_; }   // where the next line starts
+    bool at_end() const { return pos_ >= text_.size(); }
+
+private:
+    const std::string& text_;
+    std::size_t pos_ = 0, line_ = 0;
+};
+
+// The whole file; InputError("path: cannot open <what>") when it cannot be read.
+std::string read_text_file(const std::string& path, const std::string& what);
+
+// A cell without surrounding spaces, tabs and a trailing '\r'.
+std::string_view trim_cell(std::string_view s);
+// The first 40 characters of a cell for a message, "..." when cut.
+std::string printable_cell(std::string_view cell);
 
 // Reads `path`. Accepts ',' separators, optional spaces around cells, '\n' or '\r\n' line ends, a final
 // line with or without '\n'; rejects empty files, empty or duplicate header names, rows with too few or

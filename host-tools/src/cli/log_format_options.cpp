@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#include "cli/log_format_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include "core/errors.hpp"
+
+namespace jacobid::cli {
+
+void add_log_format_options(CLI::App* command, LogFormatOptions& o) {
+    command->add_option("--log-format", o.file,
+                        "YAML description of a raw log (header, delimiter, skip_rows, time, positions, velocities, torques or currents "
+                        "with gains; docs/log-format.md): --in and --validate are read with it and resampled onto a uniform grid");
+    command->add_flag("--skip-bad-rows", o.read.skip_bad_rows,
+                      "with --log-format: skip malformed rows and rows whose time does not increase, reporting each (default: error)");
+    command->add_option("--on-gap", o.on_gap, "with --log-format: a time step longer than --max-gap is an error, or is interpolated")
+        ->check(CLI::IsMember({"error", "interpolate"}))
+        ->capture_default_str();
+    command->add_option("--max-gap", o.read.max_gap, "with --log-format: longest time step in s that is not a gap (default: 3 median steps)");
+    command->add_option("--interpolate-max", o.read.interpolate_max, "with --on-gap interpolate: most missing samples a gap may span")
+        ->capture_default_str();
+}
+
+io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period) {
+    if (o.file.empty()) {
+        if (o.read.skip_bad_rows || o.on_gap != "error" || o.read.max_gap > 0.0) {
+            throw InputError("--skip-bad-rows, --on-gap and --max-gap apply to logs read with --log-format");
+        }
+        return io::read_csv(path);
+    }
+    const io::LogFormat format = io::load_log_format(o.file);
+    if (names.q.empty()) {
+        names = io::LogColumnNames::numbered(format.joints(), names.time);
+    } else if (names.q.size() != format.joints()) {
+        throw InputError(fmt::format("--log-format {}: {} positions, but the robot description has {} joints", o.file, format.joints(), names.q.size()));
+    }
+    io::LogReadSettings settings = o.read;
+    settings.period = period;
+    settings.on_gap = o.on_gap == "interpolate" ? io::GapPolicy::Interpolate : io::GapPolicy::Error;
+    io::LogReadReport report;
+    io::CsvTable table = io::read_formatted_log(path, format, names, settings, report);
+    // Skipped rows and the summary are always printed (never silently absorbed); the per-step lines only
+    // without --quiet.
+    for (const auto& s : report.skipped) fmt::print(stderr, "{} (skipped)\n", s);
+    if (!quiet) {
+        for (std::size_t i = 0; i < report.irregular_lines.size(); ++i) {
+            fmt::print(stderr, "{}:{}: irregular time step {:.4g} ms (median {:.4g} ms)\n", path, report.irregular_lines[i],
+                       1e3 * report.irregular_steps[i], 1e3 * report.median_step);
+        }
+        for (std::size_t i = 0; i < report.gap_lines.size(); ++i) {
+            fmt::print(stderr, "{}:{}: gap of {:.4g} ms interpolated\n", path, report.gap_lines[i], 1e3 * report.gap_steps[i]);
+        }
+    }
+    fmt::print(stderr, "{}\n", report.summary());
+    return table;
+}
+
+io::LogColumnNames robot_column_names(const robot::RobotDescription& robot, const std::string& time_column) {
+    io::LogColumnNames names;
+    names.time = time_column;
+    for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+        names.q.push_back(robot.joints[j].position_column);
+        names.qd.push_back(fmt::format("qd{}", j + 1));
+        names.tau.push_back(robot.joints[j].torque_column);
+    }
+    return names;
+}
+
+}  // namespace jacobid::cli

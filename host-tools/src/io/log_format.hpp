@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Raw robot logs as real controllers write them (docs/log-format.md): a YAML "log format" says which
+// column is time, which are the joints' positions, measured velocities, torques or motor currents (with
+// their current-to-torque gains), whether there is a header, the delimiter and the lines to skip. The reader
+// turns such a log into the normalized table the rest of the host tools consume (io::CsvTable with columns
+// named as the robot description expects: t, q1.., qd1.., tau1..), on a uniform time grid
+// (io/resample.hpp; the choice and its measured accuracy: docs/method.md, "Non-uniform sampling").
+// Every problem is an InputError naming file:line (and column or key); with skip_bad_rows, malformed rows
+// and rows whose time does not increase are skipped and each one is reported instead.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "io/csv_table.hpp"
+
+namespace jacobid::io {
+
+// A column of the raw log: a 1-based index or a header name; neither (YAML null) = not logged.
+struct ColumnRef {
+    std::size_t index = 0;  // 1-based, 0 when given by name or absent
+    std::string name;
+    bool present() const { return index > 0 || !name.empty(); }
+};
+
+struct LogFormat {
+    std::string source;  // the YAML file, for messages
+    bool header = true;
+    char delimiter = ',';
+    std::size_t skip_rows = 0;  // lines skipped before the header (or the first data row)
+    ColumnRef time;
+    double time_scale = 1.0;  // seconds per unit of the time column
+    std::vector<ColumnRef> positions;
+    std::vector<ColumnRef> velocities;  // empty: none logged; an absent entry: not logged for that joint
+    std::vector<ColumnRef> efforts;     // torques, or currents; an absent entry: no actuator (torque 0)
+    bool currents = false;
+    std::vector<double> gains;  // tau = gain * effort, per joint (1 for torques)
+    std::size_t joints() const { return positions.size(); }
+};
+
+// Unknown keys, wrong types and inconsistent lists are InputError("file:line:col: key: ...").
+LogFormat parse_log_format(const std::string& yaml_text, const std::string& source);
+LogFormat load_log_format(const std::string& path);
+
+enum class GapPolicy { Error, Interpolate };
+
+struct LogReadSettings {
+    bool skip_bad_rows = false;
+    GapPolicy on_gap = GapPolicy::Error;
+    double max_gap = 0.0;              // s; a longer step is a gap. 0: 3 median steps
+    std::size_t interpolate_max = 10;  // grid samples a gap may span with --on-gap interpolate
+    double period = 0.0;               // s, of the uniform grid; 0: the mean step (gaps excluded)
+};
+
+// What the reader found and did, printed on stderr by the commands and checked by the tests.
+struct LogReadReport {
+    std::string source;
+    std::size_t lines = 0;             // lines in the file
+    std::size_t rows = 0;              // data rows kept
+    std::vector<std::string> skipped;  // "file:line: reason", one per skipped row
+    double median_step = 0.0;          // s
+    // Steps farther than half a median step from the median (e.g. the UR10e's 2 ms steps), each reported.
+    std::vector<std::size_t> irregular_lines;  // line of the row that ends the step
+    std::vector<double> irregular_steps;       // s
+    std::vector<std::size_t> gap_lines;        // gaps (> max_gap) that were interpolated
+    std::vector<double> gap_steps;
+    double grid_period = 0.0;  // s, of the uniform grid
+    double grid_start = 0.0;   // s
+    std::size_t samples = 0;   // on the uniform grid
+    // One paragraph: rows, skipped rows, irregular steps (first at line L: 2.0 ms), gaps, the grid.
+    std::string summary() const;
+};
+
+// Names of the normalized table's columns (a robot description's, or q1.., qd1.., tau1..).
+struct LogColumnNames {
+    std::string time = "t";
+    std::vector<std::string> q, qd, tau;
+    static LogColumnNames numbered(std::size_t joints, const std::string& time = "t");
+};
+
+// The raw rows at their own times: columns time (s), q.., qd.. (logged ones only), tau.. (gain applied,
+// 0 for a joint without actuator). Line numbers of kept rows in `lines`.
+struct RawLog {
+    CsvTable table;
+    std::vector<std::size_t> lines;
+};
+RawLog parse_raw_log(const std::string& text, const std::string& source, const LogFormat& format, const LogColumnNames& names,
+                     const LogReadSettings& settings, LogReadReport& report);
+
+// Reads `path` with `format` and resamples it onto a uniform grid (io/resample.hpp); fills `report`.
+CsvTable read_formatted_log(const std::string& path, const LogFormat& format, const LogColumnNames& names,
+                            const LogReadSettings& settings, LogReadReport& report);
+// Same from text in memory.
+CsvTable parse_formatted_log(const std::string& text, const std::string& source, const LogFormat& format, const LogColumnNames& names,
+                             const LogReadSettings& settings, LogReadReport& report);
+
+}  // namespace jacobid::io
