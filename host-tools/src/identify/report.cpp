@@ -216,7 +216,8 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
     const auto finite = [](double d) { return std::isfinite(d) ? json(d) : json(nullptr); };
     j["torque_delay"] = {{"seconds", r.torque_delay.estimate.delay},      {"std", finite(r.torque_delay.estimate.std_dev)},
                          {"estimated", !r.torque_delay.given},           {"compensated", r.torque_delay.estimate.compensated},
-                         {"at_bound", r.torque_delay.estimate.at_bound}, {"applied_seconds", r.torque_delay.applied()}};
+                         {"at_bound", r.torque_delay.estimate.at_bound}, {"applied_seconds", r.torque_delay.applied()},
+                         {"samples_used", r.torque_delay.estimate.samples_used}};
     j["warnings"] = identifiability_warnings(r, ctx.joint_names);
     const auto& i = r.info;
     j["settings"] = {{"sample_period", i.sample_period},

@@ -32,9 +32,25 @@ ShiftedTorques shift_torques(const LogColumns& log, double delay) {
     return s;
 }
 
-TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& pipeline,
+TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const LogColumns& full_log, const PipelineSettings& pipeline,
                                           const SolveOptions& solve, const TorqueDelaySettings& settings) {
     TorqueDelayEstimate e;
+    // A constant offset is as visible in the first max_samples as in the whole log: long logs are estimated
+    // on their beginning so that the search costs a few identifications of bounded size, not of the hour.
+    std::vector<std::vector<double>> head;
+    LogColumns log = full_log;
+    if (settings.max_samples > 0 && full_log.samples() > settings.max_samples) {
+        for (const auto* columns : {&full_log.q, &full_log.tau}) {
+            for (const auto* c : *columns) head.emplace_back(c->begin(), c->begin() + static_cast<std::ptrdiff_t>(settings.max_samples));
+        }
+        log.qd.clear();  // logged velocities are not used by the search
+        for (std::size_t j = 0; j < log.q.size(); ++j) log.q[j] = &head[j];
+        for (std::size_t j = 0; j < log.tau.size(); ++j) log.tau[j] = &head[log.q.size() + j];
+        e.samples_used = settings.max_samples;
+    } else {
+        e.samples_used = full_log.samples();
+    }
+    if (pipeline.progress) fmt::print(stderr, "identify: estimating the torque delay on {} samples\n", e.samples_used);
     const double h = log.sample_period;
     const double max_delay = settings.max_delay > 0.0 ? settings.max_delay : 5.0 * h;
     PipelineSettings quiet = pipeline;
@@ -95,7 +111,8 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
 std::string describe(const TorqueDelayResult& r) {
     const TorqueDelayEstimate& e = r.estimate;
     if (r.given) return fmt::format("torque delay {:+.3f} ms (given by --torque-delay)", 1e3 * e.delay);
-    std::string s = fmt::format("torque delay {:+.3f} ms (std {:.3f} ms, estimated from {} identifications; ", 1e3 * e.delay, 1e3 * e.std_dev, e.evaluations);
+    std::string s = fmt::format("torque delay {:+.3f} ms (std {:.3f} ms, estimated from {} identifications of {} samples; ", 1e3 * e.delay,
+                                1e3 * e.std_dev, e.evaluations, e.samples_used);
     if (e.at_bound) return s + "at the edge of the search range: the offset may be larger; not compensated)";
     return s + (e.compensated ? "compensated)" : "not significant, not compensated)");
 }

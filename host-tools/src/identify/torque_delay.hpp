@@ -11,6 +11,7 @@
 // a small shift: e(d) = e(0) + d dtau/dt). Its standard deviation is that of a one-parameter nonlinear LS,
 // sigma_d^2 = 2 sigma^2 / RSS''(d), with sigma^2 the residual variance (docs/method.md, "Torque delay").
 // Convention: `delay` > 0 means the torque channel lags the positions (it is read later to align it).
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ ShiftedTorques shift_torques(const LogColumns& log, double delay);
 struct TorqueDelaySettings {
     double max_delay = 0.0;        // s, search range +-max_delay; 0: 5 samples
     double significance = 3.0;     // compensate only when |delay| > significance x std
+    std::size_t max_samples = std::size_t{1} << 19;  // longer logs: estimated on their first max_samples (0: all)
 };
 
 struct TorqueDelayEstimate {
@@ -42,6 +44,7 @@ struct TorqueDelayEstimate {
     bool compensated = false;  // the identification used the shifted torques
     bool at_bound = false;     // the minimum lies at +-max_delay: the true offset may be larger
     int evaluations = 0;       // identifications run
+    std::size_t samples_used = 0;  // the log's first samples the estimate used
     std::vector<double> grid, rss;  // the RSS curve (s, N.m^2)
 };
 

@@ -13,6 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "identify/log_columns.hpp"
+#include "identify/torque_delay.hpp"
+#include "io/csv_table.hpp"
+#include "io/time_axis.hpp"
+#include "robot/robot_description.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -109,4 +114,21 @@ TEST(TorqueDelay, TwoMillisecondsLateAndAGivenDelay) {
     const auto bad = jacobid_cli("identify --robot " + robot() + " --in " + log + " --torque-delay 2ms");
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find("--torque-delay '2ms'"), std::string::npos) << bad.err;
+}
+
+// Long logs are searched on their beginning (TorqueDelaySettings::max_samples): the same offset comes out.
+TEST(TorqueDelay, LongLogsAreSearchedOnTheirFirstSamples) {
+    const std::string log = path("late_lib.csv");
+    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const jacobid::robot::RobotDescription d = jacobid::robot::load_robot_description(robot());
+    const auto model = jacobid::robot::make_robot_model(d);
+    const jacobid::io::CsvTable table = jacobid::io::read_csv(log);
+    const jacobid::identify::LogColumns columns = jacobid::identify::log_columns(table, d, "t", jacobid::io::kDefaultTimeTolerance);
+    jacobid::identify::TorqueDelaySettings settings;
+    settings.max_samples = 20000;
+    const auto e = jacobid::identify::estimate_torque_delay(*model, columns, {}, {}, settings);
+    EXPECT_EQ(e.samples_used, 20000u);
+    EXPECT_NEAR(e.delay, 0.002, 0.0001);
+    EXPECT_TRUE(e.compensated);
 }
