@@ -56,6 +56,7 @@ struct IdentifyOptions {
     double time_tolerance = io::kDefaultTimeTolerance;
     std::string can_config;
     std::string torque_delay = "auto";  // auto | seconds
+    std::string velocity;               // measured | jacobi | butterworth; empty: the method's own
     LogFormatOptions log_format;
 };
 
@@ -167,6 +168,12 @@ void run(IdentifyOptions o) {
     for (const identify::Method m : methods) {
         identify::PipelineSettings settings = o.pipeline;
         settings.method = m;
+        settings.measured_velocity = o.velocity == "measured";
+        if (!o.velocity.empty() && !settings.measured_velocity && o.velocity != identify::to_string(m)) {
+            throw InputError(fmt::format("--velocity {} with --method {}: a differentiated velocity comes from the method's own differentiator "
+                                         "(use --velocity measured, or --method {})",
+                                         o.velocity, o.method, o.velocity));
+        }
         identify::SolveOptions solve;
         solve.weighted = o.weighted;
         solve.rank_tolerance = o.rank_tolerance;
@@ -256,6 +263,10 @@ void add_identify_command(CLI::App& app) {
     cmd->add_option("--decimation", o->pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))");
     cmd->add_option("--min-motion", o->pipeline.min_joint_motion, "position range in rad below which a joint counts as not moving")
         ->capture_default_str();
+    cmd->add_option("--velocity", o->velocity,
+                    "velocities of the regressor: measured (the log's velocity columns, qdJ or --log-format velocities), or jacobi / "
+                    "butterworth (the positions differentiated; default: the --method's own differentiator)")
+        ->check(CLI::IsMember({"measured", "jacobi", "butterworth"}));
     cmd->add_option("--torque-delay", o->torque_delay,
                     "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
                     "significant, reported with its std) or SECONDS (read the torque that much later; negative: earlier; 0: off)")

@@ -196,6 +196,27 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
             euler_second_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qdd[j]));
         }
     }
+    if (s.measured_velocity) {
+        // The drive's own velocity (often from a finer encoder or an observer) replaces the differentiated
+        // one; the Butterworth baseline filters it with the same F_q as the positions and torques.
+        const Lowpass fq = s.method == Method::Butterworth
+                               ? signal::design_butterworth_or_throw(s.butterworth_order, info.prefilter_cutoff, ts, "Butterworth prefilter")
+                               : Lowpass{};
+        std::vector<double> workspace;
+        for (std::size_t j = 0; j < joints; ++j) {
+            const auto* measured = j < log.qd.size() ? log.qd[j] : nullptr;
+            if (!measured) {
+                throw InputError(fmt::format("--velocity measured: {} has no measured velocity for joint {} (a column qd{}, or velocities: in --log-format)",
+                                             log.source, j + 1, j + 1));
+            }
+            if (measured->size() != n) {
+                throw InputError(fmt::format("--velocity measured: {}: velocity column qd{} has {} samples, the positions {}", log.source, j + 1,
+                                             measured->size(), n));
+            }
+            if (s.method == Method::Butterworth) filtfilt_or_throw(fq, measured->data(), e.qd[j].data(), n, workspace);
+            else e.qd[j] = *measured;
+        }
+    }
     // A joint below the motion threshold is standing still: what its estimates contain is encoder
     // flicker and servo jitter, not excitation. Pinning it (mean position, zero velocity and acceleration)
     // makes the parameters only its motion excites exactly unidentifiable (zero columns, null

@@ -48,6 +48,9 @@ struct PipelineSettings {
     bool progress = false;           // stage timings on stderr
     std::size_t chunk = 1 << 16;     // samples per F_p chunk
     std::size_t plot_rows = 20000;   // decimated rows kept for plots
+    // The regressor's velocities from the log's measured velocity columns (LogColumns::qd) instead of the
+    // differentiated positions (identify --velocity measured); accelerations still come from the positions.
+    bool measured_velocity = false;
 };
 
 // The positions and torques of a log, one column per joint (pointers into a CsvTable).
@@ -56,8 +59,8 @@ struct LogColumns {
     double sample_period = 0.0;
     double start_time = 0.0;
     std::vector<const std::vector<double>*> q, tau;
-    // Measured velocities (column qdJ, e.g. from --log-format's velocities), nullptr where not logged; for a
-    // later --velocity measured, not used by the pipeline yet.
+    // Measured velocities (column qdJ, e.g. from --log-format's velocities), nullptr where not logged; used
+    // with PipelineSettings::measured_velocity.
     std::vector<const std::vector<double>*> qd;
     std::vector<std::string> q_names, tau_names;
     std::size_t samples() const { return q.empty() ? 0 : q.front()->size(); }
