@@ -35,7 +35,7 @@ ShiftedTorques shift_torques(const LogColumns& log, double delay);
 struct TorqueDelaySettings {
     double max_delay = 0.0;        // s, search range +-max_delay; 0: 5 samples
     double significance = 3.0;     // compensate only when |delay| > significance x std
-    std::size_t max_samples = std::size_t{1} << 19;  // longer logs: estimated on their first max_samples (0: all)
+    std::size_t max_samples = std::size_t{1} << 17;  // longer logs: estimated on their first max_samples (0: all)
 };
 
 struct TorqueDelayEstimate {
