@@ -12,8 +12,10 @@ target_sources(jacobid_host PRIVATE
 )
 # urdfdom's headers are not warning-clean under -Wshadow/-Wconversion: include them as system headers.
 target_include_directories(jacobid_host SYSTEM PRIVATE ${urdfdom_INCLUDE_DIRS})
-# The imported target (not urdfdom_LIBRARIES, absolute paths) so that the exported jacobid::host names
-# it and jacobidConfig.cmake finds it with find_dependency(urdfdom); urdf_parser lives in urdfdom_model.
-target_link_libraries(jacobid_host PRIVATE urdfdom::urdfdom_model)
+# Building: urdfdom_LIBRARIES, the files urdfdom-config.cmake found with find_library (sysroot-aware; its
+# imported targets name /usr/lib/<triplet>/libtinyxml.so outside any sysroot, which breaks the cross build of
+# the emulated board). Installed: the imported target, so that the exported jacobid::host names it and
+# jacobidConfig.cmake finds it with find_dependency(urdfdom); urdf_parser lives in urdfdom_model.
+target_link_libraries(jacobid_host PRIVATE "$<BUILD_INTERFACE:${urdfdom_LIBRARIES}>" "$<INSTALL_INTERFACE:urdfdom::urdfdom_model>")
 # Robot descriptions are read with the YAML idiom shared with the firmware (yaml/).
 target_link_libraries(jacobid_host PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)
