@@ -180,7 +180,7 @@ void run(IdentifyOptions o) {
         identify::MethodResult r;
         r.torque_delay = torque_delay(*model, log, settings, solve, o);
         const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
-        identify::PipelineOutput out = identify::run_pipeline(*model, r.torque_delay.applied() != 0.0 ? aligned.log : log, settings);
+        identify::PipelineOutput out = identify::run_pipeline(*model, aligned.log, settings);
         r.info = out.info;
         r.plot = std::move(out.plot);
         r.solution = identify::solve_least_squares(out.factors, model->parameter_names(), solve);
@@ -192,8 +192,8 @@ void run(IdentifyOptions o) {
         } else if (!o.validate.empty()) {
             // The same hardware, the same offset between its channels.
             const identify::ShiftedTorques validation_aligned = identify::shift_torques(validation_log, r.torque_delay.applied());
-            r.validation = identify::validate_prediction(*model, r.torque_delay.applied() != 0.0 ? validation_aligned.log : validation_log,
-                                                         identify::validation_settings(settings, r.info), r.solution.x);
+            r.validation =
+                identify::validate_prediction(*model, validation_aligned.log, identify::validation_settings(settings, r.info), r.solution.x);
         }
         for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
             ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));

@@ -38,7 +38,7 @@ ModelSnapshot measure(const robot::RobotModel& model, const identify::LogColumns
     const ShiftedTorques shifted = shift_torques(log, delay);
     identify::PipelineSettings ps = s.pipeline;
     ps.progress = false;
-    const identify::PipelineOutput out = identify::run_pipeline(model, delay == 0.0 ? log : shifted.log, ps);
+    const identify::PipelineOutput out = identify::run_pipeline(model, shifted.log, ps);
     m.solution = identify::solve_least_squares(out.factors, model.parameter_names());
     m.residual_rms = m.solution.joint_residual_rms;
     const Eigen::VectorXd x = m.solution.x.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });

@@ -21,6 +21,7 @@ double sample_at(const std::vector<double>& x, double at) {
 ShiftedTorques shift_torques(const LogColumns& log, double delay) {
     ShiftedTorques s;
     s.log = log;
+    if (delay == 0.0) return s;  // the log itself: no copy of its torques
     const double shift = delay / log.sample_period;
     s.tau.resize(log.tau.size());
     for (std::size_t j = 0; j < log.tau.size(); ++j) {
@@ -65,8 +66,7 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
     int parameters = 0;
     const auto rss_at = [&](double d) {
         ++e.evaluations;
-        const ShiftedTorques shifted = shift_torques(log, d);
-        const PipelineOutput out = d == 0.0 ? first : run_pipeline(model, shifted.log, quiet);
+        const PipelineOutput out = d == 0.0 ? first : run_pipeline(model, shift_torques(log, d).log, quiet);
         const LsSolution s = solve_least_squares(out.factors, names, solve);
         equations = s.equations;
         parameters = s.identified_count;

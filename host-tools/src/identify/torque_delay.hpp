@@ -25,7 +25,8 @@ namespace jacobid::identify {
 double sample_at(const std::vector<double>& x, double at);
 
 // Torque columns of `log` read `delay` seconds later (linear interpolation, held at the ends), and a view
-// of the log that uses them (positions shared with `log`, which must outlive it).
+// of the log that uses them (positions shared with `log`, which must outlive it). A zero delay copies
+// nothing: the view is `log` itself.
 struct ShiftedTorques {
     std::vector<std::vector<double>> tau;
     LogColumns log;
