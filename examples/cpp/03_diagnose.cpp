@@ -10,7 +10,7 @@ int main() try {
     using namespace jacobid;
     const robot::RobotDescription robot = robot::default_planar2r_description();
     const auto nominal = robot::make_robot_model(robot);
-    const sim::EffectContext context{nominal->model_name(), nominal->joint_count(), robot.coulomb};
+    const sim::EffectContext context{nominal->model_name(), nominal->joint_count(), robot.coulomb, robot::joint_coulomb_signs(robot)};
 
     // The truth: the nominal model plus the hidden effect's column, with its injected coefficient.
     const sim::EffectSpec hidden = sim::parse_effect("coulomb_offset:joint=1,value=0.2", nominal->joint_count());

@@ -8,6 +8,7 @@
 
 #include "cli/command.hpp"
 #include "cli/log_format_options.hpp"
+#include "identify/coulomb_smoothing.hpp"
 #include "identify/log_columns.hpp"
 #include "cli/output_file.hpp"
 #include "diagnose/diagnosis.hpp"
@@ -59,11 +60,22 @@ void run(DiagnoseOptions o) {
     }
     o.settings.selection.search_delay = !o.no_delay;
     o.settings.catalogue.torque_delay = !o.no_delay;
-    const sim::EffectContext context{model->model_name(), model->joint_count(), robot.coulomb};
     auto progress = [&](const std::string& line) {
         if (!o.quiet) fmt::print(stderr, "diagnose: {}\n", line);
     };
-    diagnose::Diagnosis d = diagnose::run_diagnosis(*model, context, log, o.validate.empty() ? nullptr : &vlog, o.settings, progress);
+    // friction alpha: auto is chosen on the identification log, as identify does, before the search.
+    const identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, log, o.settings.pipeline, false);
+    robot::RobotDescription fitted = robot;
+    if (smoothed.choice) {
+        fitted.coulomb_alpha = smoothed.choice->alphas();
+        progress(identify::describe(*smoothed.choice, [&] {
+            std::vector<std::string> names;
+            for (const auto& j : robot.joints) names.push_back(j.name);
+            return names;
+        }()));
+    }
+    const sim::EffectContext context{model->model_name(), model->joint_count(), fitted.coulomb, robot::joint_coulomb_signs(fitted)};
+    diagnose::Diagnosis d = diagnose::run_diagnosis(smoothed.get(*model), context, log, o.validate.empty() ? nullptr : &vlog, o.settings, progress);
     for (const auto& j : robot.joints) d.joint_names.push_back(j.name);
     write_output(o.output, o.format == "json" ? diagnose::to_json(d).dump(2) + "\n" : diagnose::format_text(d));
     if (!o.report.empty()) {

@@ -15,6 +15,7 @@
 #include "cli/command.hpp"
 #include "cli/log_format_options.hpp"
 #include "cli/output_file.hpp"
+#include "identify/coulomb_smoothing.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
 #include "identify/pipeline.hpp"
@@ -178,22 +179,26 @@ void run(IdentifyOptions o) {
         solve.weighted = o.weighted;
         solve.rank_tolerance = o.rank_tolerance;
         identify::MethodResult r;
+        // The delay is estimated with the description's alpha, then each joint's alpha is chosen on the aligned log.
         r.torque_delay = torque_delay(*model, log, settings, solve, o);
         const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
-        identify::PipelineOutput out = identify::run_pipeline(*model, aligned.log, settings);
+        const identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, aligned.log, settings, solve.weighted);
+        const robot::RobotModel& fitted = smoothed.get(*model);
+        r.coulomb_smoothing = smoothed.choice;
+        identify::PipelineOutput out = identify::run_pipeline(fitted, aligned.log, settings);
         r.info = out.info;
         r.plot = std::move(out.plot);
-        r.solution = identify::solve_least_squares(out.factors, model->parameter_names(), solve);
-        r.violations = identify::plausibility_violations(identify::sign_constraints(*model), r.solution);
-        if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, model->parameter_names(), o.essential, solve);
+        r.solution = identify::solve_least_squares(out.factors, fitted.parameter_names(), solve);
+        r.violations = identify::plausibility_violations(identify::sign_constraints(fitted), r.solution);
+        if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, fitted.parameter_names(), o.essential, solve);
         if (!o.validate.empty() && identify::is_static(validation_log, o.pipeline.min_joint_motion)) {
             // A log that holds a pose: the gravity check (static_validation.hpp).
-            r.static_validation = identify::validate_static(*model, validation_log, r.solution.x);
+            r.static_validation = identify::validate_static(fitted, validation_log, r.solution.x);
         } else if (!o.validate.empty()) {
             // The same hardware, the same offset between its channels.
             const identify::ShiftedTorques validation_aligned = identify::shift_torques(validation_log, r.torque_delay.applied());
             r.validation =
-                identify::validate_prediction(*model, validation_aligned.log, identify::validation_settings(settings, r.info), r.solution.x);
+                identify::validate_prediction(fitted, validation_aligned.log, identify::validation_settings(settings, r.info), r.solution.x);
         }
         for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
             ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));

@@ -120,11 +120,11 @@ void run(SimulateOptions o) {
         }
         const sim::EffectTerm term = sim::term_of(e);
         std::string why_not;
-        if (!sim::term_applicable(term, {model->model_name(), n, robot.coulomb}, &why_not)) throw InputError("--effect " + why_not);
+        if (!sim::term_applicable(term, {model->model_name(), n, robot.coulomb, robot::joint_coulomb_signs(robot)}, &why_not)) throw InputError("--effect " + why_not);
         terms.push_back(term);
         coefficients.push_back(sim::injected_coefficients(e, *model, x));
     }
-    const sim::AugmentedModel truth_model(*model, {model->model_name(), n, robot.coulomb}, terms);
+    const sim::AugmentedModel truth_model(*model, {model->model_name(), n, robot.coulomb, robot::joint_coulomb_signs(robot)}, terms);
     Eigen::VectorXd x_truth(truth_model.parameter_count());
     x_truth.head(model->parameter_count()) = x;
     for (std::size_t t = 0; t < terms.size(); ++t) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Normal equations of the decimated rows, kept per joint and per contiguous block of time: G = W^T W,
+// Normal equations (identify/normal_equations.hpp) of the decimated rows, kept per joint and per contiguous block of time: G = W^T W,
 // b = W^T Y, yy = Y^T Y over every catalogue column. Any subset of columns, any joint weighting and any
 // split into fitted and held-out blocks (blocked cross-validation) is then a small dense solve, so the
 // stepwise selection can try hundreds of candidate models without touching the rows again.
@@ -8,15 +8,14 @@
 #include <vector>
 
 #include "diagnose/decimated_rows.hpp"
+#include "identify/normal_equations.hpp"
 
 namespace jacobid::diagnose {
 
-struct GramSums {
-    Eigen::MatrixXd G;
-    Eigen::VectorXd b;
-    double yy = 0.0;
-    double rows = 0.0;
-};
+using identify::GramSums;
+using identify::prediction_sse;
+using identify::solve_subset;
+using identify::SubsetFit;
 
 class BlockedGrams {
 public:
@@ -37,18 +36,5 @@ private:
     std::vector<std::vector<Eigen::VectorXd>> b_;
     std::vector<std::vector<double>> yy_;
 };
-
-struct SubsetFit {
-    Eigen::VectorXd x;
-    Eigen::MatrixXd inverse;  // G^-1 (the covariance up to sigma^2)
-    double rss = 0.0;         // at the solution
-    bool ok = false;          // false: G singular over the subset
-};
-
-// LS solution of the normal equations (columns scaled to unit diagonal first; a pivot below 1e-10 of its
-// diagonal means the subset is collinear: ok = false).
-SubsetFit solve_subset(const GramSums& sums);
-// Sum of squared prediction errors of x on other rows: yy - 2 x.b + x^T G x.
-double prediction_sse(const GramSums& held_out, const Eigen::VectorXd& x);
 
 }  // namespace jacobid::diagnose

@@ -122,6 +122,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
     for (const auto& r : results) {
         s += fmt::format("{}: {}; {}\n", method_title(r), settings_line(r.info), describe(r.torque_delay));
         if (r.info.bandwidth_estimated) s += fmt::format("{} bandwidth estimate: {}\n", method_title(r), r.info.bandwidth_estimate.description);
+        if (r.coulomb_smoothing) s += fmt::format("{} {}\n", method_title(r), describe(*r.coulomb_smoothing, ctx.joint_names));
         if (r.essential) {
             s += fmt::format("{} essential parameters (drop largest %sigma_r above threshold):\n", method_title(r));
             for (const auto& step : r.essential->steps) {
@@ -218,6 +219,16 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                          {"estimated", !r.torque_delay.given},           {"compensated", r.torque_delay.estimate.compensated},
                          {"at_bound", r.torque_delay.estimate.at_bound}, {"applied_seconds", r.torque_delay.applied()},
                          {"samples_used", r.torque_delay.estimate.samples_used}};
+    if (r.coulomb_smoothing) {
+        const CoulombSmoothingChoice& c = *r.coulomb_smoothing;
+        json joints = json::array();
+        for (const auto& js : c.joints) {
+            json heldout = json::array();
+            for (const double e : js.heldout_rms) heldout.push_back(finite(e));
+            joints.push_back({{"alpha", js.alpha}, {"chosen", js.chosen}, {"reason", js.reason}, {"heldout_rms", heldout}});
+        }
+        j["coulomb_smoothing"] = {{"auto", true}, {"candidates", c.candidates}, {"folds", c.folds}, {"passes", c.passes}, {"joints", joints}};
+    }
     j["warnings"] = identifiability_warnings(r, ctx.joint_names);
     const auto& i = r.info;
     j["settings"] = {{"sample_period", i.sample_period},
@@ -237,7 +248,6 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                      {"crop", i.crop}};
     if (i.bandwidth_estimated) {
         const auto& b = i.bandwidth_estimate;
-        const auto finite = [](double d) { return std::isfinite(d) ? json(d) : json(nullptr); };
         json joints = json::array();
         for (const auto& jb : b.joints) {
             joints.push_back({{"name", jb.name},
@@ -263,7 +273,10 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
             steps.push_back({{"removed", s.removed}, {"removed_rel_std_percent", s.removed_rel_std}, {"relative_error_norm", s.relative_error_norm},
                              {"parameters", s.parameters}});
         }
-        j["essential"] = {{"steps", steps}, {"final", to_json(MethodResult{r.info, r.essential->solution, std::nullopt, std::nullopt, {}}, ctx)["parameters"]}};
+        MethodResult essential;
+        essential.info = r.info;
+        essential.solution = r.essential->solution;
+        j["essential"] = {{"steps", steps}, {"final", to_json(essential, ctx)["parameters"]}};
     }
     if (r.validation) {
         const auto& v = *r.validation;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "identify/coulomb_smoothing.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/pipeline.hpp"
 #include "identify/plausibility.hpp"
@@ -25,7 +26,8 @@ struct MethodResult {
     std::optional<ValidationResult> validation;
     std::optional<StaticValidationResult> static_validation;  // --validate with a log that holds a pose
     std::vector<PlausibilityViolation> violations;
-    TorqueDelayResult torque_delay;  // sign-constrained parameters identified negative
+    TorqueDelayResult torque_delay;
+    std::optional<CoulombSmoothingChoice> coulomb_smoothing;  // friction alpha: auto
     PlotRows plot;
 };
 

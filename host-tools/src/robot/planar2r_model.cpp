@@ -3,7 +3,8 @@
 
 namespace jacobid::robot {
 
-Planar2RModel::Planar2RModel(const Planar2RConfig& config) : model_(config) {
+Planar2RModel::Planar2RModel(const Planar2RConfig& config, const std::vector<CoulombSign>& joint_coulomb) : model_(config) {
+    for (std::size_t j = 0; j < joint_coulomb.size(); ++j) model_.set_coulomb(static_cast<int>(j), joint_coulomb[j]);
     for (int c = 0; c < model_.parameter_count(); ++c) names_.emplace_back(model_.parameter_name(c));
 }
 

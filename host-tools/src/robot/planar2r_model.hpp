@@ -2,13 +2,16 @@
 #pragma once
 // Host adapter of the fixed-size 2R regressor (lib/include/jacobid/robot/planar2r.hpp).
 #include "jacobid/robot/planar2r.hpp"
+#include <vector>
+
 #include "robot/robot_model.hpp"
 
 namespace jacobid::robot {
 
 class Planar2RModel final : public RobotModel {
 public:
-    explicit Planar2RModel(const Planar2RConfig& config);
+    // joint_coulomb: per-joint Coulomb sign functions (empty: config.coulomb for both joints).
+    explicit Planar2RModel(const Planar2RConfig& config, const std::vector<CoulombSign>& joint_coulomb = {});
     std::string model_name() const override { return "planar2r"; }
     int joint_count() const override { return Planar2R::kJoints; }
     int parameter_count() const override { return model_.parameter_count(); }

@@ -143,6 +143,33 @@ void parse_urdf(Section& top, RobotDescription& d) {
                     });
 }
 
+// friction.alpha: auto, one positive number for every joint, or a list with one per joint.
+void read_coulomb_alpha(Section& friction, RobotDescription& d) {
+    if (!friction.has("alpha")) {
+        friction.mark_used("alpha");
+        return;
+    }
+    const YAML::Node node = friction.get("alpha");
+    const auto positive = [&](const YAML::Node& n) {
+        const double v = friction.number_element(n, "alpha", "s/rad");
+        if (!(v > 0.0)) friction.fail(n, "alpha", "must be > 0 s/rad");
+        return v;
+    };
+    if (node.IsScalar() && node.Scalar() == "auto") {
+        d.coulomb_alpha_auto = true;
+    } else if (node.IsSequence()) {
+        const std::size_t n = d.joints.size();
+        if (node.size() != n) friction.fail(node, "alpha", fmt::format("must be auto, a number, or a list of {} numbers (one per joint)", n));
+        for (const auto& entry : node) d.coulomb_alpha.push_back(positive(entry));
+        d.coulomb_alpha_auto = false;
+    } else if (node.IsScalar()) {
+        d.coulomb.alpha = positive(node);
+        d.coulomb_alpha_auto = false;
+    } else {
+        friction.fail(node, "alpha", "expected auto, a number or a list of numbers (s/rad)");
+    }
+}
+
 StandardParameterOptions options_of(const RobotDescription& d) {
     StandardParameterOptions options;
     options.coulomb = d.coulomb;
@@ -188,7 +215,7 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
         d.coulomb.model = friction.choice("coulomb", d.coulomb.model == CoulombModel::Sign ? "sign" : "smooth", {"sign", "smooth"}) == "sign"
                               ? CoulombModel::Sign
                               : CoulombModel::SmoothAtan;
-        d.coulomb.alpha = friction.positive("alpha", d.coulomb.alpha, "s/rad");
+        read_coulomb_alpha(friction, d);
         d.friction_offset = friction.boolean("offset", d.friction_offset);
         friction.reject_unknown();
     }
@@ -223,6 +250,12 @@ RobotDescription load_robot_description(const std::string& path) {
     return parse_robot_description(buffer.str(), path);
 }
 
+std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& d) {
+    std::vector<CoulombSign> signs(d.joints.size(), d.coulomb);
+    for (std::size_t j = 0; j < signs.size() && j < d.coulomb_alpha.size(); ++j) signs[j].alpha = d.coulomb_alpha[j];
+    return signs;
+}
+
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
     if (d.model == "planar2r") {
         Planar2RConfig config;
@@ -230,7 +263,7 @@ std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
         config.coulomb = d.coulomb;
         config.friction_offset = d.friction_offset;
         config.rotor_inertia = d.rotor_inertia;
-        return std::make_unique<Planar2RModel>(config);
+        return std::make_unique<Planar2RModel>(config, joint_coulomb_signs(d));
     }
     if (is_serial(d.model)) {
         SerialRobotConfig config;
@@ -238,6 +271,7 @@ std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
         config.joints = d.chain;
         config.gravity = d.gravity;
         config.options = options_of(d);
+        config.joint_coulomb = joint_coulomb_signs(d);
         try {
             return std::make_unique<SerialRobotModel>(std::move(config));
         } catch (const std::invalid_argument& e) {
@@ -307,7 +341,16 @@ std::string to_yaml(const RobotDescription& d) {
     out << YAML::EndSeq;
     out << YAML::Key << "friction" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "coulomb" << YAML::Value << (d.coulomb.model == CoulombModel::Sign ? "sign" : "smooth");
-    out << YAML::Key << "alpha" << YAML::Value << d.coulomb.alpha;
+    out << YAML::Key << "alpha" << YAML::Value;
+    if (d.coulomb_alpha_auto && d.coulomb_alpha.empty()) {
+        out << "auto";
+    } else if (!d.coulomb_alpha.empty()) {
+        out << YAML::Flow << YAML::BeginSeq;
+        for (const double a : d.coulomb_alpha) out << a;
+        out << YAML::EndSeq;
+    } else {
+        out << d.coulomb.alpha;
+    }
     out << YAML::Key << "offset" << YAML::Value << d.friction_offset << YAML::EndMap;
     out << YAML::Key << "rotor_inertia" << YAML::Value << d.rotor_inertia;
     if (!d.parameters.empty()) {

@@ -9,7 +9,7 @@
 //     - {name: elbow,    position: q2, torque: tau2, limits: [-2.5, 2.5]}
 //   friction:
 //     coulomb: smooth        # sign | smooth (2/pi atan(alpha qd))
-//     alpha: 100             # s/rad
+//     alpha: auto            # s/rad: auto (default: chosen per joint on held-out data), a number, or one per joint
 //     offset: false          # constant friction offset per joint (FOFF1, FOFF2)
 //   rotor_inertia: false     # separate rotor inertia of joint 2 (IA2)
 //   parameters: {ZZ1R: 3.496, ...}  # optional: true values, used by `jacobid simulate`
@@ -54,6 +54,10 @@ struct RobotDescription {
     double L1 = 0.5;
     std::vector<JointDescription> joints;
     CoulombSign coulomb{CoulombModel::SmoothAtan, 100.0};
+    // friction.alpha: `auto` (the default) lets identify and diagnose choose each joint's smoothing on held-out
+    // data (identify/coulomb_smoothing.hpp); until then, and in simulation, coulomb.alpha applies.
+    bool coulomb_alpha_auto = true;
+    std::vector<double> coulomb_alpha;  // s/rad per joint (a list in the file, or chosen); empty: coulomb.alpha for all
     bool friction_offset = false;
     bool rotor_inertia = false;
     std::vector<std::pair<std::string, double>> parameters;  // in file order; empty: not given
@@ -69,6 +73,9 @@ struct RobotDescription {
 RobotDescription default_planar2r_description();
 RobotDescription load_robot_description(const std::string& path);
 RobotDescription parse_robot_description(const std::string& yaml_text, const std::string& source);
+
+// Each joint's Coulomb sign function: coulomb with the joint's alpha (coulomb_alpha) when given.
+std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& description);
 
 // The model the description names. InputError for an unknown model.
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& description);

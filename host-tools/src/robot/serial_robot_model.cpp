@@ -29,8 +29,11 @@ namespace {
 template <int N>
 class FixedEvaluator final : public SerialRobotModel::Evaluator {
 public:
-    FixedEvaluator(const KinematicChain<N>& chain, const Eigen::Vector3d& gravity, const StandardParameterOptions& options)
-        : regressor_(chain, gravity, options) {}
+    FixedEvaluator(const KinematicChain<N>& chain, const Eigen::Vector3d& gravity, const StandardParameterOptions& options,
+                   const std::vector<CoulombSign>& joint_coulomb)
+        : regressor_(chain, gravity, options) {
+        for (std::size_t j = 0; j < joint_coulomb.size(); ++j) regressor_.set_coulomb(static_cast<int>(j), joint_coulomb[j]);
+    }
 
     void evaluate(const double* q, const double* qd, const double* qdd, const std::vector<int>* base_columns,
                   Eigen::Ref<Eigen::MatrixXd> out) const override {
@@ -77,7 +80,7 @@ std::unique_ptr<SerialRobotModel::Evaluator> make_fixed(const SerialRobotConfig&
         const ChainError e = chain.add(config.joints[j]);
         if (e != ChainError::Ok) throw std::invalid_argument(fmt::format("joint {}: {}", j + 1, to_string(e)));
     }
-    return std::make_unique<FixedEvaluator<N>>(chain, config.gravity, config.options);
+    return std::make_unique<FixedEvaluator<N>>(chain, config.gravity, config.options, config.joint_coulomb);
 }
 
 template <int N>

@@ -23,6 +23,7 @@ struct SerialRobotConfig {
     std::vector<ChainJoint> joints;          // topological order
     Eigen::Vector3d gravity{0.0, 0.0, -9.81};  // m/s^2 in the base frame
     StandardParameterOptions options{};
+    std::vector<CoulombSign> joint_coulomb;  // per joint; empty (or shorter): options.coulomb
 };
 
 // Standard parameter names in column order for `joints` joints: XX1 XY1 ... FC1 [FOFF1] XX2 ...

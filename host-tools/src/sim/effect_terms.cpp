@@ -91,10 +91,10 @@ void term_columns(const EffectTerm& term, const EffectContext& context, const do
     const int j = term.joint;
     switch (term.kind) {
         case EffectKind::CoulombOffset: columns(j, 0) = 1.0; break;
-        case EffectKind::CoulombAsymmetry: columns(j, 0) = std::abs(context.coulomb(qd[j])); break;
+        case EffectKind::CoulombAsymmetry: columns(j, 0) = std::abs(context.sign(j)(qd[j])); break;
         case EffectKind::Stribeck: {
             const double r = qd[j] / term.velocity;
-            columns(j, 0) = context.coulomb(qd[j]) * std::exp(-r * r);
+            columns(j, 0) = context.sign(j)(qd[j]) * std::exp(-r * r);
             break;
         }
         case EffectKind::ViscousNonlinear: columns(j, 0) = qd[j] * std::abs(qd[j]); break;

@@ -49,6 +49,10 @@ struct EffectContext {
     std::string model_name;
     int joints = 0;
     robot::CoulombSign coulomb{};
+    std::vector<robot::CoulombSign> joint_coulomb;  // per joint (friction.alpha per joint or auto); empty: coulomb
+    const robot::CoulombSign& sign(int joint) const {
+        return static_cast<std::size_t>(joint) < joint_coulomb.size() ? joint_coulomb[static_cast<std::size_t>(joint)] : coulomb;
+    }
 };
 
 // One effect with its hyper-parameter fixed: a block of columns.

@@ -63,7 +63,7 @@ TEST(EffectSpec, YamlErrorsNameFileLineAndColumn) {
 TEST(EffectSpec, CoggingCoefficientsReproduceThePhase) {
     const EffectSpec s = parse_effect("cogging:joint=1,amplitude=0.2,order=7,phase=40", 2);
     const EffectTerm term = term_of(s);
-    const EffectContext ctx{"planar2r", 2, {}};
+    const EffectContext ctx{"planar2r", 2, {}, {}};
     // Dummy nominal model is not needed for cogging: coefficients depend on the spec only.
     struct NoModel : robot::RobotModel {
         std::vector<std::string> names;

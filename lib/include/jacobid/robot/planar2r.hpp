@@ -18,7 +18,7 @@ namespace jacobid::robot {
 
 struct Planar2RConfig {
     double L1 = 0.5;           // length of link 1 in m (d2 of the MDH table)
-    CoulombSign coulomb{};     // sign(qd) or its smoothed version, for both joints
+    CoulombSign coulomb{};     // sign(qd) or its smoothed version, for both joints (Planar2R::set_coulomb: per joint)
     bool friction_offset = false;  // adds FOFF1, FOFF2
     bool rotor_inertia = false;    // adds IA2
 };
@@ -44,7 +44,14 @@ public:
             if (active) active_[next - 1] = parameter;
         }
         parameter_count_ = next;
+        coulomb_.fill(config.coulomb);
     }
+
+    // Joint `joint`'s (0 or 1) Coulomb sign function, config.coulomb by default: the smoothing can differ per joint.
+    void set_coulomb(int joint, const CoulombSign& sign) noexcept {
+        if (joint >= 0 && joint < kJoints) coulomb_[static_cast<std::size_t>(joint)] = sign;
+    }
+    const CoulombSign& coulomb(int joint) const noexcept { return coulomb_[static_cast<std::size_t>(joint)]; }
 
     const Planar2RConfig& config() const noexcept { return config_; }
     int parameter_count() const noexcept { return parameter_count_; }
@@ -71,14 +78,14 @@ public:
         const double qd1_sq = qd[0] * qd[0];
         set(D, Parameter::ZZ1R, qdd[0], 0.0);
         set(D, Parameter::FV1, qd[0], 0.0);
-        set(D, Parameter::FC1, config_.coulomb(qd[0]), 0.0);
+        set(D, Parameter::FC1, coulomb_[0](qd[0]), 0.0);
         set(D, Parameter::FOFF1, 1.0, 0.0);
         set(D, Parameter::ZZ2, qdd12, qdd12);
         set(D, Parameter::MX2, l1 * (a1 * c2 - v1 * s2), l1 * (qdd[0] * c2 + qd1_sq * s2));
         set(D, Parameter::MY2, -l1 * (a1 * s2 + v1 * c2), l1 * (qd1_sq * c2 - qdd[0] * s2));
         set(D, Parameter::IA2, 0.0, qdd[1]);
         set(D, Parameter::FV2, 0.0, qd[1]);
-        set(D, Parameter::FC2, 0.0, config_.coulomb(qd[1]));
+        set(D, Parameter::FC2, 0.0, coulomb_[1](qd[1]));
         set(D, Parameter::FOFF2, 0.0, 1.0);
     }
 
@@ -91,6 +98,7 @@ private:
     }
 
     Planar2RConfig config_;
+    std::array<CoulombSign, kJoints> coulomb_{};
     std::array<int, kMaxParameters> column_{};
     std::array<Parameter, kMaxParameters> active_{};
     int parameter_count_ = 0;

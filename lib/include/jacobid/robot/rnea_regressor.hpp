@@ -42,7 +42,16 @@ public:
 
     // gravity: acceleration of gravity in the base frame, e.g. (0, 0, -9.81).
     RneaRegressor(const KinematicChain<N>& chain, const Eigen::Vector3d& gravity, const StandardParameterOptions& options) noexcept
-        : chain_(chain), gravity_(gravity), options_(options), layout_(chain.size(), options) {}
+        : chain_(chain), gravity_(gravity), options_(options), layout_(chain.size(), options) {
+        coulomb_.fill(options.coulomb);
+    }
+
+    // Joint `joint`'s Coulomb sign function (default: options.coulomb for every joint). Real drives differ
+    // in how sharply friction reverses, so the smoothing can be chosen per joint (docs/method.md, "Pitfalls").
+    void set_coulomb(int joint, const CoulombSign& sign) noexcept {
+        if (joint >= 0 && joint < N) coulomb_[static_cast<std::size_t>(joint)] = sign;
+    }
+    const CoulombSign& coulomb(int joint) const noexcept { return coulomb_[static_cast<std::size_t>(joint)]; }
 
     int joint_count() const noexcept { return chain_.size(); }
     int parameter_count() const noexcept { return layout_.count(); }
@@ -81,7 +90,7 @@ public:
             const int ia = layout_.column(j, ParameterKind::IA);
             if (ia >= 0) D(j, ia) = qdd[j];
             D(j, layout_.column(j, ParameterKind::FV)) = qd[j];
-            D(j, layout_.column(j, ParameterKind::FC)) = options_.coulomb(qd[j]);
+            D(j, layout_.column(j, ParameterKind::FC)) = coulomb(j)(qd[j]);
             const int offset = layout_.column(j, ParameterKind::FOFF);
             if (offset >= 0) D(j, offset) = 1.0;
         }
@@ -110,7 +119,7 @@ public:
             tau[j] = joint.type == JointType::Revolute ? joint.axis.dot(w.template tail<3>()) : joint.axis.dot(w.template head<3>());
             const int ia = layout_.column(j, ParameterKind::IA);
             if (ia >= 0) tau[j] += X[ia] * qdd[j];
-            tau[j] += X[layout_.column(j, ParameterKind::FV)] * qd[j] + X[layout_.column(j, ParameterKind::FC)] * options_.coulomb(qd[j]);
+            tau[j] += X[layout_.column(j, ParameterKind::FV)] * qd[j] + X[layout_.column(j, ParameterKind::FC)] * coulomb(j)(qd[j]);
             const int offset = layout_.column(j, ParameterKind::FOFF);
             if (offset >= 0) tau[j] += X[offset];
             if (joint.antecedent >= 0) {
@@ -207,6 +216,7 @@ private:
     KinematicChain<N> chain_;
     Eigen::Vector3d gravity_;
     StandardParameterOptions options_;
+    std::array<CoulombSign, N> coulomb_{};
     Layout layout_;
 };
 
