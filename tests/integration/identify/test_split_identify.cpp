@@ -204,6 +204,12 @@ TEST(SplitIdentify, ValidationLogIsSplitToo) {
     EXPECT_LT(v["samples"].get<double>(), w["samples"].get<double>());
     EXPECT_LT(v["relative_error"].get<double>(), 1.5 * w["relative_error"].get<double>());
     for (std::size_t k = 0; k < 2; ++k) EXPECT_LT(v["rms_error"][k].get<double>(), 1.5 * w["rms_error"][k].get<double>()) << k;
+    // Pooling is exact: validating on the identification log itself gives back its relative error norm (the
+    // same segments through the same filters, the residual sums of squares added over the segments).
+    const json self = run_json(split_args(gap) + " --on-gap split --validate " + gap);
+    EXPECT_NEAR(self["validation"]["relative_error"].get<double>(), self["relative_error_norm"].get<double>(),
+                1e-9 * self["relative_error_norm"].get<double>());
+    EXPECT_EQ(self["validation"]["samples"].get<std::size_t>() * 2, self["equations"].get<std::size_t>());
 }
 
 std::vector<std::vector<double>> read_csv_rows(const std::string& text, std::string& header) {
