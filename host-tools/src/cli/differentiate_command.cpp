@@ -57,6 +57,9 @@ KernelParams jacobi_params_for(const DifferentiateOptions& o, int order, double 
     return to_kernel_params(k);
 }
 
+// The output column of derivative order n of `column`: q1_d1, or q1_filtered for order 0.
+std::string channel_name(const std::string& column, int n) { return n == 0 ? column + "_filtered" : fmt::format("{}_d{}", column, n); }
+
 // The estimates of one uniformly sampled table on the rows where every estimate exists, as CSV lines
 // (time, estimates, then `marker` when not empty); `jacobi` holds the kernel of each --orders entry.
 // InputError when the table is too short for the windows.
@@ -70,7 +73,7 @@ std::string estimate_rows(const io::CsvTable& table, const std::string& what, co
         for (std::size_t i = 0; i < o.orders.size(); ++i) {
             const int n = o.orders[i];
             const std::string where = fmt::format("{}: column '{}'", what, column);
-            const std::string name = n == 0 ? column + "_filtered" : fmt::format("{}_d{}", column, n);
+            const std::string name = channel_name(column, n);
             if (o.method == "jacobi") {
                 channels.push_back({name, signal::jacobi_estimate(jacobi[i], x, where)});
             } else {
@@ -126,7 +129,7 @@ void run(const DifferentiateOptions& o) {
     }
     std::string out = o.time_column;
     for (const std::string& column : o.columns) {
-        for (int n : o.orders) out += "," + (n == 0 ? column + "_filtered" : fmt::format("{}_d{}", column, n));
+        for (int n : o.orders) out += "," + channel_name(column, n);
     }
     out += log.split ? ",segment\n" : "\n";
     std::size_t rows_in = 0, rows_out = 0, used = 0;

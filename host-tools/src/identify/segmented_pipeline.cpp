@@ -12,6 +12,14 @@
 
 namespace jacobid::identify {
 
+std::string joined_reasons(const std::vector<std::string>& why) {
+    std::string reasons;
+    for (const std::string& w : why) {
+        if (!w.empty()) reasons += (reasons.empty() ? "" : "; ") + w;
+    }
+    return reasons;
+}
+
 SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings) {
     if (segments.empty()) throw InputError("no log segment to identify from");
     SegmentPlan plan;
@@ -72,9 +80,7 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
         }
     }
     if (out.used_count == 0) {
-        std::string reasons;
-        for (std::size_t s = 0; s < segments.size(); ++s) reasons += fmt::format("{}{}", s ? "; " : "", out.why[s]);
-        throw InputError(fmt::format("--on-gap split: none of the {} segments is usable: {}", segments.size(), reasons));
+        throw InputError(fmt::format("--on-gap split: none of the {} segments is usable: {}", segments.size(), joined_reasons(out.why)));
     }
     info.samples = samples;
     info.bandwidth_estimated = plan.info.bandwidth_estimated;

@@ -38,4 +38,7 @@ struct SegmentedOutput {
 SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
                                        double torque_delay);
 
+// "reason 1; reason 2; ..." of the segments not used (their non-empty `why`), for one-line errors.
+std::string joined_reasons(const std::vector<std::string>& why);
+
 }  // namespace jacobid::identify

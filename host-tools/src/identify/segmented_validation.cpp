@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "identify/segmented_pipeline.hpp"
 
 namespace jacobid::identify {
 
@@ -57,9 +58,8 @@ SegmentedValidation validate_segments(const robot::RobotModel& model, const std:
         }
     }
     if (parts.empty()) {
-        std::string reasons;
-        for (std::size_t s = 0; s < segments.size(); ++s) reasons += fmt::format("{}{}", s ? "; " : "", out.why[s]);
-        throw InputError(fmt::format("--validate {}: --on-gap split: none of the {} segments is usable: {}", source, segments.size(), reasons));
+        throw InputError(fmt::format("--validate {}: --on-gap split: none of the {} segments is usable: {}", source, segments.size(),
+                                     joined_reasons(out.why)));
     }
     out.result = pool_validations(parts, source);
     return out;
