@@ -45,6 +45,8 @@ void check(const DiagnoseOptions& o) {
 
 void run(DiagnoseOptions o) {
     check(o);
+    // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
+    refuse_split(o.log_format, "diagnose");
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const io::CsvTable table = read_log_table(o.in, o.log_format, robot_column_names(robot, o.time_column), o.quiet);

@@ -57,34 +57,30 @@ KernelParams jacobi_params_for(const DifferentiateOptions& o, int order, double 
     return to_kernel_params(k);
 }
 
-void run(const DifferentiateOptions& o) {
-    io::LogColumnNames names;  // q1.., qd1.., tau1.. from the log format's joints
-    names.time = o.time_column;
-    const io::CsvTable table = read_log_table(o.input, o.log_format, names, false);
+// The output column of derivative order n of `column`: q1_d1, or q1_filtered for order 0.
+std::string channel_name(const std::string& column, int n) { return n == 0 ? column + "_filtered" : fmt::format("{}_d{}", column, n); }
+
+// The estimates of one uniformly sampled table on the rows where every estimate exists, as CSV lines
+// (time, estimates, then `marker` when not empty); `jacobi` holds the kernel of each --orders entry.
+// InputError when the table is too short for the windows.
+std::string estimate_rows(const io::CsvTable& table, const std::string& what, const DifferentiateOptions& o, const std::vector<KernelParams>& jacobi,
+                          const std::string& marker, std::size_t& rows) {
     const io::TimeAxis time = io::check_uniform_time(table, o.time_column, o.time_tolerance);
     const double ts = time.sample_period;
-    for (int n : o.orders) {
-        if (n < 0 || n > kMaxOrder) throw InputError(fmt::format("--orders: derivative order {} is not 0, 1, 2 or 3", n));
-        if (o.method == "butterworth" && n > 2) throw InputError("--orders: the Butterworth + Euler baseline provides orders 0, 1 and 2");
-    }
-    if (o.method == "jacobi" && (o.kernel.window > 0.0) == (o.cutoff > 0.0)) {
-        throw InputError("--window / --cutoff: give exactly one of them for the Jacobi method");
-    }
-    if (o.method == "butterworth" && o.butterworth.empty()) throw InputError("--butterworth ORDER:CUTOFF_HZ is required with --method butterworth");
-
     std::vector<Channel> channels;
     for (const std::string& column : o.columns) {
         const std::vector<double>& x = table.column(column);
-        for (int n : o.orders) {
-            const std::string what = fmt::format("{}: column '{}'", o.input, column);
-            const std::string name = n == 0 ? column + "_filtered" : fmt::format("{}_d{}", column, n);
+        for (std::size_t i = 0; i < o.orders.size(); ++i) {
+            const int n = o.orders[i];
+            const std::string where = fmt::format("{}: column '{}'", what, column);
+            const std::string name = channel_name(column, n);
             if (o.method == "jacobi") {
-                channels.push_back({name, signal::jacobi_estimate(jacobi_params_for(o, n, ts), x, what)});
+                channels.push_back({name, signal::jacobi_estimate(jacobi[i], x, where)});
             } else {
                 const signal::ButterworthEuler bw = signal::parse_butterworth_spec(o.butterworth, "--butterworth", ts);
                 const std::size_t crop = o.crop >= 0.0 ? static_cast<std::size_t>(std::llround(o.crop / ts))
                                                        : signal::butterworth_edge_samples(bw.cutoff_hz, ts);
-                channels.push_back({name, signal::butterworth_euler_estimate(bw.sos, n, ts, x, crop, what)});
+                channels.push_back({name, signal::butterworth_euler_estimate(bw.sos, n, ts, x, crop, where)});
             }
         }
     }
@@ -99,22 +95,66 @@ void run(const DifferentiateOptions& o) {
         first = std::max(first, c.estimate.first_index);
         last = std::min(last, c.estimate.first_index + static_cast<double>(c.estimate.values.size()) - 1.0);
     }
-    if (last < first) throw InputError(fmt::format("{}: the estimates have no sample in common (log too short for these windows)", o.input));
-    std::string out = o.time_column;
-    for (const Channel& c : channels) out += "," + c.name;
-    out += "\n";
-    const auto rows = static_cast<std::size_t>(std::llround(last - first)) + 1;
+    if (last < first) throw InputError(fmt::format("{}: the estimates have no sample in common (log too short for these windows)", what));
+    std::string out;
+    rows = static_cast<std::size_t>(std::llround(last - first)) + 1;
     for (std::size_t r = 0; r < rows; ++r) {
         const double index = first + static_cast<double>(r);
         out += fmt::format("{:.17g}", time.start + index * ts);
         for (const Channel& c : channels) {
             out += fmt::format(",{:.17g}", c.estimate.values[static_cast<std::size_t>(std::llround(index - c.estimate.first_index))]);
         }
-        out += "\n";
+        out += marker.empty() ? "\n" : "," + marker + "\n";
     }
+    return out;
+}
+
+void run(const DifferentiateOptions& o) {
+    io::LogColumnNames names;  // q1.., qd1.., tau1.. from the log format's joints
+    names.time = o.time_column;
+    const LogSegments log = read_log_segments(o.input, o.log_format, names, false);
+    for (int n : o.orders) {
+        if (n < 0 || n > kMaxOrder) throw InputError(fmt::format("--orders: derivative order {} is not 0, 1, 2 or 3", n));
+        if (o.method == "butterworth" && n > 2) throw InputError("--orders: the Butterworth + Euler baseline provides orders 0, 1 and 2");
+    }
+    if (o.method == "jacobi" && (o.kernel.window > 0.0) == (o.cutoff > 0.0)) {
+        throw InputError("--window / --cutoff: give exactly one of them for the Jacobi method");
+    }
+    if (o.method == "butterworth" && o.butterworth.empty()) throw InputError("--butterworth ORDER:CUTOFF_HZ is required with --method butterworth");
+    // One kernel per order for every segment: they share the grid period (docs/log-format.md).
+    std::vector<KernelParams> jacobi;
+    if (o.method == "jacobi") {
+        const double ts = io::check_uniform_time(log.tables.front(), o.time_column, o.time_tolerance).sample_period;
+        for (int n : o.orders) jacobi.push_back(jacobi_params_for(o, n, ts));
+    }
+    std::string out = o.time_column;
+    for (const std::string& column : o.columns) {
+        for (int n : o.orders) out += "," + channel_name(column, n);
+    }
+    out += log.split ? ",segment\n" : "\n";
+    std::size_t rows_in = 0, rows_out = 0, used = 0;
+    for (std::size_t s = 0; s < log.tables.size(); ++s) {
+        rows_in += log.tables[s].rows();
+        std::size_t rows = 0;
+        if (!log.split) {
+            out += estimate_rows(log.tables[s], o.input, o, jacobi, "", rows);
+        } else {
+            // Each segment on its own (no window straddles a gap), its rows marked with its 1-based number; a
+            // segment too short for the windows is named on stderr, and only when none is long enough is it an error.
+            const std::string what = fmt::format("{} segment {} ({})", o.input, s + 1, log.segments[s].describe());
+            try {
+                out += estimate_rows(log.tables[s], what, o, jacobi, std::to_string(s + 1), rows);
+                ++used;
+            } catch (const InputError& e) {
+                fmt::print(stderr, "{}: segment not written: {}\n", what, e.what());
+            }
+        }
+        rows_out += rows;
+    }
+    if (log.split && used == 0) throw InputError(fmt::format("{}: --on-gap split: none of the {} segments is long enough for these windows", o.input, log.tables.size()));
     write_output(o.output, out);
-    fmt::print(stderr, "{}: {} rows in, {} rows out ({} dropped at the ends, where a window is incomplete)\n", o.input, table.rows(), rows,
-               table.rows() - rows);
+    fmt::print(stderr, "{}: {} rows in, {} rows out ({} dropped at the ends, where a window is incomplete){}\n", o.input, rows_in, rows_out,
+               rows_in - rows_out, log.split ? fmt::format("; {} of {} segments written", used, log.tables.size()) : std::string());
 }
 
 }  // namespace
@@ -136,7 +176,8 @@ void add_differentiate_command(CLI::App& app) {
     cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
         ->capture_default_str();
     add_log_format_options(cmd, o->log_format);
-    cmd->add_option("--out,-o", o->output, "output CSV ('-' = stdout): time, then <column>_d<order> for each column and order")->capture_default_str();
+    cmd->add_option("--out,-o", o->output,
+                    "output CSV ('-' = stdout): time, then <column>_d<order> for each column and order (and segment, 1-based, with --on-gap split)")->capture_default_str();
     cmd->callback([o] { run(*o); });
 }
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -21,6 +22,8 @@
 #include "identify/pipeline.hpp"
 #include "identify/plausibility.hpp"
 #include "identify/report.hpp"
+#include "identify/segmented_pipeline.hpp"
+#include "identify/segmented_validation.hpp"
 #include "identify/static_validation.hpp"
 #include "identify/torque_delay.hpp"
 #include "identify/validation.hpp"
@@ -61,9 +64,10 @@ struct IdentifyOptions {
     LogFormatOptions log_format;
 };
 
-// A CSV log, or with --can-config a candump capture decoded by the firmware's joint profiles.
-io::CsvTable read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
-    if (o.can_config.empty()) return read_log_table(path, o.log_format, robot_column_names(robot, o.time_column), o.quiet);
+// A CSV log (with --on-gap split, one table per segment), or with --can-config a candump capture decoded by
+// the firmware's joint profiles.
+LogSegments read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
+    if (o.can_config.empty()) return read_log_segments(path, o.log_format, robot_column_names(robot, o.time_column), o.quiet);
     if (!o.log_format.file.empty()) throw InputError("--log-format and --can-config: give one of them");
 #if JACOBID_WITH_FIRMWARE
     firmware::FirmwareConfig fw;
@@ -84,7 +88,8 @@ io::CsvTable read_log(const std::string& path, const robot::RobotDescription& ro
         torques.push_back(robot.joints[j].torque_column);
     }
     io::CandumpJointCounts counts;
-    io::CsvTable table = io::candump_joint_table(io::read_candump_log(path), decoders, positions, torques, o.time_column, path, &counts);
+    LogSegments table;
+    table.tables.push_back(io::candump_joint_table(io::read_candump_log(path), decoders, positions, torques, o.time_column, path, &counts));
     if (!o.quiet) {
         fmt::print(stderr, "{}: {} samples from {} decoded frames ({} frames of other ids and {} error frames skipped)\n", path, counts.samples,
                    counts.frames_decoded, counts.frames_other_ids, counts.error_frames);
@@ -132,6 +137,53 @@ std::map<std::string, double> read_truth(const std::string& path) {
     return truth;
 }
 
+// The joints' columns of each table (one, or one per segment with --on-gap split).
+std::vector<identify::LogColumns> columns_of(const LogSegments& logs, const robot::RobotDescription& robot, const IdentifyOptions& o) {
+    std::vector<identify::LogColumns> columns;
+    for (const auto& table : logs.tables) columns.push_back(identify::log_columns(table, robot, o.time_column, o.time_tolerance));
+    return columns;
+}
+
+// The segments' report lines, each segment not used also on stderr (never dropped silently).
+std::vector<identify::SegmentReport> segment_reports(const std::vector<io::LogSegment>& segments, const std::vector<bool>& used,
+                                                     const std::vector<std::string>& why, const char* method, const std::string& path) {
+    std::vector<identify::SegmentReport> reports;
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+        const io::LogSegment& g = segments[s];
+        reports.push_back({g.first_line, g.last_line, g.duration, g.samples, used[s], why[s]});
+        if (!used[s]) fmt::print(stderr, "jacobid identify [{}]: {}: segment {} ({}) not used: {}\n", method, path, s + 1, g.describe(), why[s]);
+    }
+    return reports;
+}
+
+// --validate: the gravity check on a log that holds a pose (static_validation.hpp), else the torques
+// predicted through the identification's filters, pooled over the segments with --on-gap split.
+void validate(const robot::RobotModel& model, const LogSegments& input, const std::vector<identify::LogColumns>& logs,
+              const identify::PipelineSettings& settings, const IdentifyOptions& o, identify::MethodResult& r) {
+    const bool holds_pose = std::any_of(logs.begin(), logs.end(), [&](const auto& l) { return identify::is_static(l, o.pipeline.min_joint_motion); });
+    if (holds_pose && logs.size() > 1) {
+        throw InputError(fmt::format("--validate {}: --on-gap split cut a log that holds a pose into {} segments; the static check needs one "
+                                     "(use --on-gap interpolate)", o.validate, logs.size()));
+    }
+    if (holds_pose) {
+        r.static_validation = identify::validate_static(model, logs.front(), r.solution.x);
+        return;
+    }
+    // The same hardware, the same offset between its channels.
+    std::vector<identify::ShiftedTorques> aligned;
+    aligned.reserve(logs.size());
+    std::vector<identify::LogColumns> views;
+    for (const auto& l : logs) views.push_back(aligned.emplace_back(identify::shift_torques(l, r.torque_delay.applied())).log);
+    const identify::PipelineSettings v = identify::validation_settings(settings, r.info);
+    if (!input.split) {
+        r.validation = identify::validate_prediction(model, views.front(), v, r.solution.x);
+        return;
+    }
+    identify::SegmentedValidation pooled = identify::validate_segments(model, views, v, r.solution.x, o.validate);
+    r.validation = std::move(pooled.result);
+    r.validation_segments = segment_reports(input.segments, pooled.used, pooled.why, identify::to_string(r.info.method), o.validate);
+}
+
 void run(IdentifyOptions o) {
     using Clock = std::chrono::steady_clock;
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
@@ -143,17 +195,20 @@ void run(IdentifyOptions o) {
     }
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
     const auto parse_start = Clock::now();
-    const io::CsvTable table = read_log(o.in, robot, o);
-    const identify::LogColumns log = identify::log_columns(table, robot, o.time_column, o.time_tolerance);
+    const LogSegments input = read_log(o.in, robot, o);
+    const std::vector<identify::LogColumns> logs = columns_of(input, robot, o);
+    const identify::LogColumns& log = logs.front();
     const double parse_seconds = std::chrono::duration<double>(Clock::now() - parse_start).count();
-    o.pipeline.progress = !o.quiet && log.samples() > 500'000;
-    if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", log.samples(), o.in, parse_seconds);
+    std::size_t samples = 0;
+    for (const auto& l : logs) samples += l.samples();
+    o.pipeline.progress = !o.quiet && samples > 500'000;
+    if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", samples, o.in, parse_seconds);
 
-    std::unique_ptr<io::CsvTable> validation_table;
-    identify::LogColumns validation_log;
+    LogSegments validation_input;
+    std::vector<identify::LogColumns> validation_logs;
     if (!o.validate.empty()) {
-        validation_table = std::make_unique<io::CsvTable>(read_log(o.validate, robot, o));
-        validation_log = identify::log_columns(*validation_table, robot, o.time_column, o.time_tolerance);
+        validation_input = read_log(o.validate, robot, o);
+        validation_logs = columns_of(validation_input, robot, o);
     }
 
     identify::ReportContext ctx;
@@ -179,27 +234,33 @@ void run(IdentifyOptions o) {
         solve.weighted = o.weighted;
         solve.rank_tolerance = o.rank_tolerance;
         identify::MethodResult r;
-        // The delay is estimated with the description's alpha, then each joint's alpha is chosen on the aligned log.
-        r.torque_delay = torque_delay(*model, log, settings, solve, o);
-        const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
-        const identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, aligned.log, settings, solve.weighted);
+        // The delay is estimated with the description's alpha, then each joint's alpha (friction alpha: auto) is
+        // chosen on the aligned log (the longest segment with --on-gap split).
+        identify::PipelineOutput out;
+        identify::SmoothedModel smoothed;
+        if (input.split) {
+            // Every segment with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp).
+            const identify::SegmentPlan plan = identify::plan_segments(logs, settings);
+            r.torque_delay = torque_delay(*model, logs[plan.reference], plan.fixed, solve, o);
+            const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], r.torque_delay.applied());
+            smoothed = identify::resolve_coulomb_smoothing(robot, *model, reference.log, plan.fixed, solve.weighted);
+            identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, r.torque_delay.applied());
+            r.segments = segment_reports(input.segments, split.used, split.why, identify::to_string(m), o.in);
+            out = std::move(split.merged);
+        } else {
+            r.torque_delay = torque_delay(*model, log, settings, solve, o);
+            const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
+            smoothed = identify::resolve_coulomb_smoothing(robot, *model, aligned.log, settings, solve.weighted);
+            out = identify::run_pipeline(smoothed.get(*model), aligned.log, settings);
+        }
         const robot::RobotModel& fitted = smoothed.get(*model);
         r.coulomb_smoothing = smoothed.choice;
-        identify::PipelineOutput out = identify::run_pipeline(fitted, aligned.log, settings);
         r.info = out.info;
         r.plot = std::move(out.plot);
         r.solution = identify::solve_least_squares(out.factors, fitted.parameter_names(), solve);
         r.violations = identify::plausibility_violations(identify::sign_constraints(fitted), r.solution);
         if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, fitted.parameter_names(), o.essential, solve);
-        if (!o.validate.empty() && identify::is_static(validation_log, o.pipeline.min_joint_motion)) {
-            // A log that holds a pose: the gravity check (static_validation.hpp).
-            r.static_validation = identify::validate_static(fitted, validation_log, r.solution.x);
-        } else if (!o.validate.empty()) {
-            // The same hardware, the same offset between its channels.
-            const identify::ShiftedTorques validation_aligned = identify::shift_torques(validation_log, r.torque_delay.applied());
-            r.validation =
-                identify::validate_prediction(fitted, validation_aligned.log, identify::validation_settings(settings, r.info), r.solution.x);
-        }
+        if (!o.validate.empty()) validate(fitted, validation_input, validation_logs, settings, o, r);
         for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
             ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));
         }

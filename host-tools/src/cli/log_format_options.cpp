@@ -14,20 +14,34 @@ void add_log_format_options(CLI::App* command, LogFormatOptions& o) {
                         "with gains; docs/log-format.md): --in and --validate are read with it and resampled onto a uniform grid");
     command->add_flag("--skip-bad-rows", o.read.skip_bad_rows,
                       "with --log-format: skip malformed rows and rows whose time does not increase, reporting each (default: error)");
-    command->add_option("--on-gap", o.on_gap, "with --log-format: a time step longer than --max-gap is an error, or is interpolated")
-        ->check(CLI::IsMember({"error", "interpolate"}))
+    command->add_option("--on-gap", o.on_gap,
+                        "with --log-format: a time step longer than --max-gap is an error, is interpolated, or splits the log into "
+                        "segments processed separately (identify, differentiate; docs/log-format.md)")
+        ->check(CLI::IsMember({"error", "interpolate", "split"}))
         ->capture_default_str();
     command->add_option("--max-gap", o.read.max_gap, "with --log-format: longest time step in s that is not a gap (default: 3 median steps)");
     command->add_option("--interpolate-max", o.read.interpolate_max, "with --on-gap interpolate: most missing samples a gap may span")
         ->capture_default_str();
 }
 
+void refuse_split(const LogFormatOptions& o, const std::string& command) {
+    if (o.on_gap == "split") throw InputError(fmt::format("--on-gap split is not supported by {}; use interpolate", command));
+}
+
 io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period) {
+    if (o.on_gap == "split") throw InputError("--on-gap split is not supported by this command (it reads one continuous log); use interpolate");
+    return std::move(read_log_segments(path, o, std::move(names), quiet, period).tables.front());
+}
+
+LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period) {
+    LogSegments out;
+    out.split = o.on_gap == "split";
     if (o.file.empty()) {
         if (o.read.skip_bad_rows || o.on_gap != "error" || o.read.max_gap > 0.0) {
             throw InputError("--skip-bad-rows, --on-gap and --max-gap apply to logs read with --log-format");
         }
-        return io::read_csv(path);
+        out.tables.push_back(io::read_csv(path));
+        return out;
     }
     const io::LogFormat format = io::load_log_format(o.file);
     if (names.q.empty()) {
@@ -37,9 +51,10 @@ io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, 
     }
     io::LogReadSettings settings = o.read;
     settings.period = period;
-    settings.on_gap = o.on_gap == "interpolate" ? io::GapPolicy::Interpolate : io::GapPolicy::Error;
+    settings.on_gap = o.on_gap == "interpolate" ? io::GapPolicy::Interpolate : out.split ? io::GapPolicy::Split : io::GapPolicy::Error;
     io::LogReadReport report;
-    io::CsvTable table = io::read_formatted_log(path, format, names, settings, report);
+    out.tables = io::read_formatted_log_segments(path, format, names, settings, report);
+    out.segments = report.segments;
     // Skipped rows and the summary are always printed (never silently absorbed); the per-step lines only
     // without --quiet.
     for (const auto& s : report.skipped) fmt::print(stderr, "{} (skipped)\n", s);
@@ -49,11 +64,17 @@ io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, 
                        1e3 * report.irregular_steps[i], 1e3 * report.median_step);
         }
         for (std::size_t i = 0; i < report.gap_lines.size(); ++i) {
-            fmt::print(stderr, "{}:{}: gap of {:.4g} ms interpolated\n", path, report.gap_lines[i], 1e3 * report.gap_steps[i]);
+            fmt::print(stderr, "{}:{}: gap of {:.4g} ms {}\n", path, report.gap_lines[i], 1e3 * report.gap_steps[i],
+                       out.split ? "(the log is split there)" : "interpolated");
+        }
+        if (out.split) {
+            for (std::size_t s = 0; s < report.segments.size(); ++s) {
+                fmt::print(stderr, "{}: segment {}: {}\n", path, s + 1, report.segments[s].describe());
+            }
         }
     }
     fmt::print(stderr, "{}\n", report.summary());
-    return table;
+    return out;
 }
 
 io::LogColumnNames robot_column_names(const robot::RobotDescription& robot, const std::string& time_column) {

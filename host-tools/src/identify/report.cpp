@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -66,9 +67,36 @@ std::vector<std::string> identifiability_warnings(const MethodResult& r, const s
     return w;
 }
 
+namespace {
+
+// "segments: 2 of 3 used (--on-gap split)", then one line per segment not used, with its reason.
+std::string segment_lines(const std::string& what, const std::vector<SegmentReport>& segments) {
+    if (segments.empty()) return "";
+    const auto used = std::count_if(segments.begin(), segments.end(), [](const SegmentReport& r) { return r.used; });
+    std::string s = fmt::format("{}: {} of {} used (--on-gap split)\n", what, used, segments.size());
+    for (const auto& r : segments) {
+        if (!r.used) s += fmt::format("  not used: lines {}-{} ({:.4g} s, {} samples): {}\n", r.first_line, r.last_line, r.duration, r.samples, r.why);
+    }
+    return s;
+}
+
+nlohmann::json segments_json(const std::vector<SegmentReport>& segments) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const auto& r : segments) {
+        a.push_back({{"first_line", r.first_line}, {"last_line", r.last_line}, {"duration_s", r.duration}, {"samples", r.samples},
+                     {"used", r.used}, {"why", r.why}});
+    }
+    return a;
+}
+
+}  // namespace
+
 std::string format_table(const std::vector<MethodResult>& results, const ReportContext& ctx) {
     const bool truth = !ctx.truth.empty();
     std::string s = fmt::format("Identification of {} ({} model)\n", ctx.log_source, ctx.model_name);
+    for (const auto& r : results) {
+        s += segment_lines(method_title(r) + " segments", r.segments) + segment_lines(method_title(r) + " validation segments", r.validation_segments);
+    }
     std::string head = fmt::format("{:<10}", "P");
     std::string sub = fmt::format("{:<10}", "");
     for (const auto& r : results) {
@@ -230,6 +258,8 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
         j["coulomb_smoothing"] = {{"auto", true}, {"candidates", c.candidates}, {"folds", c.folds}, {"passes", c.passes}, {"joints", joints}};
     }
     j["warnings"] = identifiability_warnings(r, ctx.joint_names);
+    if (!r.segments.empty()) j["segments"] = segments_json(r.segments);
+    if (!r.validation_segments.empty()) j["validation_segments"] = segments_json(r.validation_segments);
     const auto& i = r.info;
     j["settings"] = {{"sample_period", i.sample_period},
                      {"samples", i.samples},

@@ -19,6 +19,15 @@
 
 namespace jacobid::identify {
 
+// One segment of a log split at its gaps (--on-gap split), as the reports list it.
+struct SegmentReport {
+    std::size_t first_line = 0, last_line = 0;
+    double duration = 0.0;  // s
+    std::size_t samples = 0;
+    bool used = false;
+    std::string why;  // the reason when not used
+};
+
 struct MethodResult {
     PipelineInfo info;
     LsSolution solution;
@@ -29,6 +38,8 @@ struct MethodResult {
     TorqueDelayResult torque_delay;
     std::optional<CoulombSmoothingChoice> coulomb_smoothing;  // friction alpha: auto
     PlotRows plot;
+    // Which segments of a log split at its gaps (--on-gap split) the method used; empty otherwise.
+    std::vector<SegmentReport> segments, validation_segments;
 };
 
 struct ReportContext {

@@ -76,6 +76,7 @@ ValidationResult validate_prediction(const robot::RobotModel& model, const LogCo
             r.raw_rms_error[j] += err * err;
         }
     }
+    r.raw_samples = e.last - e.first;
     for (std::size_t j = 0; j < nj; ++j) r.raw_rms_error[j] = std::sqrt(r.raw_rms_error[j] / static_cast<double>(e.last - e.first));
     return r;
 }

@@ -17,6 +17,7 @@ namespace jacobid::identify {
 struct ValidationResult {
     std::string source;
     std::size_t samples = 0;            // compared samples per joint
+    std::size_t raw_samples = 0;        // full-rate samples of the raw comparison
     std::vector<double> rms_error;      // per joint, N.m, filtered (F_p) measured - predicted
     std::vector<double> raw_rms_error;  // per joint, N.m, full-rate raw measured - predicted
     std::vector<double> rms_torque;     // per joint, N.m

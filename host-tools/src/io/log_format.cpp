@@ -293,8 +293,8 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
     return raw;
 }
 
-CsvTable parse_formatted_log(const std::string& text, const std::string& source, const LogFormat& format, const LogColumnNames& names,
-                             const LogReadSettings& settings, LogReadReport& report) {
+std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, const std::string& source, const LogFormat& format,
+                                                   const LogColumnNames& names, const LogReadSettings& settings, LogReadReport& report) {
     const RawLog raw = parse_raw_log(text, source, format, names, settings, report);
     const std::vector<double>& t = raw.table.column(0);
     if (t.size() < 2) throw InputError(fmt::format("{}: {} data row(s), need at least 2", source, t.size()));
@@ -309,6 +309,8 @@ CsvTable parse_formatted_log(const std::string& text, const std::string& source,
         throw InputError(fmt::format("{}: a uniform grid every {:.6g} s over {:.6g} s would need {:.3g} samples for {} rows", source, grid.period,
                                      t.back() - t.front(), (t.back() - t.front()) / grid.period, t.size()));
     }
+    const bool split = settings.on_gap == GapPolicy::Split;
+    std::vector<std::size_t> cuts{0};  // raw row indices where a segment starts (split only), then the end
     for (std::size_t i = 0; i + 1 < t.size(); ++i) {
         const double step = t[i + 1] - t[i];
         const std::size_t at = raw.lines[i + 1];
@@ -316,13 +318,14 @@ CsvTable parse_formatted_log(const std::string& text, const std::string& source,
             const double missing = std::max(0.0, std::round(step / grid.period) - 1.0);
             if (settings.on_gap == GapPolicy::Error) {
                 throw InputError(fmt::format("{}:{}: time step {} after line {} is a gap (longer than --max-gap {}); --on-gap interpolate "
-                                             "fills gaps of up to --interpolate-max samples",
+                                             "fills gaps of up to --interpolate-max samples, --on-gap split cuts the log there",
                                              source, at, ms(step), raw.lines[i], ms(max_gap)));
             }
-            if (missing > static_cast<double>(settings.interpolate_max)) {
+            if (settings.on_gap == GapPolicy::Interpolate && missing > static_cast<double>(settings.interpolate_max)) {
                 throw InputError(fmt::format("{}:{}: time step {} after line {} is a gap of {} samples, more than --interpolate-max {}", source, at,
                                              ms(step), raw.lines[i], missing, settings.interpolate_max));
             }
+            if (split) cuts.push_back(i + 1);
             report.gap_lines.push_back(at);
             report.gap_steps.push_back(step);
         } else if (std::abs(step - report.median_step) > 0.5 * report.median_step) {
@@ -330,29 +333,69 @@ CsvTable parse_formatted_log(const std::string& text, const std::string& source,
             report.irregular_steps.push_back(step);
         }
     }
+    cuts.push_back(t.size());
+    report.split = split;
     report.grid_period = grid.period;
     report.grid_start = grid.start;
-    report.samples = grid.samples;
-    // Every channel onto the uniform grid by a natural cubic spline through the samples at their own times
-    // (docs/method.md, "Non-uniform sampling", measured against exact weights for the actual times).
-    CsvTable out(source, raw.table.header());
-    std::vector<double>& time = out.mutable_column(0);
-    time.resize(grid.samples);
-    for (std::size_t k = 0; k < grid.samples; ++k) time[k] = grid.start + static_cast<double>(k) * grid.period;
-    for (std::size_t c = 1; c < raw.table.columns(); ++c) {
-        out.mutable_column(c) = resample(t, raw.table.column(c), grid);
-        // Steps many orders of magnitude apart (1e-300 s next to 1 s) overflow the spline: say so.
-        for (const double v : out.mutable_column(c)) {
-            if (!std::isfinite(v)) throw InputError(fmt::format("{}: column '{}' is not finite after resampling (time steps of very different sizes?)", source, out.header()[c]));
+    report.samples = 0;
+    const bool several = cuts.size() > 2;
+    std::vector<CsvTable> tables;
+    for (std::size_t s = 0; s + 1 < cuts.size(); ++s) {
+        const auto b = static_cast<std::ptrdiff_t>(cuts[s]), e = static_cast<std::ptrdiff_t>(cuts[s + 1]);
+        LogSegment seg;
+        seg.first_line = raw.lines[cuts[s]];
+        seg.last_line = raw.lines[cuts[s + 1] - 1];
+        seg.rows = cuts[s + 1] - cuts[s];
+        seg.start = t[cuts[s]];
+        seg.duration = t[cuts[s + 1] - 1] - seg.start;
+        // Without split the one segment is the whole log on the grid above, exactly as before segments existed.
+        const std::vector<double> ts(t.begin() + b, t.begin() + e);
+        UniformGrid g = several ? uniform_grid(ts, max_gap, grid.period) : grid;
+        if (seg.rows == 1) g = {seg.start, grid.period, 1};
+        seg.samples = g.samples;
+        const std::string name = several ? fmt::format("{} (lines {}-{})", source, seg.first_line, seg.last_line) : source;
+        // Every channel onto the uniform grid by a natural cubic spline through the samples at their own times
+        // (docs/method.md, "Non-uniform sampling", measured against exact weights for the actual times).
+        CsvTable out(name, raw.table.header());
+        std::vector<double>& time = out.mutable_column(0);
+        time.resize(g.samples);
+        for (std::size_t k = 0; k < g.samples; ++k) time[k] = g.start + static_cast<double>(k) * g.period;
+        for (std::size_t c = 1; c < raw.table.columns(); ++c) {
+            const std::vector<double> x(raw.table.column(c).begin() + b, raw.table.column(c).begin() + e);
+            out.mutable_column(c) = seg.rows == 1 ? x : resample(ts, x, g);
+            // Steps many orders of magnitude apart (1e-300 s next to 1 s) overflow the spline: say so.
+            for (const double v : out.mutable_column(c)) {
+                if (!std::isfinite(v)) throw InputError(fmt::format("{}: column '{}' is not finite after resampling (time steps of very different sizes?)", name, out.header()[c]));
+            }
         }
+        report.samples += g.samples;
+        report.segments.push_back(seg);
+        tables.push_back(std::move(out));
     }
-    return out;
+    return tables;
+}
+
+CsvTable parse_formatted_log(const std::string& text, const std::string& source, const LogFormat& format, const LogColumnNames& names,
+                             const LogReadSettings& settings, LogReadReport& report) {
+    std::vector<CsvTable> tables = parse_formatted_log_segments(text, source, format, names, settings, report);
+    if (tables.size() > 1) {
+        throw InputError(fmt::format("{}:{}: time step {} is a gap and --on-gap split cuts the log into {} segments, but this reader takes one table",
+                                     source, report.gap_lines.front(), ms(report.gap_steps.front()), tables.size()));
+    }
+    return std::move(tables.front());
 }
 
 CsvTable read_formatted_log(const std::string& path, const LogFormat& format, const LogColumnNames& names, const LogReadSettings& settings,
                             LogReadReport& report) {
     return parse_formatted_log(read_text_file(path, "file"), path, format, names, settings, report);
 }
+
+std::vector<CsvTable> read_formatted_log_segments(const std::string& path, const LogFormat& format, const LogColumnNames& names,
+                                                  const LogReadSettings& settings, LogReadReport& report) {
+    return parse_formatted_log_segments(read_text_file(path, "file"), path, format, names, settings, report);
+}
+
+std::string LogSegment::describe() const { return fmt::format("lines {}-{}: {:.4g} s, {} samples", first_line, last_line, duration, samples); }
 
 std::string LogReadReport::summary() const {
     std::string s = fmt::format("{}: {} rows read", source, rows);
@@ -365,10 +408,12 @@ std::string LogReadReport::summary() const {
                          irregular_lines.front(), ms(irregular_steps.front()));
     }
     if (!gap_lines.empty()) {
-        s += fmt::format("; {} gap{} interpolated (first at line {}: {})", gap_lines.size(), gap_lines.size() == 1 ? "" : "s", gap_lines.front(),
+        s += fmt::format("; {} gap{} {} (first at line {}: {})", gap_lines.size(), gap_lines.size() == 1 ? "" : "s",
+                         split ? fmt::format("split the log into {} segments", segments.size()) : std::string("interpolated"), gap_lines.front(),
                          ms(gap_steps.front()));
     }
     s += fmt::format("; resampled (cubic spline) onto {} samples every {}", samples, ms(grid_period));
+    if (segments.size() > 1) s += fmt::format(" in all, each segment on its own grid");
     return s;
 }
 

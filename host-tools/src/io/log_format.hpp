@@ -42,7 +42,8 @@ struct LogFormat {
 LogFormat parse_log_format(const std::string& yaml_text, const std::string& source);
 LogFormat load_log_format(const std::string& path);
 
-enum class GapPolicy { Error, Interpolate };
+// Split: each run of rows between gaps is a segment of its own (parse_formatted_log_segments), all on one grid period.
+enum class GapPolicy { Error, Interpolate, Split };
 
 struct LogReadSettings {
     bool skip_bad_rows = false;
@@ -50,6 +51,15 @@ struct LogReadSettings {
     double max_gap = 0.0;              // s; a longer step is a gap. 0: 3 median steps
     std::size_t interpolate_max = 10;  // grid samples a gap may span with --on-gap interpolate
     double period = 0.0;               // s, of the uniform grid; 0: the mean step (gaps excluded)
+};
+
+// A contiguous run of rows without a gap, resampled on its own uniform grid (which starts at its first row).
+struct LogSegment {
+    std::size_t first_line = 0, last_line = 0;  // lines of its first and last rows
+    std::size_t rows = 0;                       // raw rows
+    double start = 0.0, duration = 0.0;         // s: its first row's time, last minus first
+    std::size_t samples = 0;                    // on its uniform grid
+    std::string describe() const;               // "lines 12-501: 4.95 s, 990 samples"
 };
 
 // What the reader found and did, printed on stderr by the commands and checked by the tests.
@@ -62,12 +72,14 @@ struct LogReadReport {
     // Steps farther than half a median step from the median (e.g. the UR10e's 2 ms steps), each reported.
     std::vector<std::size_t> irregular_lines;  // line of the row that ends the step
     std::vector<double> irregular_steps;       // s
-    std::vector<std::size_t> gap_lines;        // gaps (> max_gap) that were interpolated
+    std::vector<std::size_t> gap_lines;        // gaps (> max_gap), interpolated or split at
     std::vector<double> gap_steps;
+    bool split = false;                        // --on-gap split: the gaps cut the log into `segments`
+    std::vector<LogSegment> segments;          // one per table returned (one without split)
     double grid_period = 0.0;  // s, of the uniform grid
     double grid_start = 0.0;   // s
     std::size_t samples = 0;   // on the uniform grid
-    // One paragraph: rows, skipped rows, irregular steps (first at line L: 2.0 ms), gaps, the grid.
+    // One paragraph: rows, skipped rows, irregular steps (first at line L: 2.0 ms), gaps, segments, the grid.
     std::string summary() const;
 };
 
@@ -90,8 +102,18 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
 // Reads `path` with `format` and resamples it onto a uniform grid (io/resample.hpp); fills `report`.
 CsvTable read_formatted_log(const std::string& path, const LogFormat& format, const LogColumnNames& names,
                             const LogReadSettings& settings, LogReadReport& report);
-// Same from text in memory.
+// Same from text in memory. With GapPolicy::Split a log that has gaps is an InputError at its first gap
+// (one table cannot hold segments): read it with the _segments functions below.
 CsvTable parse_formatted_log(const std::string& text, const std::string& source, const LogFormat& format, const LogColumnNames& names,
                              const LogReadSettings& settings, LogReadReport& report);
+
+// Every policy: the log as segments, one table per report.segments entry, each on its own uniform grid with
+// one period for all (the imposed one, or the mean non-gap step over the whole log), times kept. Without
+// GapPolicy::Split this is the single table of parse_formatted_log. A segment of a single row is a table of
+// one sample. Tables are named "source (lines a-b)" when there are several, for the messages of their users.
+std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, const std::string& source, const LogFormat& format,
+                                                   const LogColumnNames& names, const LogReadSettings& settings, LogReadReport& report);
+std::vector<CsvTable> read_formatted_log_segments(const std::string& path, const LogFormat& format, const LogColumnNames& names,
+                                                  const LogReadSettings& settings, LogReadReport& report);
 
 }  // namespace jacobid::io

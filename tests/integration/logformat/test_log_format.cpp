@@ -203,7 +203,7 @@ TEST(LogFormat, GapPolicies) {
     LogReadReport report;
     EXPECT_EQ(error_of([&] { parse_formatted_log(clock_rows(steps), "g.csv", kPendubotLike, names, {}, report); }),
               "g.csv:12: time step 30 ms after line 11 is a gap (longer than --max-gap 15 ms); --on-gap interpolate fills gaps of up to "
-              "--interpolate-max samples");
+              "--interpolate-max samples, --on-gap split cuts the log there");
     LogReadSettings settings;
     settings.on_gap = GapPolicy::Interpolate;
     settings.interpolate_max = 4;
@@ -222,6 +222,56 @@ TEST(LogFormat, GapPolicies) {
     LogReadReport r2;
     parse_formatted_log(clock_rows(steps), "g.csv", kPendubotLike, names, wide, r2);
     EXPECT_EQ(r2.irregular_lines, (std::vector<std::size_t>{12}));
+}
+
+TEST(LogFormat, SplitGivesSegmentsOnOneGridPeriodAtTheirTrueTimes) {
+    std::vector<double> steps(30, 0.005);
+    steps[10] = 0.030;  // gap before line 12
+    steps[20] = 0.500;  // gap before line 22
+    steps[29] = 0.100;  // gap before line 31, the last row: a segment of one row
+    const auto names = LogColumnNames::numbered(2);
+    LogReadSettings settings;
+    settings.on_gap = GapPolicy::Split;
+    LogReadReport report;
+    const std::vector<CsvTable> tables = parse_formatted_log_segments(clock_rows(steps), "g.csv", kPendubotLike, names, settings, report);
+    ASSERT_EQ(tables.size(), 4u);
+    ASSERT_EQ(report.segments.size(), 4u);
+    EXPECT_EQ(report.gap_lines, (std::vector<std::size_t>{12, 22, 31}));
+    const std::size_t first[] = {1, 12, 22, 31}, last[] = {11, 21, 30, 31}, samples[] = {11, 10, 9, 1};
+    const double start[] = {10.0, 10.08, 10.625, 10.765};
+    for (std::size_t s = 0; s < 4; ++s) {
+        const LogSegment& g = report.segments[s];
+        EXPECT_EQ(g.first_line, first[s]) << s;
+        EXPECT_EQ(g.last_line, last[s]) << s;
+        EXPECT_EQ(g.rows, last[s] - first[s] + 1) << s;
+        EXPECT_EQ(g.samples, samples[s]) << s;
+        EXPECT_EQ(tables[s].rows(), samples[s]) << s;
+        EXPECT_NEAR(g.start, start[s], 1e-9) << s;
+        EXPECT_NEAR(g.duration, 0.005 * static_cast<double>(samples[s] - 1), 1e-9) << s;
+        // Each grid starts at its segment's first row, one period for all (gaps excluded from the mean).
+        const auto& t = tables[s].column("t");
+        for (std::size_t k = 0; k < t.size(); ++k) {
+            EXPECT_NEAR(t[k], start[s] + 0.005 * static_cast<double>(k), 1e-9) << s;
+            EXPECT_NEAR(tables[s].column("q1")[k], std::sin(t[k]), 2e-6) << s;  // grid points are the sample times
+        }
+        EXPECT_EQ(tables[s].source(), "g.csv (lines " + std::to_string(first[s]) + "-" + std::to_string(last[s]) + ")");
+    }
+    EXPECT_EQ(report.segments[1].describe(), "lines 12-21: 0.045 s, 10 samples");
+    EXPECT_NEAR(report.grid_period, 0.005, 1e-9);
+    EXPECT_EQ(report.samples, 31u);
+    EXPECT_NE(report.summary().find("3 gaps split the log into 4 segments (first at line 12: 30 ms)"), std::string::npos) << report.summary();
+    // One table cannot hold segments: the single-table reader says so at the first gap.
+    LogReadReport again;
+    EXPECT_EQ(error_of([&] { parse_formatted_log(clock_rows(steps), "g.csv", kPendubotLike, names, settings, again); }),
+              "g.csv:12: time step 30 ms is a gap and --on-gap split cuts the log into 4 segments, but this reader takes one table");
+    // Without gaps, split is the single table of the other policies.
+    LogReadReport whole, plain;
+    const std::vector<double> regular(30, 0.005);
+    const std::vector<CsvTable> one = parse_formatted_log_segments(clock_rows(regular), "r.csv", kPendubotLike, names, settings, whole);
+    const CsvTable reference = parse_formatted_log(clock_rows(regular), "r.csv", kPendubotLike, names, {}, plain);
+    ASSERT_EQ(one.size(), 1u);
+    EXPECT_EQ(one.front().column("q1"), reference.column("q1"));
+    EXPECT_EQ(one.front().source(), "r.csv");
 }
 
 }  // namespace

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+#include "identify/segmented_pipeline.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+#include "core/errors.hpp"
+#include "identify/merge_factors.hpp"
+#include "identify/torque_delay.hpp"
+#include "identify/validation.hpp"
+
+namespace jacobid::identify {
+
+std::string joined_reasons(const std::vector<std::string>& why) {
+    std::string reasons;
+    for (const std::string& w : why) {
+        if (!w.empty()) reasons += (reasons.empty() ? "" : "; ") + w;
+    }
+    return reasons;
+}
+
+SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings) {
+    if (segments.empty()) throw InputError("no log segment to identify from");
+    SegmentPlan plan;
+    for (std::size_t s = 1; s < segments.size(); ++s) {
+        if (segments[s].samples() > segments[plan.reference].samples()) plan.reference = s;
+    }
+    const LogColumns& longest = segments[plan.reference];
+    try {
+        plan.info = plan_pipeline(longest, settings);
+    } catch (const InputError& e) {
+        throw InputError(fmt::format("--on-gap split: no segment is usable; the longest of the {}: {}", segments.size(), e.what()));
+    }
+    // The same imposition as a validation log gets (bandwidth, windows, cutoffs), plus the decimation factor.
+    plan.fixed = validation_settings(settings, plan.info);
+    plan.fixed.decimation = plan.info.decimation;
+    plan.fixed.progress = settings.progress;
+    return plan;
+}
+
+SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
+                                       double torque_delay) {
+    SegmentedOutput out;
+    out.used.assign(segments.size(), false);
+    out.why.assign(segments.size(), "");
+    PipelineInfo& info = out.merged.info;
+    PlotRows& plot = out.merged.plot;
+    std::size_t samples = 0;
+    double seconds_differentiate = 0.0, seconds_filter = 0.0, seconds_ls = 0.0;
+    std::vector<double> range;
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+        PipelineOutput part;
+        try {
+            const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
+            part = run_pipeline(model, aligned.log, plan.fixed);
+        } catch (const InputError& e) {
+            out.why[s] = e.what();
+            continue;
+        }
+        if (out.used_count == 0) info = part.info;
+        out.used[s] = true;
+        ++out.used_count;
+        samples += part.info.samples;
+        seconds_differentiate += part.info.seconds_differentiate;
+        seconds_filter += part.info.seconds_regressor_filter;
+        seconds_ls += part.info.seconds_ls;
+        range.resize(part.info.joint_range.size(), 0.0);
+        for (std::size_t j = 0; j < range.size(); ++j) range[j] = std::max(range[j], part.info.joint_range[j]);
+        merge_factors(out.merged.factors, part.factors);
+        // Plot rows of the segments one after another, at their true times.
+        const std::size_t take = std::min(part.plot.t.size(), plan.fixed.plot_rows - std::min(plan.fixed.plot_rows, plot.t.size()));
+        const std::size_t c = part.plot.t.empty() ? 0 : part.plot.w.front().size() / part.plot.t.size();
+        plot.y.resize(part.plot.y.size());
+        plot.w.resize(part.plot.w.size());
+        plot.t.insert(plot.t.end(), part.plot.t.begin(), part.plot.t.begin() + static_cast<std::ptrdiff_t>(take));
+        for (std::size_t j = 0; j < part.plot.y.size(); ++j) {
+            plot.y[j].insert(plot.y[j].end(), part.plot.y[j].begin(), part.plot.y[j].begin() + static_cast<std::ptrdiff_t>(take));
+            plot.w[j].insert(plot.w[j].end(), part.plot.w[j].begin(), part.plot.w[j].begin() + static_cast<std::ptrdiff_t>(take * c));
+        }
+    }
+    if (out.used_count == 0) {
+        throw InputError(fmt::format("--on-gap split: none of the {} segments is usable: {}", segments.size(), joined_reasons(out.why)));
+    }
+    info.samples = samples;
+    info.bandwidth_estimated = plan.info.bandwidth_estimated;
+    info.bandwidth_estimate = plan.info.bandwidth_estimate;
+    info.seconds_differentiate = seconds_differentiate;
+    info.seconds_regressor_filter = seconds_filter;
+    info.seconds_ls = seconds_ls;
+    info.joint_range = range;
+    info.joint_moves.assign(range.size(), false);
+    for (std::size_t j = 0; j < range.size(); ++j) info.joint_moves[j] = range[j] > plan.fixed.min_joint_motion;
+    return out;
+}
+
+}  // namespace jacobid::identify

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The identification pipeline on a log split at its gaps (--on-gap split, docs/log-format.md): every
+// segment goes through run_pipeline on its own (its own differentiator edges and F_p transients cropped,
+// so no window straddles a gap) and the per-joint factors are stacked (merge_factors). The automatic
+// choices (bandwidth, cutoffs, Jacobi windows, decimation) are resolved once, on the longest segment, and
+// imposed on every segment, so all equations come from the same filters. A segment too short for them is
+// not used, with the pipeline's reason; only when no segment is usable is it an error.
+#include <string>
+#include <vector>
+
+#include "identify/pipeline.hpp"
+#include "robot/robot_model.hpp"
+
+namespace jacobid::identify {
+
+struct SegmentPlan {
+    std::size_t reference = 0;  // the longest segment, where the automatic choices were resolved
+    PipelineInfo info;          // its plan
+    PipelineSettings fixed;     // `settings` with those choices imposed, for every segment
+};
+
+// InputError (naming the longest segment) when even the longest segment cannot be planned.
+SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings);
+
+struct SegmentedOutput {
+    // Factors of every used segment stacked; info of the first used segment with samples = the used
+    // segments' total, the bandwidth estimate of the plan and joint ranges over the used segments; plot
+    // rows of the segments in order (up to plot_rows).
+    PipelineOutput merged;
+    std::vector<bool> used;        // per segment
+    std::vector<std::string> why;  // per segment: the pipeline's reason when not used, else empty
+    std::size_t used_count = 0;
+};
+
+// `torque_delay` (s) is applied to every segment (shift_torques). InputError when no segment is usable,
+// naming each one's reason.
+SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
+                                       double torque_delay);
+
+// "reason 1; reason 2; ..." of the segments not used (their non-empty `why`), for one-line errors.
+std::string joined_reasons(const std::vector<std::string>& why);
+
+}  // namespace jacobid::identify
