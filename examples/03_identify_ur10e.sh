@@ -18,12 +18,13 @@ data=$(cd "$data" && pwd)
 mkdir -p "$out"
 
 # The manufacturer-like URDF of the source repository for the geometry and the prior; viscous + smoothed
-# Coulomb friction with an offset and a rotor inertia per joint, as that repository's model has.
+# Coulomb friction (its smoothing chosen per joint from the data: alpha auto) with an offset and a rotor
+# inertia per joint, as that repository's model has.
 cat > "$out/ur10e.yaml" <<YAML
 model: urdf
 urdf: $data/ur10e/ur10e.urdf
 gravity: [0, 0, -9.81]
-friction: {coulomb: smooth, alpha: 100, offset: true}
+friction: {coulomb: smooth, alpha: auto, offset: true}
 rotor_inertia: true
 YAML
 format="$here/formats/ur10e.yaml"   # columns, currents x drive gains (docs/log-format.md)

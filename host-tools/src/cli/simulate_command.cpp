@@ -207,7 +207,7 @@ void add_simulate_command(CLI::App& app) {
         "simulate",
         "simulate a PD-controlled robot on random quintic point-to-point moves; write the measured log (CSV t,q..,tau..) "
         "and the truth (JSON parameters, optional CSV of noise-free states)");
-    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100");
+    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (a description whose alpha is auto, the default, is simulated with 100 s/rad)");
     cmd->add_option("--out,-o", o->out, "output log (CSV)")->required();
     cmd->add_option("--truth", o->truth, "truth file (JSON: parameters, settings); default <out without extension>.truth.json");
     cmd->add_option("--states", o->states, "also write the noise-free states t,q,qd,qdd,tau to this CSV");

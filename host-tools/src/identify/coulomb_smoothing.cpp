@@ -331,8 +331,9 @@ std::string describe(const CoulombSmoothingChoice& choice, const std::vector<std
         if (js.chosen) chosen += fmt::format("{}{} {:.4g}", chosen.empty() ? "" : ", ", name, js.alpha);
         else kept += fmt::format("; {} kept {:.4g} ({})", name, js.alpha, js.reason);
     }
-    return fmt::format("Coulomb smoothing alpha: auto, by {}-block held-out error over {} candidates {:.3g}..{:.4g}: {}{}{}",
-                       choice.folds, choice.candidates.size(), choice.candidates.front(), choice.candidates.back(),
+    const std::string common = choice.common_alpha > 0.0 ? fmt::format("common {:.4g}, then ", choice.common_alpha) : "";
+    return fmt::format("Coulomb smoothing alpha: auto, by {}-block held-out error over {} candidates {:.3g}..{:.4g}: {}{}{}{}", choice.folds,
+                       choice.candidates.size(), choice.candidates.front(), choice.candidates.back(), common,
                        chosen.empty() ? "no joint chosen" : chosen, chosen.empty() ? "" : " s/rad", kept);
 }
 

@@ -255,7 +255,8 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
             for (const double e : js.heldout_rms) heldout.push_back(finite(e));
             joints.push_back({{"alpha", js.alpha}, {"chosen", js.chosen}, {"reason", js.reason}, {"heldout_rms", heldout}});
         }
-        j["coulomb_smoothing"] = {{"auto", true}, {"candidates", c.candidates}, {"folds", c.folds}, {"passes", c.passes}, {"joints", joints}};
+        j["coulomb_smoothing"] = {{"auto", true},         {"candidates", c.candidates},     {"folds", c.folds},  {"passes", c.passes},
+                                  {"common_alpha", c.common_alpha}, {"common_score", c.common_score}, {"joints", joints}};
     }
     j["warnings"] = identifiability_warnings(r, ctx.joint_names);
     if (!r.segments.empty()) j["segments"] = segments_json(r.segments);

@@ -15,14 +15,7 @@ namespace {
 
 using namespace jacobid;
 
-std::string error_of(const std::string& yaml) {
-    try {
-        robot::parse_robot_description(yaml, "r.yaml");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no error";
-}
+std::string error_of(const std::string& yaml) { return test::description_error_of(yaml); }
 
 std::string urdf_error_of(const std::string& xml) {
     try {
