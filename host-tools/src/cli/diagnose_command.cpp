@@ -68,17 +68,13 @@ void run(DiagnoseOptions o) {
     // friction alpha: auto is chosen on the identification log, as identify does, before the search.
     const identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, log, o.settings.pipeline, false);
     robot::RobotDescription fitted = robot;
-    if (smoothed.choice) {
-        fitted.coulomb_alpha = smoothed.choice->alphas();
-        progress(identify::describe(*smoothed.choice, [&] {
-            std::vector<std::string> names;
-            for (const auto& j : robot.joints) names.push_back(j.name);
-            return names;
-        }()));
-    }
+    std::vector<std::string> names;
+    for (const auto& j : robot.joints) names.push_back(j.name);
+    if (smoothed.choice) fitted.coulomb_alpha = smoothed.choice->alphas();
     const sim::EffectContext context{model->model_name(), model->joint_count(), fitted.coulomb, robot::joint_coulomb_signs(fitted)};
     diagnose::Diagnosis d = diagnose::run_diagnosis(smoothed.get(*model), context, log, o.validate.empty() ? nullptr : &vlog, o.settings, progress);
-    for (const auto& j : robot.joints) d.joint_names.push_back(j.name);
+    d.joint_names = names;
+    if (smoothed.choice) d.notes.push_back(identify::describe(*smoothed.choice, names));
     write_output(o.output, o.format == "json" ? diagnose::to_json(d).dump(2) + "\n" : diagnose::format_text(d));
     if (!o.report.empty()) {
         diagnose::write_report(o.report, d);

@@ -16,6 +16,9 @@ namespace {
 
 std::string effect_label(const EffectEstimate& e) { return e.test.label(); }
 
+// A figure of the gap table; a NaN (no segment left to measure: all diverged) is said, never printed as a number.
+std::string figure(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "n/a"; }
+
 nlohmann::json snapshot_json(const ModelSnapshot& m, const std::vector<std::string>& joint_names) {
     nlohmann::json j;
     j["residual_rms"] = m.residual_rms;
@@ -24,6 +27,12 @@ nlohmann::json snapshot_json(const ModelSnapshot& m, const std::vector<std::stri
     j["horizon_rms"] = m.horizon.rms_error;
     j["horizon_end_rms"] = m.horizon.end_error;
     j["horizon_segments"] = m.horizon.segments;
+    j["horizon_diverged"] = m.horizon.diverged;
+    nlohmann::json diverged = nlohmann::json::array();
+    for (const auto& d : m.horizon.divergences) {
+        diverged.push_back({{"t", d.t}, {"after", d.after}, {"joint", d.joint >= 0 ? nlohmann::json(d.joint + 1) : nlohmann::json(nullptr)}, {"why", d.why}});
+    }
+    j["horizon_divergences"] = diverged;
     j["relative_error_norm"] = m.solution.relative_error_norm;
     nlohmann::json params = nlohmann::json::object();
     for (std::size_t p = 0; p < m.solution.names.size(); ++p) {
@@ -130,13 +139,16 @@ std::string format_text(const Diagnosis& d) {
     auto row = [&](const char* name, const std::vector<double>& a, const std::vector<double>& b, double scale, const char* unit) {
         s += fmt::format("  {:<34}", fmt::format("{} ({})", name, unit));
         for (std::size_t j = 0; j < joints && j < a.size() && j < b.size(); ++j) {
-            s += fmt::format(" {:>21}", fmt::format("{:.4g} -> {:.4g}", scale * a[j], scale * b[j]));
+            s += fmt::format(" {:>21}", fmt::format("{} -> {}", figure(scale * a[j]), figure(scale * b[j])));
         }
         s += "\n";
     };
     row("torque residual RMS", d.before.residual_rms, d.after.residual_rms, 1.0, "N.m");
     row("held-out torque RMS", d.before.heldout_rms, d.after.heldout_rms, 1.0, "N.m");
     row("short-horizon simulation RMS", d.before.horizon.rms_error, d.after.horizon.rms_error, 1e3, "mrad");
+    for (const auto& [when, h] : {std::pair{"before", &d.before.horizon}, std::pair{"after", &d.after.horizon}}) {
+        if (h->diverged) s += fmt::format("note: short-horizon simulation {}: {}\n", when, h->divergence_summary());
+    }
     for (const auto& n : d.notes) s += "note: " + n + "\n";
     s += "\n" + d.verdict + "\n";
     return s;
@@ -189,8 +201,12 @@ void write_report(const std::string& directory, const Diagnosis& d) {
     if (d.effects.empty()) md += "| none | | | | | | |\n";
     md += "\n## Gap before and after\n\n| joint | residual RMS (N.m) | held-out RMS (N.m) | short-horizon simulation RMS (mrad) |\n|---|---|---|---|\n";
     for (std::size_t j = 0; j < d.before.residual_rms.size(); ++j) {
-        md += fmt::format("| {} | {:.4g} -> {:.4g} | {:.4g} -> {:.4g} | {:.4g} -> {:.4g} |\n", j + 1, d.before.residual_rms[j], d.after.residual_rms[j],
-                          d.before.heldout_rms[j], d.after.heldout_rms[j], 1e3 * d.before.horizon.rms_error[j], 1e3 * d.after.horizon.rms_error[j]);
+        md += fmt::format("| {} | {} -> {} | {} -> {} | {} -> {} |\n", j + 1, figure(d.before.residual_rms[j]), figure(d.after.residual_rms[j]),
+                          figure(d.before.heldout_rms[j]), figure(d.after.heldout_rms[j]), figure(1e3 * d.before.horizon.rms_error[j]),
+                          figure(1e3 * d.after.horizon.rms_error[j]));
+    }
+    for (const auto& [when, h] : {std::pair{"before", &d.before.horizon}, std::pair{"after", &d.after.horizon}}) {
+        if (h->diverged) md += fmt::format("\nShort-horizon simulation {}: {}.\n", when, h->divergence_summary());
     }
     md += "\n## Where the nominal model disagrees\n\n";
     for (std::size_t j = 0; j < d.before.analysis.size(); ++j) {

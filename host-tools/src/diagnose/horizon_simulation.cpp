@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "diagnose/horizon_simulation.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace jacobid::diagnose {
 
@@ -32,44 +35,77 @@ HorizonResult simulate_horizons(const robot::RobotModel& model, const Eigen::Vec
     Eigen::VectorXd q(n), qd(n), kq[4], kv[4], qs(n), vs(n);
     for (auto& k : kq) k.resize(n);
     for (auto& k : kv) k.resize(n);
+    // False when the model has no acceleration there (inertia matrix not positive definite).
     auto derivative = [&](double at, const Eigen::VectorXd& qq, const Eigen::VectorXd& vv, Eigen::VectorXd& dq, Eigen::VectorXd& dv) {
         torque(at);
         dq = vv;
-        dynamics.accelerations(qq.data(), vv.data(), tau.data(), dv.data());
+        if (!qq.allFinite() || !vv.allFinite()) return false;
+        return dynamics.accelerations(qq.data(), vv.data(), tau.data(), dv.data());
     };
+    std::vector<double> sum(nj), last(nj), end(nj, 0.0);
+    std::size_t kept = 0;
     for (std::size_t k0 = e.first; k0 + length < e.last; k0 += spacing) {
         for (std::size_t j = 0; j < nj; ++j) {
             q[static_cast<Eigen::Index>(j)] = (*log.q[j])[k0];
             qd[static_cast<Eigen::Index>(j)] = e.qd[j][k0];
         }
-        for (std::size_t step = 0; step < length; ++step) {
+        std::fill(sum.begin(), sum.end(), 0.0);
+        DivergedSegment diverged;
+        for (std::size_t step = 0; step < length && diverged.why.empty(); ++step) {
             const double at = static_cast<double>(k0 + step);
-            derivative(at, q, qd, kq[0], kv[0]);
+            bool ok = derivative(at, q, qd, kq[0], kv[0]);
             qs = q + 0.5 * h * kq[0];
             vs = qd + 0.5 * h * kv[0];
-            derivative(at + 0.5, qs, vs, kq[1], kv[1]);
+            ok = ok && derivative(at + 0.5, qs, vs, kq[1], kv[1]);
             qs = q + 0.5 * h * kq[1];
             vs = qd + 0.5 * h * kv[1];
-            derivative(at + 0.5, qs, vs, kq[2], kv[2]);
+            ok = ok && derivative(at + 0.5, qs, vs, kq[2], kv[2]);
             qs = q + h * kq[2];
             vs = qd + h * kv[2];
-            derivative(at + 1.0, qs, vs, kq[3], kv[3]);
+            ok = ok && derivative(at + 1.0, qs, vs, kq[3], kv[3]);
+            if (!ok) {
+                const bool finite = q.allFinite() && qd.allFinite() && qs.allFinite() && vs.allFinite();
+                diverged = {log.start_time + static_cast<double>(k0) * h, static_cast<double>(step) * h, -1,
+                            finite ? "the identified inertia matrix is not positive definite along the path" : "no finite state"};
+                break;
+            }
             q += h / 6.0 * (kq[0] + 2.0 * kq[1] + 2.0 * kq[2] + kq[3]);
             qd += h / 6.0 * (kv[0] + 2.0 * kv[1] + 2.0 * kv[2] + kv[3]);
             for (std::size_t j = 0; j < nj; ++j) {
                 const double err = q[static_cast<Eigen::Index>(j)] - (*log.q[j])[k0 + step + 1];
-                r.rms_error[j] += err * err;
-                if (step + 1 == length) r.end_error[j] += err * err;
+                if (!(std::abs(err) <= s.diverged_at)) {
+                    diverged = {log.start_time + static_cast<double>(k0) * h, static_cast<double>(step + 1) * h, static_cast<int>(j),
+                                std::isfinite(err) ? fmt::format("left the measured path by more than {:g} rad", s.diverged_at) : "no finite state"};
+                    break;
+                }
+                sum[j] += err * err;
+                last[j] = err * err;
             }
         }
-        compared += length;
         ++r.segments;
+        if (!diverged.why.empty()) {
+            ++r.diverged;
+            if (r.divergences.size() < HorizonResult::kMaxListed) r.divergences.push_back(diverged);
+            continue;
+        }
+        for (std::size_t j = 0; j < nj; ++j) r.rms_error[j] += sum[j], end[j] += last[j];
+        compared += length;
+        ++kept;
     }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t j = 0; j < nj; ++j) {
-        r.rms_error[j] = compared ? std::sqrt(r.rms_error[j] / static_cast<double>(compared)) : 0.0;
-        r.end_error[j] = r.segments ? std::sqrt(r.end_error[j] / static_cast<double>(r.segments)) : 0.0;
+        r.rms_error[j] = compared ? std::sqrt(r.rms_error[j] / static_cast<double>(compared)) : nan;
+        r.end_error[j] = kept ? std::sqrt(end[j] / static_cast<double>(kept)) : nan;
     }
     return r;
+}
+
+std::string HorizonResult::divergence_summary() const {
+    if (diverged == 0) return "";
+    const DivergedSegment& d = divergences.front();
+    const std::string where = d.joint >= 0 ? fmt::format("joint {} after {:.3g} s", d.joint + 1, d.after) : fmt::format("after {:.3g} s", d.after);
+    return fmt::format("{} of {} short-horizon segments diverged (first at t = {:.4g} s, {}: {}); excluded from the figure", diverged, segments, d.t,
+                       where, d.why);
 }
 
 }  // namespace jacobid::diagnose

@@ -42,14 +42,16 @@ const Eigen::MatrixXd& ForwardDynamics::inertia(const double* q) {
     return M_;
 }
 
-void ForwardDynamics::accelerations(const double* q, const double* qd, const double* tau, double* qdd) {
+bool ForwardDynamics::accelerations(const double* q, const double* qd, const double* tau, double* qdd) {
     const Eigen::Index n = model_.joint_count();
     inertia(q);
     evaluate(q, qd, zero_.data(), bias_);
     for (Eigen::Index j = 0; j < n; ++j) rhs_[j] = tau[j] - bias_[j];
     llt_.compute(M_);
+    if (llt_.info() != Eigen::Success) return false;
     rhs_ = llt_.solve(rhs_);
     for (Eigen::Index j = 0; j < n; ++j) qdd[j] = rhs_[j];
+    return true;
 }
 
 void ForwardDynamics::torques(const double* q, const double* qd, const double* qdd, double* tau) {

@@ -44,8 +44,9 @@ public:
     const Eigen::VectorXd& parameters() const { return parameters_; }
     // Inertia matrix at q.
     const Eigen::MatrixXd& inertia(const double* q);
-    // qdd for the torque tau at state (q, qd).
-    void accelerations(const double* q, const double* qd, const double* tau, double* qdd);
+    // qdd for the torque tau at state (q, qd). False (qdd untouched) when the inertia matrix at q is not
+    // positive definite: parameters no rigid body can have, e.g. an identified negative inertia.
+    bool accelerations(const double* q, const double* qd, const double* tau, double* qdd);
     // tau = D(q, qd, qdd) X.
     void torques(const double* q, const double* qd, const double* qdd, double* tau);
 

@@ -90,10 +90,16 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
         k_qd[i].resize(n);
     }
     Eigen::VectorXd q_stage(n), qd_stage(n), tau_stage(n);
+    // True parameters no rigid body can have (a negative inertia) leave no dynamics to integrate.
+    auto accelerations = [&](const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, const Eigen::VectorXd& u, Eigen::VectorXd& qdd) {
+        if (!dynamics.accelerations(qs.data(), qds.data(), u.data(), qdd.data())) {
+            throw InputError("simulate: the robot's parameters give an inertia matrix that is not positive definite (a negative mass or inertia?)");
+        }
+    };
     auto derivative = [&](double t, const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, Eigen::VectorXd& dq, Eigen::VectorXd& dqd) {
         torque_at(t, tau_stage);
         dq = qds;
-        dynamics.accelerations(qs.data(), qds.data(), tau_stage.data(), dqd.data());
+        accelerations(qs, qds, tau_stage, dqd);
     };
 
     const double delay = measurement.settings().torque_delay;
@@ -123,7 +129,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
             sample.q = q;
             sample.qd = qd;
             sample.tau = tau;
-            dynamics.accelerations(q.data(), qd.data(), tau.data(), sample.qdd.data());
+            accelerations(q, qd, tau, sample.qdd);
             const Eigen::VectorXd& logged_tau = delay > 0.0 ? delay_line.push(tau) : tau;
             for (int j = 0; j < n; ++j) {
                 sample.q_measured[j] = measurement.position(q[j]);

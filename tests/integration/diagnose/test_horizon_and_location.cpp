@@ -73,6 +73,40 @@ TEST(HorizonSimulation, TheTrueModelReproducesTheMotionAWrongOneDoesNot) {
     }
 }
 
+// Parameters no rigid body has (ZZ2 < 0: the inertia matrix is not positive definite anywhere) and a model
+// whose open-loop motion runs away (ZZ1R 50x too small against the measured torque): the segments are
+// reported as diverged, with where and why, excluded from the figures (NaN when none is left), never thrown
+// and never averaged into a 1e+110 figure.
+TEST(HorizonSimulation, DivergedSegmentsAreReportedAndExcluded) {
+    const robot::Planar2RModel model(robot::Planar2RConfig{0.5, {robot::CoulombModel::SmoothAtan, 100.0}, false, false});
+    const std::vector<double> table = robot::paper_table2_parameters(model);
+    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(table.data(), static_cast<Eigen::Index>(table.size()));
+    const Log log = noise_free_log(model, x, 0.0);
+
+    Eigen::VectorXd impossible = x;
+    impossible[model.parameter_index("ZZ2")] = -0.05;
+    const HorizonResult none = horizons(model, impossible, log, 0.0);
+    EXPECT_EQ(none.diverged, none.segments);
+    ASSERT_FALSE(none.divergences.empty());
+    EXPECT_EQ(none.divergences.front().joint, -1);
+    EXPECT_NE(none.divergences.front().why.find("not positive definite"), std::string::npos);
+    for (std::size_t j = 0; j < 2; ++j) EXPECT_TRUE(std::isnan(none.rms_error[j]));
+    EXPECT_NE(none.divergence_summary().find(std::to_string(none.segments) + " of " + std::to_string(none.segments)), std::string::npos);
+
+    Eigen::VectorXd runaway = x;
+    runaway[model.parameter_index("ZZ1R")] /= 50.0;
+    const HorizonResult some = horizons(model, runaway, log, 0.0);
+    EXPECT_GT(some.diverged, 0u);
+    ASSERT_FALSE(some.divergences.empty());
+    EXPECT_NE(some.divergences.front().why.find("left the measured path"), std::string::npos);
+    for (std::size_t j = 0; j < 2; ++j) {
+        if (some.diverged < some.segments) EXPECT_LT(some.rms_error[j], 1.0) << "joint " << j + 1;
+        else EXPECT_TRUE(std::isnan(some.rms_error[j]));
+    }
+    // The right model diverges nowhere.
+    EXPECT_EQ(horizons(model, x, log, 0.0).diverged, 0u);
+}
+
 TEST(ResidualAnalysis, FindsTheHarmonicAndTheVelocityStep) {
     std::mt19937_64 rng(4);
     std::uniform_real_distribution<double> angle(-2.5, 2.5);

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+// `jacobid diagnose` on every shared real identification log (../shared/realdata: five UR10e Fourier runs,
+// two pendubot runs) ends normally, with no internal error and no non-finite number in its text or JSON:
+// short-horizon segments that an identified model cannot integrate (the UR10e logs give inertia matrices
+// that are not positive definite along parts of the path) are reported as diverged. Skipped, with the
+// reason, when the shared folder is absent.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+
+#include "run_command.hpp"
+#include "scratch_directory.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRealdata = std::getenv("JACOBID_REALDATA_DIR") ? std::getenv("JACOBID_REALDATA_DIR") : JACOBID_REALDATA_DIR;
+const fs::path kFormats = fs::path(JACOBID_SOURCE_DIR) / "examples" / "formats";
+
+#define REQUIRE_REALDATA()                                                                                                   \
+    if (!fs::exists(kRealdata / "README.md")) GTEST_SKIP() << "shared real logs not found at " << kRealdata                   \
+                                                           << " (configure with -DJACOBID_REALDATA_DIR=... or set it in the environment); test skipped"
+
+jacobid::test::CommandResult jacobid_cli(const std::string& args) { return jacobid::test::run_command(std::string(JACOBID_EXECUTABLE) + " " + args); }
+
+std::string robot(const std::string& name, const std::string& yaml) {
+    const std::string path = (jacobid::test::scratch_directory() / name).string();
+    std::ofstream(path) << yaml;
+    return path;
+}
+
+// No "nan", "inf" or absurd exponent (the 7.4e+110 mrad a diverged segment once printed) in the text.
+void expect_only_finite_figures(const std::string& text, const std::string& what) {
+    EXPECT_FALSE(std::regex_search(text, std::regex(R"(\b(nan|inf)\b)", std::regex::icase))) << what << ":\n" << text;
+    EXPECT_FALSE(std::regex_search(text, std::regex(R"(e\+[0-9]{2,})"))) << what << ":\n" << text;
+}
+
+void diagnose_cleanly(const std::string& robot_file, const std::string& format, const fs::path& log, const std::string& extra = "",
+                      bool with_json = false) {
+    const std::string base = "diagnose --quiet --robot " + robot_file + " --log-format " + format + " --in " + log.string() + " " + extra;
+    const auto text = jacobid_cli(base);
+    EXPECT_EQ(text.exit_code, 0) << log << ": " << text.err;
+    EXPECT_EQ(text.err.find("internal error"), std::string::npos) << text.err;
+    expect_only_finite_figures(text.out, log.string());
+    if (!with_json) return;
+    const auto json = jacobid_cli(base + " --format json");
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    nlohmann::json parsed;
+    EXPECT_NO_THROW(parsed = nlohmann::json::parse(json.out)) << log;
+    EXPECT_TRUE(parsed.contains("before")) << json.out.substr(0, 400);
+}
+
+TEST(RealData, DiagnoseEndsNormallyOnEveryUr10eIdentificationLog) {
+    REQUIRE_REALDATA();
+    const std::string r = robot("ur10e.yaml", "model: urdf\nurdf: " + (kRealdata / "ur10e" / "ur10e.urdf").string() +
+                                                  "\ngravity: [0, 0, -9.81]\nfriction: {coulomb: smooth, offset: true}\nrotor_inertia: true\n");
+    for (const auto& entry : fs::directory_iterator(kRealdata / "ur10e" / "identification")) {
+        diagnose_cleanly(r, (kFormats / "ur10e.yaml").string(), entry.path());
+    }
+    // With a validation log and a horizon long enough for open-loop runs to leave the path.
+    diagnose_cleanly(r, (kFormats / "ur10e.yaml").string(), kRealdata / "ur10e" / "identification" / "ur-20_02_05-20sec_8harm.csv",
+                     "--validate " + (kRealdata / "ur10e" / "validation" / "ur-20_01_22-joint_5.csv").string() + " --horizon 2", true);
+}
+
+TEST(RealData, DiagnoseEndsNormallyOnThePendubotRuns) {
+    REQUIRE_REALDATA();
+    const std::string r = robot("pendubot.yaml", "model: urdf\nurdf: " + (kRealdata / "pendubot" / "planar_manip.urdf").string() + "\n");
+    for (const char* run : {"data_06.csv", "data_08.csv"}) diagnose_cleanly(r, (kFormats / "pendubot.yaml").string(), kRealdata / "pendubot" / run);
+}
+
+}  // namespace
