@@ -101,6 +101,12 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
                     train.info.decimation_cutoff));
     d.selection = select_effects(cat, train, vrows.get(), s.selection, [&](const std::string& m) { say(m); });
     d.delay = d.selection.delay;
+    if (!d.selection.unexcited.empty()) {
+        std::string names;
+        for (const auto& n : d.selection.unexcited) names += (names.empty() ? "" : ", ") + n;
+        d.notes.push_back(fmt::format("{} nominal parameter{} not excited by this log, left out of the search: {}", d.selection.unexcited.size(),
+                                      d.selection.unexcited.size() == 1 ? "" : "s", names));
+    }
     std::vector<double> weight2;
     for (double sj : d.selection.joint_sigma) weight2.push_back(1.0 / (sj * sj));
 
@@ -179,8 +185,8 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
                                    : fmt::format("structure is left in the residual that no candidate explains (residual RMS {} N.m per joint): {}",
                                                  floor, structured);
             d.verdict = fmt::format(
-                "no effect named: {}. Strongest candidate {} (estimate {:.3g} +- {:.2g} {}): {}; held-out error {:+.1f} % ({} needed)", what,
-                b.label(), b.value, b.std, sim::effect_unit(b.term.kind),
+                "no effect named: {}. Strongest candidate {} (estimate {:.3g} +- {} {}): {}; held-out error {:+.1f} % ({} needed)", what,
+                b.label(), b.value, std::isfinite(b.std) ? fmt::format("{:.2g}", b.std) : "n/a", sim::effect_unit(b.term.kind),
                 b.significant ? "significant" : fmt::format("not significant (adjusted p = {:.2g} >= {:g})", b.adjusted_p, s.selection.alpha),
                 -100.0 * b.gain, fmt::format("-{:g} %", 100.0 * s.selection.min_gain));
         }

@@ -18,6 +18,9 @@ std::string effect_label(const EffectEstimate& e) { return e.test.label(); }
 
 // A figure of the gap table; a NaN (no segment left to measure: all diverged) is said, never printed as a number.
 std::string figure(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "n/a"; }
+// A standard deviation; an infinite one (a delay at the edge of its search, where RSS(delay) has no
+// curvature) is "n/a", never "inf".
+std::string spread(double v) { return std::isfinite(v) ? fmt::format("{:.2g}", v) : "n/a"; }
 
 nlohmann::json snapshot_json(const ModelSnapshot& m, const std::vector<std::string>& joint_names) {
     nlohmann::json j;
@@ -121,15 +124,15 @@ std::string format_text(const Diagnosis& d) {
         const auto& st = d.selection.steps[k];
         s += fmt::format("  step {}: {} candidates, n_eff {:.0f} of {:.0f} rows\n", k + 1, st.tested, st.n_eff, st.rows);
         for (const auto& t : st.top) {
-            s += fmt::format("    {:<28} value {:>10.4g} +- {:<9.2g} chi2 {:>9.1f}  adj. p {:>8.2g}  held-out {:+6.1f} %  {}\n", t.label(), t.value,
-                             t.std, t.chi2, t.adjusted_p, -100.0 * t.gain,
+            s += fmt::format("    {:<28} value {:>10.4g} +- {:<9} chi2 {:>9.1f}  adj. p {:>8.2g}  held-out {:+6.1f} %  {}\n", t.label(), t.value,
+                             spread(t.std), t.chi2, t.adjusted_p, -100.0 * t.gain,
                              t.accepted() ? "pass" : (t.significant ? "fails held-out" : "not significant"));
         }
     }
     s += "\nNamed effects:\n";
     if (d.effects.empty()) s += "  none\n";
     for (const auto& e : d.effects) {
-        s += fmt::format("  {:<28} {:>10.4g} +- {:.2g} {}\n", effect_label(e), e.value, e.std, sim::effect_unit(e.term.kind));
+        s += fmt::format("  {:<28} {:>10.4g} +- {} {}\n", effect_label(e), e.value, spread(e.std), sim::effect_unit(e.term.kind));
     }
     s += "\nGap before -> after, per joint:\n";
     const std::size_t joints = d.before.residual_rms.size();
@@ -195,7 +198,7 @@ void write_report(const std::string& directory, const Diagnosis& d) {
                                  d.selection.heldout_kind, d.verdict);
     md += "## Named effects\n\n| effect | value | std | unit | chi2 (n_eff) | adjusted p | held-out gain |\n|---|---|---|---|---|---|---|\n";
     for (const auto& e : d.effects) {
-        md += fmt::format("| {} | {:.4g} | {:.2g} | {} | {:.1f} | {:.2g} | {:.1f} % |\n", effect_label(e), e.value, e.std, sim::effect_unit(e.term.kind),
+        md += fmt::format("| {} | {:.4g} | {} | {} | {:.1f} | {:.2g} | {:.1f} % |\n", effect_label(e), e.value, spread(e.std), sim::effect_unit(e.term.kind),
                           e.test.chi2, e.test.adjusted_p, 100.0 * e.test.gain);
     }
     if (d.effects.empty()) md += "| none | | | | | | |\n";

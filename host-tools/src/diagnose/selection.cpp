@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/errors.hpp"
 #include "diagnose/blocked_grams.hpp"
 #include "diagnose/heldout.hpp"
 #include "diagnose/statistics.hpp"
@@ -48,7 +49,10 @@ SelectionResult select_effects(const sim::AugmentedModel& catalogue, const Decim
     std::unique_ptr<BlockedGrams> vgrams = validation ? std::make_unique<BlockedGrams>(*validation, 1) : nullptr;
     result.heldout_kind = validation ? "validation log" : fmt::format("{}-fold blocked cross-validation", grams.blocks());
 
-    // Nominal columns that the data excite (a joint that does not move leaves its columns zero).
+    // Nominal columns that the data excite: a joint that does not move leaves its columns zero, and a log that
+    // moves one joint at a time leaves combinations of the others' columns collinear. Columns are kept in
+    // model order while the kept set stays solvable (a maximal identifiable subset, as identify's pivoted QR
+    // keeps one); the others are named in a note.
     std::vector<int> model;
     const int c0 = catalogue.nominal().parameter_count();
     {
@@ -56,13 +60,18 @@ SelectionResult select_effects(const sim::AugmentedModel& catalogue, const Decim
         for (int c = 0; c < c0; ++c) all[static_cast<std::size_t>(c)] = c;
         const GramSums g = grams.sum(all, {}, -1, false);
         for (int c = 0; c < c0; ++c) {
-            if (g.G(c, c) > 1e-12 * g.G.diagonal().maxCoeff()) model.push_back(c);
+            model.push_back(c);
+            const bool excited = g.G(c, c) > 1e-12 * g.G.diagonal().maxCoeff();
+            if (excited && solve_subset(grams.sum(model, {}, -1, false)).ok) continue;
+            model.pop_back();
+            result.unexcited.push_back(catalogue.nominal().parameter_names()[static_cast<std::size_t>(c)]);
         }
+        if (model.empty()) throw InputError("diagnose: no nominal parameter is excited by this log (does any joint move?)");
     }
     // Row weights 1 / sigma_j from the nominal fit, fixed for the whole selection.
     {
         const SubsetFit f = solve_subset(grams.sum(model, {}, -1, false));
-        if (!f.ok) throw std::runtime_error("diagnose: the nominal regressor is singular on this log");
+        if (!f.ok) throw InputError("diagnose: the nominal regressor is singular on this log");
         const auto r = residuals(train, train.y, model, f.x);
         for (const auto& rj : r) result.joint_sigma.push_back(std::max(1e-12, std::sqrt(rj.squaredNorm() / static_cast<double>(rj.size()))));
     }
@@ -88,7 +97,10 @@ SelectionResult select_effects(const sim::AugmentedModel& catalogue, const Decim
 
         auto judge = [&](CandidateTest& t, double rss0, double rss1, double k1) {
             const double sigma2 = rss1 / std::max(1.0, st.rows - k1);
-            t.chi2 = std::max(0.0, rss0 - rss1) / (sigma2 * inflation);
+            // No residual left to scale by (rss1 = 0, or no effective sample) is no evidence either way: chi2 0.
+            const double scale = sigma2 * inflation;
+            t.chi2 = scale > 0.0 && std::isfinite(scale) ? std::max(0.0, rss0 - rss1) / scale : 0.0;
+            if (!std::isfinite(t.chi2)) t.chi2 = 0.0;
             t.p_value = chi_square_survival(t.chi2, t.dof);
             t.score = t.chi2 - t.dof * std::log(st.n_eff);
             t.gain = t.heldout_before > 0 ? 1.0 - t.heldout_after / t.heldout_before : 0.0;

@@ -60,6 +60,7 @@ struct SelectionResult {
     std::vector<SelectionStep> steps;
     std::vector<double> joint_sigma;      // nominal residual RMS per joint (the row weights are 1 / sigma)
     std::vector<std::string> skipped;     // candidates collinear with the model (e.g. rotor inertia of joint 1 in ZZ1R)
+    std::vector<std::string> unexcited;   // nominal parameters the log does not excite (zero or collinear columns), left out
     std::string heldout_kind;
 };
 
