@@ -48,10 +48,16 @@ nlohmann::json snapshot_json(const ModelSnapshot& m, const std::vector<std::stri
         const auto& a = m.analysis[k];
         nlohmann::json bins = nlohmann::json::array();
         for (const auto& b : a.velocity) bins.push_back({{"bin", b.label}, {"count", b.count}, {"mean", b.mean}, {"rms", b.rms}});
+        nlohmann::json motion = nlohmann::json::array();
+        for (const auto& st : a.motion) {
+            motion.push_back({{"state", st.state},     {"count", st.count},           {"mean", st.mean},
+                              {"rms", st.rms},         {"row_share", st.row_share}, {"energy_share", st.energy_share}});
+        }
         joints.push_back({{"joint", k + 1},
                           {"name", k < joint_names.size() ? joint_names[k] : ""},
                           {"rms", a.rms},
                           {"velocity_bins", bins},
+                          {"motion_states", motion},
                           {"angle_dominant_order", a.dominant_order},
                           {"angle_dominant_amplitude", a.dominant_amplitude},
                           {"rho1", a.autocorrelation.empty() ? 0.0 : a.autocorrelation.front()},

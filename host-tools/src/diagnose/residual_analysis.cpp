@@ -51,6 +51,26 @@ std::vector<double> quantile_edges(Eigen::VectorXd x, int n) {
     return e;
 }
 
+std::vector<MotionStateBin> motion_states(const Eigen::VectorXd& r, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd, double v0) {
+    std::vector<MotionStateBin> states{{"at rest"}, {"reversing"}, {"moving"}};
+    const double a0 = v0 / 0.2;
+    const double total = r.squaredNorm();
+    for (Eigen::Index i = 0; i < r.size(); ++i) {
+        const std::size_t s = std::abs(qd[i]) >= v0 ? 2 : (std::abs(qdd[i]) >= a0 ? 1 : 0);
+        ++states[s].count;
+        states[s].mean += r[i];
+        states[s].rms += r[i] * r[i];
+    }
+    for (auto& st : states) {
+        st.row_share = static_cast<double>(st.count) / static_cast<double>(r.size());
+        st.energy_share = total > 0.0 ? st.rms / total : 0.0;
+        if (st.count == 0) continue;
+        st.mean /= static_cast<double>(st.count);
+        st.rms = std::sqrt(st.rms / static_cast<double>(st.count));
+    }
+    return states;
+}
+
 const Bin& worst(const std::vector<Bin>& bins) {
     return *std::max_element(bins.begin(), bins.end(), [](const Bin& a, const Bin& b) { return std::abs(a.mean) < std::abs(b.mean); });
 }
@@ -89,11 +109,19 @@ JointResidualAnalysis analyse_residual(const Eigen::VectorXd& r, const Eigen::Ma
             a.dominant_order = k;
         }
     }
+    a.motion = motion_states(r, qd, qdd, v0);
     a.autocorrelation = autocorrelation(r, 20);
     a.n_eff = effective_sample_size(r);
 
     const Bin& v = worst(a.velocity);
     a.findings.push_back(fmt::format("by velocity: largest mean residual {:+.3g} N.m at {} ({} rows)", v.mean, v.label, v.count));
+    std::string states;
+    for (const auto& st : a.motion) {
+        if (st.count == 0) continue;
+        states += fmt::format("{}{} {:.0f} % of rows, {:.0f} % of the residual energy (mean {:+.3g}, RMS {:.3g} N.m)", states.empty() ? "" : "; ",
+                              st.state, 100.0 * st.row_share, 100.0 * st.energy_share, st.mean, st.rms);
+    }
+    a.findings.push_back("by motion state: " + states);
     const Bin& p = worst(a.position);
     a.findings.push_back(fmt::format("by position: largest mean residual {:+.3g} N.m at q in [{:.2f}, {:.2f}] rad", p.mean,
                                      std::max(p.low, q.minCoeff()), std::min(p.high, q.maxCoeff())));

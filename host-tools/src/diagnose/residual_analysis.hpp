@@ -2,7 +2,9 @@
 #pragma once
 // Where a model and the data disagree: a joint's torque residual binned by velocity (sign, near zero),
 // position, acceleration and time; its spectrum against the joint angle (periodic content per revolution,
-// a least-squares fit of sin/cos(k q) since the angle is irregularly sampled); its autocorrelation.
+// a least-squares fit of sin/cos(k q) since the angle is irregularly sampled); its autocorrelation; and its
+// split by motion state (at rest / reversing / moving), which locates friction-at-rest gaps before any
+// candidate effect is tried.
 #include <Eigen/Dense>
 #include <string>
 #include <vector>
@@ -16,9 +18,20 @@ struct Bin {
     double mean = 0.0, rms = 0.0;
 };
 
+// Motion states of a row: "moving" when |qd| >= near_zero; below it, "reversing" when |qdd| >= near_zero /
+// 0.2 s (the joint crosses the near-zero band in under 0.4 s: passing through zero velocity), else "at rest".
+struct MotionStateBin {
+    std::string state;      // "at rest", "reversing", "moving"
+    std::size_t count = 0;
+    double mean = 0.0, rms = 0.0;  // N.m
+    double row_share = 0.0;        // of the joint's rows
+    double energy_share = 0.0;     // of the joint's sum of squared residuals
+};
+
 struct JointResidualAnalysis {
     double rms = 0.0;
     std::vector<Bin> velocity, position, acceleration, time;
+    std::vector<MotionStateBin> motion;  // at rest, reversing, moving (always three)
     std::vector<double> angle_orders, angle_amplitude;  // spectrum vs angle: order k per rev, amplitude N.m
     int dominant_order = 0;
     double dominant_amplitude = 0.0;

@@ -133,5 +133,42 @@ TEST(ResidualAnalysis, FindsTheHarmonicAndTheVelocityStep) {
     EXPECT_NE(a.findings.front().find("qd >"), std::string::npos) << a.findings.front();
 }
 
+// A held torque at rest (0.3 N.m while |qd| < 0.05 rad/s and |qdd| < 0.25 rad/s^2), nothing while moving or
+// passing through zero velocity: the motion-state split puts all of it, and its energy, at rest.
+TEST(ResidualAnalysis, MotionStateSplitLocatesATorqueHeldAtRest) {
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> normal;
+    const int m = 3000;
+    Eigen::MatrixXd state(m, 3);
+    Eigen::VectorXd r(m);
+    std::vector<double> t;
+    int at_rest = 0, reversing = 0;
+    for (int i = 0; i < m; ++i) {
+        const int phase = i % 3;  // rest, reversal, motion, in turn
+        state(i, 0) = 0.1 * normal(rng);
+        state(i, 1) = phase == 2 ? 0.5 + 0.1 * std::abs(normal(rng)) : 0.01 * normal(rng);
+        state(i, 2) = phase == 1 ? 2.0 + std::abs(normal(rng)) : 0.01 * normal(rng);
+        const bool rest = std::abs(state(i, 1)) < 0.05 && std::abs(state(i, 2)) < 0.25;
+        at_rest += rest;
+        reversing += std::abs(state(i, 1)) < 0.05 && !rest;
+        r[i] = (rest ? 0.3 : 0.0) + 0.01 * normal(rng);
+        t.push_back(1e-2 * i);
+    }
+    const JointResidualAnalysis a = analyse_residual(r, state, t, 0.05, 5);
+    ASSERT_EQ(a.motion.size(), 3u);
+    EXPECT_EQ(a.motion[0].state, "at rest");
+    EXPECT_EQ(a.motion[0].count, static_cast<std::size_t>(at_rest));
+    EXPECT_EQ(a.motion[1].count, static_cast<std::size_t>(reversing));
+    EXPECT_EQ(a.motion[2].count, static_cast<std::size_t>(m - at_rest - reversing));
+    EXPECT_NEAR(a.motion[0].mean, 0.3, 0.005);
+    EXPECT_NEAR(a.motion[1].mean, 0.0, 0.005);
+    EXPECT_NEAR(a.motion[2].mean, 0.0, 0.005);
+    EXPECT_GT(a.motion[0].energy_share, 0.99);
+    EXPECT_NEAR(a.motion[0].row_share + a.motion[1].row_share + a.motion[2].row_share, 1.0, 1e-12);
+    bool found = false;
+    for (const auto& f : a.findings) found = found || f.rfind("by motion state: at rest", 0) == 0;
+    EXPECT_TRUE(found);
+}
+
 }  // namespace
 }  // namespace jacobid::diagnose
