@@ -49,8 +49,8 @@ struct Study {
 std::uint64_t run_seed(const StudySettings& settings, int k);
 std::uint64_t run_noise_seed(const StudySettings& settings, int k);
 
-// Runs the study. InputError for runs < 2 or threads < 1, or the first failing run's error (lowest run index)
-// prefixed with the run and its seeds.
+// Runs the study. InputError for runs < 2 or threads < 1, or a failing run's error prefixed with the run and
+// its seeds (the lowest run index among those that failed before the workers stopped taking new runs).
 Study run_study(const StudySettings& settings);
 
 }  // namespace jacobid::montecarlo

@@ -35,7 +35,7 @@ std::string method_table(const Study& study, const MethodRuns& runs, const Accep
                                 "SE %", "<=3SE", "emp std", "rep std", "spread", "cover", "flags");
     for (const auto& s : summarize(study, runs, acceptance)) {
         t += fmt::format("{:<10} {:>11.5g} {:>11} {:>9} {:>7} {:>5} {:>10} {:>10} {:>6} {:>6}  {}\n", s.name, s.truth, number(s.mean, "{:.5g}"),
-                         number(s.mean_error_percent, "{:+.3f}"), number(s.standard_error_percent, "{:.3f}"), s.within_3se ? "yes" : "no",
+                         number(s.mean_error_percent, "{:+.4f}"), number(s.standard_error_percent, "{:.4f}"), s.within_3se ? "yes" : "no",
                          number(s.empirical_std, "{:.3g}"), number(s.mean_reported_std, "{:.3g}"), number(s.spread_ratio, "{:.2f}"),
                          number(100.0 * s.coverage_2std, "{:.0f} %"), flags(s));
     }
