@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     jacobid::cli::add_record_command(app);
     jacobid::cli::add_sim_can_command(app);
     jacobid::cli::add_diagnose_command(app);
+    jacobid::cli::add_montecarlo_command(app);
 
     try {
         app.parse(argc, argv);

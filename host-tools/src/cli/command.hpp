@@ -23,5 +23,6 @@ void add_paper_sines_command(CLI::App& app);
 void add_record_command(CLI::App& app);
 void add_sim_can_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
+void add_montecarlo_command(CLI::App& app);
 
 }  // namespace jacobid::cli

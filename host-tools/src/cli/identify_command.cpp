@@ -14,9 +14,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/fit_options.hpp"
 #include "cli/log_format_options.hpp"
 #include "cli/output_file.hpp"
 #include "identify/coulomb_smoothing.hpp"
+#include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
 #include "identify/pipeline.hpp"
@@ -39,7 +41,8 @@
 namespace jacobid::cli {
 namespace {
 
-struct IdentifyOptions {
+// FitOptions: how the log is identified (fit_options.hpp, shared with montecarlo).
+struct IdentifyOptions : FitOptions {
     std::string robot;
     std::string in;
     std::string method = "jacobi";
@@ -49,17 +52,12 @@ struct IdentifyOptions {
     std::string truth;
     std::string validate;
     std::string time_column = "t";
-    std::string discretization = "exact";
-    identify::PipelineSettings pipeline;
-    bool weighted = false;
     bool print_base = false;
     double essential = 0.0;  // threshold in %; 0: off
     bool essential_flag = false;
-    double rank_tolerance = 1e-7;
     bool quiet = false;
     double time_tolerance = io::kDefaultTimeTolerance;
     std::string can_config;
-    std::string torque_delay = "auto";  // auto | seconds
     std::string velocity;               // measured | jacobi | butterworth; empty: the method's own
     LogFormatOptions log_format;
 };
@@ -99,24 +97,6 @@ LogSegments read_log(const std::string& path, const robot::RobotDescription& rob
     (void)robot;
     throw InputError(fmt::format("--can-config: this jacobid was built without the HAL/firmware (JACOBID_BUILD_HAL=OFF), cannot decode {}", path));
 #endif
-}
-
-// --torque-delay: estimated (auto) or given in seconds.
-identify::TorqueDelayResult torque_delay(const robot::RobotModel& model, const identify::LogColumns& log, const identify::PipelineSettings& settings,
-                                         const identify::SolveOptions& solve, const IdentifyOptions& o) {
-    identify::TorqueDelayResult r;
-    if (o.torque_delay != "auto") {
-        r.given = true;
-        char* end = nullptr;
-        r.estimate.delay = std::strtod(o.torque_delay.c_str(), &end);
-        if (o.torque_delay.empty() || *end != '\0' || !std::isfinite(r.estimate.delay) || std::abs(r.estimate.delay) > 1.0) {
-            throw InputError(fmt::format("--torque-delay '{}': expected auto or a delay in seconds within +-1 s", o.torque_delay));
-        }
-        r.estimate.compensated = r.estimate.delay != 0.0;
-        return r;
-    }
-    r.estimate = identify::estimate_torque_delay(model, log, settings, solve);
-    return r;
 }
 
 std::map<std::string, double> read_truth(const std::string& path) {
@@ -233,33 +213,23 @@ void run(IdentifyOptions o) {
         identify::SolveOptions solve;
         solve.weighted = o.weighted;
         solve.rank_tolerance = o.rank_tolerance;
-        identify::MethodResult r;
-        // The delay is estimated with the description's alpha, then each joint's alpha (friction alpha: auto) is
-        // chosen on the aligned log (the longest segment with --on-gap split).
-        identify::PipelineOutput out;
-        identify::SmoothedModel smoothed;
+        identify::IdentifiedLog fit;
         if (input.split) {
-            // Every segment with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp).
+            // Every segment with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp):
+            // the delay with the description's alpha, then each joint's alpha (friction alpha: auto) on the aligned log.
             const identify::SegmentPlan plan = identify::plan_segments(logs, settings);
-            r.torque_delay = torque_delay(*model, logs[plan.reference], plan.fixed, solve, o);
-            const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], r.torque_delay.applied());
-            smoothed = identify::resolve_coulomb_smoothing(robot, *model, reference.log, plan.fixed, solve.weighted);
-            identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, r.torque_delay.applied());
-            r.segments = segment_reports(input.segments, split.used, split.why, identify::to_string(m), o.in);
-            out = std::move(split.merged);
+            identify::TorqueDelayResult delay = identify::resolve_torque_delay(*model, logs[plan.reference], plan.fixed, solve, given_torque_delay(o));
+            const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], delay.applied());
+            identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, reference.log, plan.fixed, solve.weighted);
+            identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, delay.applied());
+            fit = identify::solve_identification(std::move(split.merged), std::move(smoothed), std::move(delay), *model, solve);
+            fit.result.segments = segment_reports(input.segments, split.used, split.why, identify::to_string(m), o.in);
         } else {
-            r.torque_delay = torque_delay(*model, log, settings, solve, o);
-            const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
-            smoothed = identify::resolve_coulomb_smoothing(robot, *model, aligned.log, settings, solve.weighted);
-            out = identify::run_pipeline(smoothed.get(*model), aligned.log, settings);
+            fit = identify::identify_log(robot, *model, log, {settings, solve, given_torque_delay(o)});
         }
-        const robot::RobotModel& fitted = smoothed.get(*model);
-        r.coulomb_smoothing = smoothed.choice;
-        r.info = out.info;
-        r.plot = std::move(out.plot);
-        r.solution = identify::solve_least_squares(out.factors, fitted.parameter_names(), solve);
-        r.violations = identify::plausibility_violations(identify::sign_constraints(fitted), r.solution);
-        if (o.essential_flag) r.essential = identify::essential_parameters(out.factors, fitted.parameter_names(), o.essential, solve);
+        const robot::RobotModel& fitted = fit.smoothed.get(*model);
+        identify::MethodResult& r = fit.result;
+        if (o.essential_flag) r.essential = identify::essential_parameters(fit.factors, fitted.parameter_names(), o.essential, solve);
         if (!o.validate.empty()) validate(fitted, validation_input, validation_logs, settings, o, r);
         for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) {
             ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));
@@ -313,38 +283,16 @@ void add_identify_command(CLI::App& app) {
                     "jacobid-fw config (YAML) whose joints' CAN profiles, ids, gear ratios and torque constants decode --in and "
                     "--validate as candump -L captures instead of CSV");
     add_log_format_options(cmd, o->log_format);
-    cmd->add_option("--bandwidth", o->pipeline.bandwidth, "motion bandwidth in Hz (default: estimated from the data: 99 % of the velocity energy above the noise floor, limited by the noise; docs/method.md)");
-    cmd->add_option("--cutoff", o->pipeline.differentiator_cutoff,
-                    "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)");
-    cmd->add_option("--velocity-window", o->pipeline.velocity_window, "Jacobi velocity window T in s (overrides --cutoff)");
-    cmd->add_option("--acceleration-window", o->pipeline.acceleration_window, "Jacobi acceleration window T in s (overrides --cutoff)");
-    cmd->add_option("--kappa", o->pipeline.kappa, "Jacobi kappa")->capture_default_str();
-    cmd->add_option("--mu", o->pipeline.mu, "Jacobi mu")->capture_default_str();
-    cmd->add_option("--q", o->pipeline.q, "Jacobi truncation order q")->capture_default_str();
-    cmd->add_option("--discretization", o->discretization, "Jacobi kernel discretization: exact (polynomial-exact on the grid) or trapezoidal (paper)")
-        ->check(CLI::IsMember({"exact", "trapezoidal"}))
-        ->capture_default_str();
-    cmd->add_option("--butterworth-order", o->pipeline.butterworth_order, "order of the Butterworth prefilter")->capture_default_str();
-    cmd->add_option("--decimation-cutoff", o->pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)");
-    cmd->add_option("--decimation", o->pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))");
-    cmd->add_option("--min-motion", o->pipeline.min_joint_motion, "position range in rad below which a joint counts as not moving")
-        ->capture_default_str();
+    add_fit_options(cmd, *o);
     cmd->add_option("--velocity", o->velocity,
                     "velocities of the regressor: measured (the log's velocity columns, qdJ or --log-format velocities), or jacobi / "
                     "butterworth (the positions differentiated; default: the --method's own differentiator)")
         ->check(CLI::IsMember({"measured", "jacobi", "butterworth"}));
-    cmd->add_option("--torque-delay", o->torque_delay,
-                    "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
-                    "significant, reported with its std) or SECONDS (read the torque that much later; negative: earlier; 0: off)")
-        ->capture_default_str();
-    cmd->add_flag("--weighted", o->weighted, "weighted LS: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier)");
     cmd->add_option("--essential", o->essential,
                     "essential parameters: drop the parameter with the largest %sigma_r above this threshold (%), re-identify, repeat")
         ->each([o](const std::string&) { o->essential_flag = true; })
         ->expected(0, 1)
         ->default_str("10");
-    cmd->add_option("--rank-tolerance", o->rank_tolerance, "relative singular value below which the column-normalized W is rank deficient")
-        ->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] {
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;

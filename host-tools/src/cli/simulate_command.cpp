@@ -11,6 +11,7 @@
 
 #include "cli/command.hpp"
 #include "cli/output_file.hpp"
+#include "cli/simulation_options.hpp"
 #include "robot/robot_description.hpp"
 #include "sim/augmented_model.hpp"
 #include "sim/effect_spec.hpp"
@@ -19,18 +20,12 @@
 namespace jacobid::cli {
 namespace {
 
-struct SimulateOptions {
+// SimulationOptions: the run itself (simulation_options.hpp, shared with montecarlo).
+struct SimulateOptions : SimulationOptions {
     std::string robot;
     std::string out;
     std::string truth;
     std::string states;
-    sim::SimulationSettings settings;
-    double encoder_counts = 65536.0;
-    std::vector<double> torque_noise;
-    std::vector<double> ripple;
-    double ripple_periods = 50.0;
-    std::uint64_t noise_seed = 2;
-    std::vector<double> move_duration{0.6, 1.6};
     std::vector<std::string> effects;  // --effect tokens
     std::string effects_file;
     bool quiet = false;
@@ -85,26 +80,8 @@ void run(SimulateOptions o) {
     // Truth: the model's reference values (Table II for planar2r) unless the description lists parameters.
     const Eigen::VectorXd x = robot::true_parameters(robot, *model);
 
-    auto per_joint = [&](std::vector<double> v, const char* option) {
-        if (v.empty()) return std::vector<double>(static_cast<std::size_t>(n), 0.0);
-        if (v.size() == 1) return std::vector<double>(static_cast<std::size_t>(n), v[0]);
-        if (static_cast<int>(v.size()) != n) throw InputError(fmt::format("{}: expected 1 or {} values (one per joint), got {}", option, n, v.size()));
-        for (double a : v) {
-            if (!(a >= 0.0)) throw InputError(fmt::format("{}: values must be >= 0", option));
-        }
-        return v;
-    };
-    sim::MeasurementSettings ms;
-    if (o.encoder_counts < 0.0) throw InputError("--encoder-counts must be >= 0 (0: no quantization)");
-    ms.encoder_counts_per_rev = o.encoder_counts;
-    ms.torque_noise = per_joint(o.torque_noise, "--torque-noise");
-    ms.ripple_amplitude = per_joint(o.ripple, "--ripple");
-    ms.ripple_periods_per_rev = o.ripple_periods;
-    ms.seed = o.noise_seed;
-    if (o.move_duration.size() != 2) throw InputError("--move-duration: expected MIN,MAX in seconds");
-    o.settings.moves.min_duration = o.move_duration[0];
-    o.settings.moves.max_duration = o.move_duration[1];
-    sim::validate(o.settings);
+    sim::MeasurementSettings ms = measurement_settings(o, n);
+    o.settings = simulation_settings(o);
 
     // Hidden effects: the truth is the nominal model plus the effects' columns with the injected
     // coefficients; a torque delay acts in the measurement instead.
@@ -211,21 +188,7 @@ void add_simulate_command(CLI::App& app) {
     cmd->add_option("--out,-o", o->out, "output log (CSV)")->required();
     cmd->add_option("--truth", o->truth, "truth file (JSON: parameters, settings); default <out without extension>.truth.json");
     cmd->add_option("--states", o->states, "also write the noise-free states t,q,qd,qdd,tau to this CSV");
-    cmd->add_option("--duration", o->settings.duration, "simulated time in s")->capture_default_str();
-    cmd->add_option("--rate", o->settings.output_rate, "log sample rate in Hz (must divide the integration rate)")->capture_default_str();
-    cmd->add_option("--control-rate", o->settings.control_rate, "PD controller rate in Hz")->capture_default_str();
-    cmd->add_option("--substeps", o->settings.substeps, "RK4 steps per control period")->capture_default_str();
-    cmd->add_option("--omega-dyn", o->settings.omega_dyn, "wanted position-loop bandwidth in rad/s (sets the PD gains)")->capture_default_str();
-    cmd->add_option("--damping", o->settings.damping, "damping ratio of the PD loop")->capture_default_str();
-    cmd->add_option("--seed", o->settings.seed, "seed of the random targets and move durations")->capture_default_str();
-    cmd->add_option("--move-duration", o->move_duration, "MIN,MAX duration of each move in s")->delimiter(',')->expected(2)->capture_default_str();
-    cmd->add_option("--dwell", o->settings.moves.max_dwell, "maximum rest after each move in s (uniform in [0, dwell])")->capture_default_str();
-    cmd->add_option("--encoder-counts", o->encoder_counts, "encoder counts per revolution (0: no quantization)")->capture_default_str();
-    cmd->add_option("--torque-noise", o->torque_noise, "torque noise standard deviation in N.m: one value or one per joint")->delimiter(',');
-    cmd->add_option("--ripple", o->ripple, "torque ripple amplitude in N.m (one value or one per joint), amplitude * sin(periods * q)")
-        ->delimiter(',');
-    cmd->add_option("--ripple-periods", o->ripple_periods, "ripple periods per revolution")->capture_default_str();
-    cmd->add_option("--noise-seed", o->noise_seed, "seed of the torque noise")->capture_default_str();
+    add_simulation_options(cmd, *o);
     cmd->add_option("--effect", o->effects,
                     "inject an effect the nominal model lacks (repeatable): NAME:key=value,... e.g. "
                     "coulomb_offset:joint=1,value=0.3 | coulomb_asymmetry:joint=1,value=0.1 | "

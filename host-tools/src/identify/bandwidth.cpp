@@ -2,6 +2,7 @@
 #include "identify/bandwidth.hpp"
 
 #include "core/errors.hpp"
+#include "signal/fftw_planner.hpp"
 
 #include <fftw3.h>
 #include <fmt/core.h>
@@ -104,7 +105,11 @@ struct Welch {
         std::vector<double> in(seg), p(seg / 2 + 1, 0.0);
         auto* out = static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * (seg / 2 + 1)));
         std::unique_ptr<fftw_complex, decltype(&fftw_free)> out_guard(out, &fftw_free);
-        fftw_plan plan = fftw_plan_dft_r2c_1d(static_cast<int>(seg), in.data(), out, FFTW_ESTIMATE);
+        fftw_plan plan = nullptr;
+        {
+            const std::lock_guard<std::mutex> lock(signal::fftw_planner_mutex());
+            plan = fftw_plan_dft_r2c_1d(static_cast<int>(seg), in.data(), out, FFTW_ESTIMATE);
+        }
         for (std::size_t s = 0; s < used; ++s) {
             const std::size_t start = used > 1 ? (segments - 1) * s / (used - 1) * hop : 0;
             double mean = 0.0;
@@ -114,7 +119,10 @@ struct Welch {
             fftw_execute(plan);
             for (std::size_t f = 0; f < p.size(); ++f) p[f] += out[f][0] * out[f][0] + out[f][1] * out[f][1];
         }
-        fftw_destroy_plan(plan);
+        {
+            const std::lock_guard<std::mutex> lock(signal::fftw_planner_mutex());
+            fftw_destroy_plan(plan);
+        }
         return p;
     }
 };

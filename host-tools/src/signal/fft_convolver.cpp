@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "signal/fft_convolver.hpp"
 
+#include "signal/fftw_planner.hpp"
+
 #include <fftw3.h>
 
 #include <algorithm>
@@ -10,13 +12,6 @@
 
 namespace jacobid::signal {
 namespace {
-
-// FFTW's planner (plan creation and destruction) is not thread-safe; fftw_execute_dft_* on an existing
-// plan with new arrays is.
-std::mutex& planner_mutex() {
-    static std::mutex m;
-    return m;
-}
 
 template <typename T>
 struct FftwBuffer {
@@ -39,7 +34,7 @@ struct FftConvolver::Impl {
     fftw_complex* spectrum = nullptr;  // FFT of the reversed, zero-padded kernel, divided by n
 
     ~Impl() {
-        const std::lock_guard<std::mutex> lock(planner_mutex());
+        const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
         if (forward != nullptr) fftw_destroy_plan(forward);
         if (backward != nullptr) fftw_destroy_plan(backward);
         fftw_free(spectrum);
@@ -67,7 +62,7 @@ FftConvolver::FftConvolver(Span<const double> weights, std::size_t fft_size, Fft
     if (p.spectrum == nullptr) throw std::bad_alloc();
     {
         const unsigned flags = planning == FftPlanning::Measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-        const std::lock_guard<std::mutex> lock(planner_mutex());
+        const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
         // Planned on fftw_malloc'ed arrays: correlate() runs the plans on other arrays from fftw_malloc,
         // which have the same (SIMD) alignment, as fftw_execute_dft_* requires.
         p.forward = fftw_plan_dft_r2c_1d(n, real.data, p.spectrum, flags);

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+#include "cli/fit_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "core/errors.hpp"
+
+namespace jacobid::cli {
+
+void add_fit_options(CLI::App* cmd, FitOptions& o) {
+    cmd->add_option("--bandwidth", o.pipeline.bandwidth, "motion bandwidth in Hz (default: estimated from the data: 99 % of the velocity energy above the noise floor, limited by the noise; docs/method.md)");
+    cmd->add_option("--cutoff", o.pipeline.differentiator_cutoff,
+                    "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)");
+    cmd->add_option("--velocity-window", o.pipeline.velocity_window, "Jacobi velocity window T in s (overrides --cutoff)");
+    cmd->add_option("--acceleration-window", o.pipeline.acceleration_window, "Jacobi acceleration window T in s (overrides --cutoff)");
+    cmd->add_option("--kappa", o.pipeline.kappa, "Jacobi kappa")->capture_default_str();
+    cmd->add_option("--mu", o.pipeline.mu, "Jacobi mu")->capture_default_str();
+    cmd->add_option("--q", o.pipeline.q, "Jacobi truncation order q")->capture_default_str();
+    cmd->add_option("--discretization", o.discretization, "Jacobi kernel discretization: exact (polynomial-exact on the grid) or trapezoidal (paper)")
+        ->check(CLI::IsMember({"exact", "trapezoidal"}))
+        ->capture_default_str();
+    cmd->add_option("--butterworth-order", o.pipeline.butterworth_order, "order of the Butterworth prefilter")->capture_default_str();
+    cmd->add_option("--decimation-cutoff", o.pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)");
+    cmd->add_option("--decimation", o.pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))");
+    cmd->add_option("--min-motion", o.pipeline.min_joint_motion, "position range in rad below which a joint counts as not moving")
+        ->capture_default_str();
+    cmd->add_option("--torque-delay", o.torque_delay,
+                    "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
+                    "significant, reported with its std) or SECONDS (read the torque that much later; negative: earlier; 0: off)")
+        ->capture_default_str();
+    cmd->add_flag("--weighted", o.weighted, "weighted LS: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier)");
+    cmd->add_option("--rank-tolerance", o.rank_tolerance, "relative singular value below which the column-normalized W is rank deficient")
+        ->capture_default_str();
+}
+
+std::optional<double> given_torque_delay(const FitOptions& o) {
+    if (o.torque_delay == "auto") return std::nullopt;
+    char* end = nullptr;
+    const double delay = std::strtod(o.torque_delay.c_str(), &end);
+    if (o.torque_delay.empty() || *end != '\0' || !std::isfinite(delay) || std::abs(delay) > 1.0) {
+        throw InputError(fmt::format("--torque-delay '{}': expected auto or a delay in seconds within +-1 s", o.torque_delay));
+    }
+    return delay;
+}
+
+identify::IdentifySettings identify_settings(const FitOptions& o, identify::Method method) {
+    identify::IdentifySettings s;
+    s.pipeline = o.pipeline;
+    s.pipeline.method = method;
+    s.pipeline.exact_discretization = o.discretization == "exact";
+    s.solve.weighted = o.weighted;
+    s.solve.rank_tolerance = o.rank_tolerance;
+    s.torque_delay = given_torque_delay(o);
+    return s;
+}
+
+}  // namespace jacobid::cli

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The options that say how a log is identified (pipeline cutoffs, windows, decimation, torque delay,
+// weighting), registered alike by `jacobid identify` and `jacobid montecarlo`, so that a Monte Carlo study
+// takes the very options identify takes.
+#include <optional>
+#include <string>
+
+#include "identify/identify_run.hpp"
+#include "identify/pipeline.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace jacobid::cli {
+
+struct FitOptions {
+    identify::PipelineSettings pipeline;
+    std::string discretization = "exact";
+    std::string torque_delay = "auto";  // auto | seconds
+    bool weighted = false;
+    double rank_tolerance = 1e-7;
+};
+
+// --bandwidth ... --min-motion, --torque-delay, --weighted, --rank-tolerance.
+void add_fit_options(CLI::App* cmd, FitOptions& o);
+
+// --torque-delay: nullopt for auto, else the seconds given (InputError naming the option if malformed).
+std::optional<double> given_torque_delay(const FitOptions& o);
+
+// The settings of identify::identify_log for `method` (--discretization resolved, --torque-delay parsed).
+identify::IdentifySettings identify_settings(const FitOptions& o, identify::Method method);
+
+}  // namespace jacobid::cli

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The options of a simulated run (motion, controller, sensors, seeds), registered alike by `jacobid simulate`
+// and `jacobid montecarlo`, so that a Monte Carlo run is exactly what simulate would have written.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/measurement.hpp"
+#include "sim/simulator.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace jacobid::cli {
+
+struct SimulationOptions {
+    sim::SimulationSettings settings;
+    double encoder_counts = 65536.0;
+    std::vector<double> torque_noise;
+    std::vector<double> ripple;
+    double ripple_periods = 50.0;
+    std::uint64_t noise_seed = 2;
+    std::vector<double> move_duration{0.6, 1.6};
+};
+
+// --duration, --rate, --control-rate, --substeps, --omega-dyn, --damping, --seed, --move-duration, --dwell,
+// --encoder-counts, --torque-noise, --ripple, --ripple-periods, --noise-seed.
+void add_simulation_options(CLI::App* cmd, SimulationOptions& o);
+
+// The checked settings for a robot of `joints` joints (InputError naming the option otherwise).
+sim::SimulationSettings simulation_settings(const SimulationOptions& o);
+sim::MeasurementSettings measurement_settings(const SimulationOptions& o, int joints);
+
+}  // namespace jacobid::cli

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+#include "identify/identify_run.hpp"
+
+#include <utility>
+
+#include "identify/plausibility.hpp"
+
+namespace jacobid::identify {
+
+TorqueDelayResult resolve_torque_delay(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& pipeline,
+                                       const SolveOptions& solve, std::optional<double> given) {
+    TorqueDelayResult r;
+    if (given) {
+        r.given = true;
+        r.estimate.delay = *given;
+        r.estimate.compensated = *given != 0.0;
+        return r;
+    }
+    r.estimate = estimate_torque_delay(model, log, pipeline, solve);
+    return r;
+}
+
+IdentifiedLog solve_identification(PipelineOutput out, SmoothedModel smoothed, TorqueDelayResult delay, const robot::RobotModel& nominal,
+                                   const SolveOptions& solve) {
+    IdentifiedLog fit;
+    const robot::RobotModel& fitted = smoothed.get(nominal);
+    MethodResult& r = fit.result;
+    r.torque_delay = std::move(delay);
+    r.coulomb_smoothing = smoothed.choice;
+    r.info = std::move(out.info);
+    r.plot = std::move(out.plot);
+    r.solution = solve_least_squares(out.factors, fitted.parameter_names(), solve);
+    r.violations = plausibility_violations(sign_constraints(fitted), r.solution);
+    fit.factors = std::move(out.factors);
+    fit.smoothed = std::move(smoothed);
+    return fit;
+}
+
+IdentifiedLog identify_log(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& log,
+                           const IdentifySettings& settings) {
+    // The delay is estimated with the description's alpha, then each joint's alpha (friction alpha: auto) is
+    // chosen on the aligned log.
+    TorqueDelayResult delay = resolve_torque_delay(nominal, log, settings.pipeline, settings.solve, settings.torque_delay);
+    const ShiftedTorques aligned = shift_torques(log, delay.applied());
+    SmoothedModel smoothed = resolve_coulomb_smoothing(description, nominal, aligned.log, settings.pipeline, settings.solve.weighted);
+    PipelineOutput out = run_pipeline(smoothed.get(nominal), aligned.log, settings.pipeline);
+    return solve_identification(std::move(out), std::move(smoothed), std::move(delay), nominal, settings.solve);
+}
+
+}  // namespace jacobid::identify

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// One method's identification of one log, as `jacobid identify` does it: the torque delay (estimated or
+// given), the Coulomb smoothing of `friction: {alpha: auto}` chosen on the aligned log, the pipeline, the
+// least squares and the plausibility checks. Shared by `jacobid identify` and `jacobid montecarlo`, so that
+// a Monte Carlo study checks exactly what users run.
+#include <optional>
+
+#include "identify/coulomb_smoothing.hpp"
+#include "identify/least_squares.hpp"
+#include "identify/pipeline.hpp"
+#include "identify/report.hpp"
+#include "identify/torque_delay.hpp"
+#include "robot/robot_description.hpp"
+#include "robot/robot_model.hpp"
+
+namespace jacobid::identify {
+
+struct IdentifySettings {
+    PipelineSettings pipeline;           // pipeline.method: the method
+    SolveOptions solve;
+    std::optional<double> torque_delay;  // s, given (0: off); nullopt: estimated (--torque-delay auto)
+};
+
+// What the rest of identify (essential parameters, validation, reports) needs beside the result.
+struct IdentifiedLog {
+    MethodResult result;  // torque_delay, coulomb_smoothing, info, plot, solution, violations
+    JointFactors factors;
+    SmoothedModel smoothed;  // the model fitted: smoothed.get(nominal)
+};
+
+// The given delay, or the least-squares estimate on `log` (torque_delay.hpp).
+TorqueDelayResult resolve_torque_delay(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& pipeline,
+                                       const SolveOptions& solve, std::optional<double> given);
+
+// The least squares on a pipeline's output and the checks that follow from it alone.
+IdentifiedLog solve_identification(PipelineOutput out, SmoothedModel smoothed, TorqueDelayResult delay, const robot::RobotModel& nominal,
+                                   const SolveOptions& solve);
+
+// The whole flow on one log (one segment). InputError as run_pipeline (log too short ...).
+IdentifiedLog identify_log(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& log,
+                           const IdentifySettings& settings);
+
+}  // namespace jacobid::identify

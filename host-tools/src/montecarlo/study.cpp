@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: MIT
+#include "montecarlo/study.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "identify/log_columns.hpp"
+
+namespace jacobid::montecarlo {
+namespace {
+
+struct RunResult {
+    std::vector<Eigen::VectorXd> x, std_dev;  // per method
+};
+
+// One run: simulate_log is what `jacobid simulate` writes (without the CSV's rounding), identify_log what
+// `jacobid identify` does with it.
+RunResult one_run(const StudySettings& s, const robot::RobotModel& model, const Eigen::VectorXd& truth, int k) {
+    sim::SimulationSettings simulation = s.simulation;
+    simulation.seed = run_seed(s, k);
+    sim::MeasurementSettings sensors = s.measurement;
+    sensors.seed = run_noise_seed(s, k);
+    sim::MeasurementModel measurement(sensors);
+    const sim::MeasuredLog simulated = sim::simulate_log(model, truth, s.robot.joints, simulation, measurement);
+    const identify::LogColumns log = identify::log_columns(simulated.q, simulated.tau, simulated.sample_period, fmt::format("run {}", k + 1));
+    RunResult r;
+    for (const auto& method : s.methods) {
+        const identify::IdentifiedLog fit = identify::identify_log(s.robot, model, log, method);
+        if (fit.result.solution.names != model.parameter_names()) {
+            throw std::logic_error("montecarlo: the fitted model's parameters differ from the description's");
+        }
+        r.x.push_back(fit.result.solution.x);
+        r.std_dev.push_back(fit.result.solution.std_dev);
+    }
+    return r;
+}
+
+}  // namespace
+
+std::uint64_t run_seed(const StudySettings& settings, int k) { return settings.simulation.seed + static_cast<std::uint64_t>(k); }
+std::uint64_t run_noise_seed(const StudySettings& settings, int k) { return settings.measurement.seed + static_cast<std::uint64_t>(k); }
+
+Study run_study(const StudySettings& s) {
+    if (s.runs < 2) throw InputError(fmt::format("--runs {}: need at least 2 runs (the spread of the estimates needs two)", s.runs));
+    if (s.threads < 1) throw InputError(fmt::format("--threads {}: must be >= 1", s.threads));
+    if (s.methods.empty()) throw InputError("--method: no method to identify with");
+    const auto start = std::chrono::steady_clock::now();
+    const auto model = robot::make_robot_model(s.robot);
+    Study study;
+    study.model_name = model->model_name();
+    study.names = model->parameter_names();
+    study.truth = robot::true_parameters(s.robot, *model);
+    study.threads = std::min(s.threads, s.runs);
+
+    const auto runs = static_cast<std::size_t>(s.runs);
+    std::vector<RunResult> results(runs);
+    std::vector<std::exception_ptr> errors(runs);
+    std::atomic<int> next{0};
+    std::atomic<bool> failed{false};
+    std::mutex progress_mutex;
+    int finished = 0;
+    auto worker = [&] {
+        for (int k = next++; k < s.runs && !failed; k = next++) {
+            try {
+                results[static_cast<std::size_t>(k)] = one_run(s, *model, study.truth, k);
+            } catch (...) {
+                errors[static_cast<std::size_t>(k)] = std::current_exception();
+                failed = true;
+            }
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            ++finished;
+            if (s.progress) s.progress(finished, s.runs);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < study.threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    for (std::size_t k = 0; k < runs; ++k) {
+        if (!errors[k]) continue;
+        const std::string where = fmt::format("run {} (seed {}, noise seed {})", k + 1, run_seed(s, static_cast<int>(k)), run_noise_seed(s, static_cast<int>(k)));
+        try {
+            std::rethrow_exception(errors[k]);
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("{}: {}", where, e.what()));
+        }
+    }
+
+    for (std::size_t m = 0; m < s.methods.size(); ++m) {
+        MethodRuns mr;
+        mr.method = s.methods[m].pipeline.method;
+        for (const auto& r : results) {
+            mr.x.push_back(r.x[m]);
+            mr.std_dev.push_back(r.std_dev[m]);
+        }
+        study.methods.push_back(std::move(mr));
+    }
+    for (int k = 0; k < s.runs; ++k) {
+        study.seeds.push_back(run_seed(s, k));
+        study.noise_seeds.push_back(run_noise_seed(s, k));
+    }
+    study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return study;
+}
+
+}  // namespace jacobid::montecarlo
