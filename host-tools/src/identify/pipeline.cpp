@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "identify/bandwidth.hpp"
 #include "identify/running_qr.hpp"
+#include "identify/torque_smoothing.hpp"
 #include "jacobid/baseline/butterworth.hpp"
 #include "jacobid/baseline/euler_difference.hpp"
 #include "jacobid/baseline/filtfilt.hpp"
@@ -168,6 +169,9 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
         const std::vector<double> wv = design_or_throw(pv), wa = design_or_throw(pa);
         info.velocity_cutoff = find_cutoff(Span<const double>(wv), ts, 1).frequency;
         info.acceleration_cutoff = find_cutoff(Span<const double>(wa), ts, 2).frequency;
+        // The torque through the velocity kernel's own low-pass (torque_smoothing.hpp), so that Y and the
+        // regressor see the same filter in F_p's band.
+        const std::vector<double> ws = torque_smoothing_kernel(wv, ts);
         std::vector<double> out(n);
         for (std::size_t j = 0; j < joints; ++j) {
             // The central estimate of output k belongs to input sample k + (L - 1) / 2 (odd L).
@@ -180,7 +184,13 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
                           target->begin() + static_cast<std::ptrdiff_t>((weights->size() - 1) / 2));
             }
             e.q[j] = *log.q[j];
-            e.tau[j] = *log.tau[j];
+            e.tau[j].assign(n, 0.0);
+            const std::size_t outputs = n - ws.size() + 1;
+            const BatchStatus status = signal::differentiate_batch(Span<const double>(ws), Span<const double>(*log.tau[j]),
+                                                                   Span<double>(out.data(), outputs));
+            if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
+            std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
+                      e.tau[j].begin() + static_cast<std::ptrdiff_t>((ws.size() - 1) / 2));
         }
     } else {
         // The paper's baseline: positions AND torques through the same forward-backward Butterworth F_q
