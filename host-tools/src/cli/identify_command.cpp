@@ -51,7 +51,10 @@ struct IdentifyOptions {
     std::string time_column = "t";
     std::string discretization = "exact";
     identify::PipelineSettings pipeline;
-    bool weighted = false;
+    bool weighted = false;    // --weighted (kept): the same as --weighting wls
+    bool unweighted = false;  // --unweighted: the same as --weighting ols
+    std::string weighting = "wls";
+    std::string std_method = "joint-hac";
     bool print_base = false;
     double essential = 0.0;  // threshold in %; 0: off
     bool essential_flag = false;
@@ -231,7 +234,8 @@ void run(IdentifyOptions o) {
                                          o.velocity, o.method, o.velocity));
         }
         identify::SolveOptions solve;
-        solve.weighted = o.weighted;
+        solve.weighted = o.weighting == "wls";
+        solve.std_method = o.std_method == "pooled" ? identify::StdMethod::Pooled : identify::StdMethod::JointHac;
         solve.rank_tolerance = o.rank_tolerance;
         identify::MethodResult r;
         // The delay is estimated with the description's alpha, then each joint's alpha (friction alpha: auto) is
@@ -337,7 +341,19 @@ void add_identify_command(CLI::App& app) {
                     "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
                     "significant, reported with its std) or SECONDS (read the torque that much later; negative: earlier; 0: off)")
         ->capture_default_str();
-    cmd->add_flag("--weighted", o->weighted, "weighted LS: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier)");
+    cmd->add_option("--weighting", o->weighting,
+                    "wls: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier; the default: joints whose noise "
+                    "differs are not pooled), or ols (ordinary LS)")
+        ->check(CLI::IsMember({"wls", "ols"}))
+        ->capture_default_str();
+    cmd->add_flag("--weighted", o->weighted, "the same as --weighting wls (kept for scripts)");
+    cmd->add_flag("--unweighted", o->unweighted, "the same as --weighting ols");
+    cmd->add_option("--std", o->std_method,
+                    "how sigma_X is computed: joint-hac (per-joint residual variances and serial correlation of the decimated rows, "
+                    "Newey-West weights; the default) or pooled (sigma_rho^2 (W^T W)^-1, rows independent)")
+        ->check(CLI::IsMember({"joint-hac", "pooled"}))
+        ->capture_default_str();
+    cmd->add_option("--std-lags", o->pipeline.residual_lags, "lags of the residual autocorrelation for --std joint-hac")->capture_default_str();
     cmd->add_option("--essential", o->essential,
                     "essential parameters: drop the parameter with the largest %sigma_r above this threshold (%), re-identify, repeat")
         ->each([o](const std::string&) { o->essential_flag = true; })
@@ -349,6 +365,10 @@ void add_identify_command(CLI::App& app) {
     cmd->callback([o] {
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;
         o->pipeline.exact_discretization = o->discretization == "exact";
+        if (o->weighted && o->unweighted) throw InputError("--weighted and --unweighted: give one of them");
+        if (o->weighted) o->weighting = "wls";
+        if (o->unweighted) o->weighting = "ols";
+        if (o->std_method == "joint-hac" && o->pipeline.residual_lags < 0) throw InputError("--std-lags must be >= 0");
         run(*o);
     });
 }

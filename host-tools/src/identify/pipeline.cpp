@@ -268,7 +268,11 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
     const std::size_t chunk = std::max(s.chunk, 4 * margin);
 
     std::vector<RunningQr> qr;
-    for (int j = 0; j < joints; ++j) qr.emplace_back(c + 1);
+    std::vector<LaggedProducts> lagged;  // residual autocorrelation, for the std (residual_correlation.hpp)
+    for (int j = 0; j < joints; ++j) {
+        qr.emplace_back(c + 1);
+        lagged.emplace_back(c + 1, s.residual_lags);
+    }
     const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
     std::vector<std::vector<double>> buffer(columns);
     std::vector<double> workspace;
@@ -334,6 +338,7 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
                 const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
                 for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][i];
                 qr[static_cast<std::size_t>(j)].add_row(row.data());
+                lagged[static_cast<std::size_t>(j)].add_row(row.data());
                 if (keep_for_plot) {
                     out.plot.y[static_cast<std::size_t>(j)].push_back(row[static_cast<std::size_t>(c)]);
                     out.plot.w[static_cast<std::size_t>(j)].insert(out.plot.w[static_cast<std::size_t>(j)].end(), row.begin(), row.end() - 1);
@@ -367,6 +372,9 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
     for (auto& f : qr) {
         out.factors.r.push_back(f.r());
         out.factors.rows.push_back(f.rows());
+    }
+    if (s.residual_lags > 0) {
+        for (auto& l : lagged) out.factors.lagged.push_back(l.gamma());
     }
     ls_seconds += seconds_since(t2);
     info.seconds_regressor_filter = regressor_seconds;

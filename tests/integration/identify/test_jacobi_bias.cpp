@@ -47,7 +47,9 @@ TEST(TorqueSmoothing, IsTheVelocityKernelsLowPass) {
         }
         const double gain = std::abs(velocity / (w * std::cos(w * 0.3)));
         EXPECT_NEAR(velocity, smoothed, (w * kTs) * (w * kTs) / 12.0 * w * 1.01 + 1e-12) << f << " Hz, gain " << gain;
-        if (f >= 10.0) EXPECT_LT(gain, 0.95) << "the kernel really filters in this band";
+        if (f >= 10.0) {
+            EXPECT_LT(gain, 0.95) << "the kernel really filters in this band";
+        }
     }
 }
 
