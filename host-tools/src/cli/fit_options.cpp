@@ -32,7 +32,19 @@ void add_fit_options(CLI::App* cmd, FitOptions& o) {
                     "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
                     "significant, reported with its std) or SECONDS (read the torque that much later; negative: earlier; 0: off)")
         ->capture_default_str();
-    cmd->add_flag("--weighted", o.weighted, "weighted LS: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier)");
+    cmd->add_option("--weighting", o.weighting,
+                    "wls: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier; the default: joints whose noise "
+                    "differs are not pooled), or ols (ordinary LS)")
+        ->check(CLI::IsMember({"wls", "ols"}))
+        ->capture_default_str();
+    cmd->add_flag("--weighted", o.weighted, "the same as --weighting wls (kept for scripts)");
+    cmd->add_flag("--unweighted", o.unweighted, "the same as --weighting ols");
+    cmd->add_option("--std", o.std_method,
+                    "how sigma_X is computed: joint-hac (per-joint residual variances and serial correlation of the decimated rows, "
+                    "Newey-West weights; the default) or pooled (sigma_rho^2 (W^T W)^-1, rows independent)")
+        ->check(CLI::IsMember({"joint-hac", "pooled"}))
+        ->capture_default_str();
+    cmd->add_option("--std-lags", o.pipeline.residual_lags, "lags of the residual autocorrelation for --std joint-hac")->capture_default_str();
     cmd->add_option("--rank-tolerance", o.rank_tolerance, "relative singular value below which the column-normalized W is rank deficient")
         ->capture_default_str();
 }
@@ -52,7 +64,11 @@ identify::IdentifySettings identify_settings(const FitOptions& o, identify::Meth
     s.pipeline = o.pipeline;
     s.pipeline.method = method;
     s.pipeline.exact_discretization = o.discretization == "exact";
-    s.solve.weighted = o.weighted;
+    if (o.weighted && o.unweighted) throw InputError("--weighted and --unweighted: give one of them");
+    if (o.std_method == "joint-hac" && o.pipeline.residual_lags < 0) throw InputError("--std-lags must be >= 0");
+    const std::string weighting = o.weighted ? "wls" : o.unweighted ? "ols" : o.weighting;
+    s.solve.weighted = weighting == "wls";
+    s.solve.std_method = o.std_method == "pooled" ? identify::StdMethod::Pooled : identify::StdMethod::JointHac;
     s.solve.rank_tolerance = o.rank_tolerance;
     s.torque_delay = given_torque_delay(o);
     return s;

@@ -19,17 +19,21 @@ struct FitOptions {
     identify::PipelineSettings pipeline;
     std::string discretization = "exact";
     std::string torque_delay = "auto";  // auto | seconds
-    bool weighted = false;
+    bool weighted = false;             // --weighted (kept for scripts): the same as --weighting wls
+    bool unweighted = false;           // --unweighted: the same as --weighting ols
+    std::string weighting = "wls";     // wls | ols
+    std::string std_method = "joint-hac";  // joint-hac | pooled
     double rank_tolerance = 1e-7;
 };
 
-// --bandwidth ... --min-motion, --torque-delay, --weighted, --rank-tolerance.
+// --bandwidth ... --min-motion, --torque-delay, --weighting (--weighted, --unweighted), --std, --std-lags, --rank-tolerance.
 void add_fit_options(CLI::App* cmd, FitOptions& o);
 
 // --torque-delay: nullopt for auto, else the seconds given (InputError naming the option if malformed).
 std::optional<double> given_torque_delay(const FitOptions& o);
 
-// The settings of identify::identify_log for `method` (--discretization resolved, --torque-delay parsed).
+// The settings of identify::identify_log for `method` (--discretization and the weighting resolved, --torque-delay
+// parsed; InputError for contradicting options).
 identify::IdentifySettings identify_settings(const FitOptions& o, identify::Method method);
 
 }  // namespace jacobid::cli

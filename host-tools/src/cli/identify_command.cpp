@@ -210,9 +210,7 @@ void run(IdentifyOptions o) {
                                          "(use --velocity measured, or --method {})",
                                          o.velocity, o.method, o.velocity));
         }
-        identify::SolveOptions solve;
-        solve.weighted = o.weighted;
-        solve.rank_tolerance = o.rank_tolerance;
+        const identify::SolveOptions solve = identify_settings(o, m).solve;
         identify::IdentifiedLog fit;
         if (input.split) {
             // Every segment with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp):

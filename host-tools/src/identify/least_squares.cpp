@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "identify/residual_correlation.hpp"
 #include "identify/running_qr.hpp"
 
 namespace jacobid::identify {
@@ -37,7 +38,53 @@ Eigen::MatrixXd stack(const JointFactors& f, const std::vector<double>& scale, s
     return total.r();
 }
 
+// Joint-wise HAC sandwich of the kept columns `cols` (indices into the factors' columns) at solution x with
+// joint scales `scale` (see StdMethod::JointHac). Fills the per-joint diagnostics of `s`; returns the
+// covariance of x.
+Eigen::MatrixXd joint_hac_covariance(const JointFactors& f, const std::vector<int>& cols, const std::vector<double>& x,
+                                     const std::vector<double>& scale, LsSolution& s) {
+    const Eigen::Index k = static_cast<Eigen::Index>(cols.size());
+    const std::size_t joints = f.r.size();
+    std::size_t rows = 0;
+    for (auto r : f.rows) rows += r;
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(k, k), b = Eigen::MatrixXd::Zero(k, k);
+    s.joint_sigma.assign(joints, kNaN);
+    s.joint_long_run_factors.assign(joints, 1.0);
+    s.joint_lag1_correlation.assign(joints, kNaN);
+    s.std_lags = f.lagged.size() == joints && joints > 0 ? static_cast<int>(f.lagged.front().size()) : 0;
+    for (std::size_t j = 0; j < joints; ++j) {
+        const Eigen::Index n = f.r[j].cols();
+        Eigen::MatrixXd m(n, k);
+        Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+        for (Eigen::Index i = 0; i < k; ++i) {
+            m.col(i) = f.r[j].col(cols[static_cast<std::size_t>(i)]);
+            u[cols[static_cast<std::size_t>(i)]] = x[static_cast<std::size_t>(i)];
+        }
+        u[n - 1] = -1.0;
+        const double gamma0 = (f.r[j] * u).squaredNorm();
+        // Degrees of freedom shared between the joints in proportion to their rows.
+        const double dof = static_cast<double>(f.rows[j]) * (1.0 - static_cast<double>(k) / static_cast<double>(std::max<std::size_t>(rows, 1)));
+        const double var = dof > 0.0 ? gamma0 / dof : 0.0;
+        double factor = 1.0;
+        if (s.std_lags > 0) {
+            factor = long_run_variance_factor(f.lagged[j], u, gamma0);
+            const auto rho = residual_autocorrelation(f.lagged[j], u, gamma0);
+            if (!rho.empty()) s.joint_lag1_correlation[j] = rho.front();
+        }
+        s.joint_sigma[j] = std::sqrt(var);
+        s.joint_long_run_factors[j] = factor;
+        const Eigen::MatrixXd gram = m.transpose() * m;
+        const double w2 = scale[j] * scale[j];
+        a += w2 * gram;
+        b += w2 * w2 * var * factor * gram;
+    }
+    const Eigen::MatrixXd ainv = a.ldlt().solve(Eigen::MatrixXd::Identity(k, k));
+    return ainv * b * ainv;
+}
+
 }  // namespace
+
+const char* to_string(StdMethod m) { return m == StdMethod::Pooled ? "pooled" : "joint-hac"; }
 
 LsSolution solve_least_squares(const JointFactors& factors, const std::vector<std::string>& names, const SolveOptions& options) {
     const int all = static_cast<int>(names.size());
@@ -162,11 +209,19 @@ LsSolution solve_least_squares(const JointFactors& factors, const std::vector<st
     s.y_norm = std::sqrt(y2);
     s.residual_norm = std::sqrt(e2);
     s.relative_error_norm = s.y_norm > 0 ? s.residual_norm / s.y_norm : kNaN;
+    s.std_method = options.std_method;
+    Eigen::MatrixXd hac;
+    if (options.std_method == StdMethod::JointHac && k > 0) {
+        std::vector<int> cols;
+        for (int i : keep) cols.push_back(active[static_cast<std::size_t>(i)]);
+        hac = joint_hac_covariance(factors, cols, x, s.joint_weights, s);
+    }
     for (Eigen::Index i = 0; i < k; ++i) {
         const auto p = static_cast<std::size_t>(active[static_cast<std::size_t>(keep[static_cast<std::size_t>(i)])]);
         s.identified[p] = true;
         s.x[static_cast<Eigen::Index>(p)] = x[static_cast<std::size_t>(i)];
-        const double sd = s.sigma_rho * rinv.row(i).norm();  // C = sigma^2 R^-1 R^-T
+        const double sd = hac.size() ? std::sqrt(std::max(hac(i, i), 0.0))
+                                     : s.sigma_rho * rinv.row(i).norm();  // C = sigma^2 R^-1 R^-T
         s.std_dev[static_cast<Eigen::Index>(p)] = sd;
         s.rel_std_percent[static_cast<Eigen::Index>(p)] = 100.0 * sd / std::abs(x[static_cast<std::size_t>(i)]);
     }

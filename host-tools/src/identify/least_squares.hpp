@@ -20,7 +20,22 @@ namespace jacobid::identify {
 struct JointFactors {
     std::vector<Eigen::MatrixXd> r;
     std::vector<std::size_t> rows;
+    // Per joint, the lagged products Gamma_1..Gamma_L of its consecutive augmented rows
+    // (residual_correlation.hpp); empty: not accumulated (only the iid std is then available).
+    std::vector<std::vector<Eigen::MatrixXd>> lagged;
 };
+
+// How sigma_X is computed (docs/method.md, "Bias and standard deviations, measured"):
+//  - Pooled: sigma_rho^2 (W^T W)^-1 of the problem solved, one residual variance for every row, rows
+//    independent (the textbook formula; too large for a quiet joint next to a noisy one, too small for the
+//    serially correlated rows F_p and the decimation leave);
+//  - JointHac: the sandwich (W^T S W)^-1 (sum_j s_j^4 lrv_j W_j^T W_j) (W^T S W)^-1 with S the weights
+//    s_j^2, lrv_j = sigma_j^2 f_j joint j's own residual variance times its long-run variance factor
+//    (Bartlett over JointFactors::lagged). Exact when the residuals are independent between joints and the
+//    regressors vary slowly over the residuals' correlation length (they lie below the motion bandwidth,
+//    F_p keeps 5 x more). Without lagged products f_j = 1 (per-joint variances only).
+enum class StdMethod { Pooled, JointHac };
+const char* to_string(StdMethod m);
 
 struct Unidentifiable {
     std::vector<int> parameters;       // indices into the full parameter list
@@ -45,6 +60,11 @@ struct LsSolution {
     double sigma_rho = 0.0;
     std::vector<double> joint_residual_rms;  // unweighted, per joint
     std::vector<double> joint_weights;       // 1 / sigma_j when weighted, else 1
+    StdMethod std_method = StdMethod::Pooled;
+    int std_lags = 0;                             // lags of the long-run factors (0: none)
+    std::vector<double> joint_sigma;              // per joint residual std (dof-corrected), JointHac
+    std::vector<double> joint_long_run_factors;   // per joint long-run / plain variance (JointHac)
+    std::vector<double> joint_lag1_correlation;   // per joint residual autocorrelation at lag 1 (JointHac)
     std::vector<Unidentifiable> unidentifiable;
     bool weighted = false;
 };
@@ -53,6 +73,7 @@ struct SolveOptions {
     bool weighted = false;            // Gautier's per-joint weighting by 1 / sigma_j from an OLS pass
     double rank_tolerance = 1e-7;     // singular values of the column-normalized W below tol * max are null
     std::vector<bool> active;         // columns to use; empty: all
+    StdMethod std_method = StdMethod::Pooled;
 };
 
 // Solves the (weighted) LS problem for the active columns of the per-joint factors.

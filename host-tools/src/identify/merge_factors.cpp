@@ -16,7 +16,15 @@ void merge_factors(JointFactors& total, const JointFactors& part) {
     if (part.r.size() != total.r.size() || part.rows.size() != part.r.size()) {
         throw InputError(fmt::format("merging identification systems: {} joints and {} joints", total.r.size(), part.r.size()));
     }
+    // Lagged products add up (no lag crosses the boundary between the systems); if either system has
+    // none, the merged one has none.
+    bool lagged = total.lagged.size() == total.r.size() && part.lagged.size() == part.r.size();
+    for (std::size_t j = 0; lagged && j < total.r.size(); ++j) lagged = total.lagged[j].size() == part.lagged[j].size();
+    if (!lagged) total.lagged.clear();
     for (std::size_t j = 0; j < total.r.size(); ++j) {
+        if (lagged) {
+            for (std::size_t l = 0; l < total.lagged[j].size(); ++l) total.lagged[j][l] += part.lagged[j][l];
+        }
         const Eigen::Index n = total.r[j].cols();
         if (part.r[j].cols() != n || part.r[j].rows() != n || total.r[j].rows() != n) {
             throw InputError(fmt::format("merging identification systems: joint {} has {} and {} columns", j + 1, n, part.r[j].cols()));

@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "identify/bandwidth.hpp"
 #include "identify/running_qr.hpp"
+#include "identify/torque_smoothing.hpp"
 #include "jacobid/baseline/butterworth.hpp"
 #include "jacobid/baseline/euler_difference.hpp"
 #include "jacobid/baseline/filtfilt.hpp"
@@ -168,6 +169,9 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
         const std::vector<double> wv = design_or_throw(pv), wa = design_or_throw(pa);
         info.velocity_cutoff = find_cutoff(Span<const double>(wv), ts, 1).frequency;
         info.acceleration_cutoff = find_cutoff(Span<const double>(wa), ts, 2).frequency;
+        // The torque through the velocity kernel's own low-pass (torque_smoothing.hpp), so that Y and the
+        // regressor see the same filter in F_p's band.
+        const std::vector<double> ws = torque_smoothing_kernel(wv, ts);
         std::vector<double> out(n);
         for (std::size_t j = 0; j < joints; ++j) {
             // The central estimate of output k belongs to input sample k + (L - 1) / 2 (odd L).
@@ -180,7 +184,13 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
                           target->begin() + static_cast<std::ptrdiff_t>((weights->size() - 1) / 2));
             }
             e.q[j] = *log.q[j];
-            e.tau[j] = *log.tau[j];
+            e.tau[j].assign(n, 0.0);
+            const std::size_t outputs = n - ws.size() + 1;
+            const BatchStatus status = signal::differentiate_batch(Span<const double>(ws), Span<const double>(*log.tau[j]),
+                                                                   Span<double>(out.data(), outputs));
+            if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
+            std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
+                      e.tau[j].begin() + static_cast<std::ptrdiff_t>((ws.size() - 1) / 2));
         }
     } else {
         // The paper's baseline: positions AND torques through the same forward-backward Butterworth F_q
@@ -258,7 +268,11 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
     const std::size_t chunk = std::max(s.chunk, 4 * margin);
 
     std::vector<RunningQr> qr;
-    for (int j = 0; j < joints; ++j) qr.emplace_back(c + 1);
+    std::vector<LaggedProducts> lagged;  // residual autocorrelation, for the std (residual_correlation.hpp)
+    for (int j = 0; j < joints; ++j) {
+        qr.emplace_back(c + 1);
+        lagged.emplace_back(c + 1, s.residual_lags);
+    }
     const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
     std::vector<std::vector<double>> buffer(columns);
     std::vector<double> workspace;
@@ -324,6 +338,7 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
                 const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
                 for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][i];
                 qr[static_cast<std::size_t>(j)].add_row(row.data());
+                lagged[static_cast<std::size_t>(j)].add_row(row.data());
                 if (keep_for_plot) {
                     out.plot.y[static_cast<std::size_t>(j)].push_back(row[static_cast<std::size_t>(c)]);
                     out.plot.w[static_cast<std::size_t>(j)].insert(out.plot.w[static_cast<std::size_t>(j)].end(), row.begin(), row.end() - 1);
@@ -357,6 +372,9 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
     for (auto& f : qr) {
         out.factors.r.push_back(f.r());
         out.factors.rows.push_back(f.rows());
+    }
+    if (s.residual_lags > 0) {
+        for (auto& l : lagged) out.factors.lagged.push_back(l.gamma());
     }
     ls_seconds += seconds_since(t2);
     info.seconds_regressor_filter = regressor_seconds;

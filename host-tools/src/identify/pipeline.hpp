@@ -19,6 +19,7 @@
 
 #include "identify/bandwidth.hpp"
 #include "identify/least_squares.hpp"
+#include "identify/residual_correlation.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::identify {
@@ -51,6 +52,8 @@ struct PipelineSettings {
     // The regressor's velocities from the log's measured velocity columns (LogColumns::qd) instead of the
     // differentiated positions (identify --velocity measured); accelerations still come from the positions.
     bool measured_velocity = false;
+    // Lags of the residual autocorrelation accumulated with the factors (JointFactors::lagged; 0: none).
+    int residual_lags = kDefaultResidualLags;
 };
 
 // The positions and torques of a log, one column per joint (pointers into a CsvTable).

@@ -39,6 +39,19 @@ std::string settings_line(const PipelineInfo& i) {
     return s;
 }
 
+// One line on how sigma_X was computed, so that %sigma_r can be read for what it is.
+std::string describe_std(const LsSolution& sol) {
+    std::string s = fmt::format("{} LS, std ", sol.weighted ? "weighted (1 / sigma_j per joint)" : "ordinary");
+    if (sol.std_method == StdMethod::Pooled) return s + "pooled: sigma_rho^2 (W^T W)^-1, one residual variance, rows independent";
+    s += fmt::format("joint-hac: per-joint residual variances x long-run factors (Bartlett, {} lags) in a sandwich;", sol.std_lags);
+    for (std::size_t j = 0; j < sol.joint_sigma.size(); ++j) {
+        s += fmt::format(" joint {} sigma {:.3g}, factor {:.2f}, lag-1 correlation {:.2f};", j + 1, sol.joint_sigma[j], sol.joint_long_run_factors[j],
+                         sol.joint_lag1_correlation[j]);
+    }
+    s.pop_back();
+    return s;
+}
+
 }  // namespace
 
 std::vector<std::string> identifiability_warnings(const MethodResult& r, const std::vector<std::string>& joint_names) {
@@ -149,6 +162,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
     }
     for (const auto& r : results) {
         s += fmt::format("{}: {}; {}\n", method_title(r), settings_line(r.info), describe(r.torque_delay));
+        s += fmt::format("{}: {}\n", method_title(r), describe_std(r.solution));
         if (r.info.bandwidth_estimated) s += fmt::format("{} bandwidth estimate: {}\n", method_title(r), r.info.bandwidth_estimate.description);
         if (r.coulomb_smoothing) s += fmt::format("{} {}\n", method_title(r), describe(*r.coulomb_smoothing, ctx.joint_names));
         if (r.essential) {
@@ -212,6 +226,20 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
     j["residual_rms"] = sol.joint_residual_rms;
     j["weighted"] = sol.weighted;
     if (sol.weighted) j["joint_weights"] = sol.joint_weights;
+    // How "std" was computed (least_squares.hpp StdMethod; docs/method.md "Bias and standard deviations").
+    j["weighting"] = sol.weighted ? "wls" : "ols";
+    j["std_method"] = to_string(sol.std_method);
+    if (sol.std_method == StdMethod::JointHac) {
+        auto finite_list = [](const std::vector<double>& v) {
+            json a = json::array();
+            for (double x : v) a.push_back(std::isfinite(x) ? json(x) : json(nullptr));
+            return a;
+        };
+        j["std_lags"] = sol.std_lags;
+        j["joint_sigma"] = finite_list(sol.joint_sigma);
+        j["joint_long_run_factors"] = finite_list(sol.joint_long_run_factors);
+        j["joint_lag1_correlation"] = finite_list(sol.joint_lag1_correlation);
+    }
     json un = json::array();
     for (const auto& u : sol.unidentifiable) {
         json e;

@@ -145,8 +145,10 @@ TEST(IdentifyAcceptance, WeightedAndEssentialParameters) {
     // Gautier's weights are 1 / sigma_j: joint 2 (noise 0.01) weighs more than joint 1 (noise 0.05).
     EXPECT_GT(w["joint_weights"][1].get<double>(), w["joint_weights"][0].get<double>());
     EXPECT_LT(jacobid::test::relative_error(w, "ZZ1R", 3.496), 0.01);
-    // Threshold 1 %: MY2 (true value 0.0019, tiny contribution) has the largest %sigma_r and goes first.
-    const json e = identify_json(log, "--essential 1");
+    // Threshold 0.5 %: MY2 (true value 0.0019, tiny contribution) has the largest %sigma_r and goes first. With
+    // the default WLS and joint-hac std its %sigma_r is 0.70 % (the pooled OLS figure was 1.37 %; the
+    // 40-run spread of docs/method.md "Bias and standard deviations, measured" is 0.73 %), the next FV2 0.22 %.
+    const json e = identify_json(log, "--essential 0.5");
     ASSERT_GE(e["essential"]["steps"].size(), 2u);
     EXPECT_EQ(e["essential"]["steps"][1]["removed"], "MY2");
     EXPECT_TRUE(e["essential"]["final"]["MY2"]["removed"].get<bool>());

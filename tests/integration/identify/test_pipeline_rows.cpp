@@ -8,8 +8,10 @@
 #include "core/errors.hpp"
 #include "identify/log_columns.hpp"
 #include "identify/pipeline.hpp"
+#include "identify/torque_smoothing.hpp"
 #include "identify/validation.hpp"
 #include "jacobid/baseline/filtfilt.hpp"
+#include "jacobid/kernel_design.hpp"
 #include "robot/robot_description.hpp"
 #include "signal/baseline_response.hpp"
 
@@ -100,12 +102,27 @@ TEST(PipelineRows, AreTheRowsOfTheLeastSquares) {
     for (const auto& r : sink.rows) {
         for (Eigen::Index j = 0; j < 2; ++j) EXPECT_EQ(r.y[j], sink.torque[static_cast<std::size_t>(j)][r.sample - info.first]);
     }
-    // ... and equals one zero-phase F_p over the whole valid range (the core's sosfiltfilt), chunking or not.
+    // ... and equals one zero-phase F_p over the whole valid range (the core's sosfiltfilt), chunking or not,
+    // of the torque through the velocity kernel's low-pass (torque_smoothing.hpp, the Jacobi method).
     const auto fp = signal::design_butterworth_or_throw(4, info.decimation_cutoff, kTs, "F_p");
-    std::vector<double> whole(info.last - info.first), workspace(sosfiltfilt_workspace_size(fp));
+    KernelParams pv;
+    pv.order = 1;
+    pv.sample_period = kTs;
+    pv.window = info.velocity_window;
+    pv.discretization = Discretization::Exact;
+    std::vector<double> wv(tap_count(pv));
+    ASSERT_EQ(design_kernel(pv, Span<double>(wv)), KernelStatus::Ok);
+    const std::vector<double> smoothing = torque_smoothing_kernel(wv, kTs);
+    const std::size_t half = (smoothing.size() - 1) / 2;
+    ASSERT_LE(half, info.first);
+    std::vector<double> whole(info.last - info.first), smoothed(whole.size()), workspace(sosfiltfilt_workspace_size(fp));
     for (std::size_t j = 0; j < 2; ++j) {
-        ASSERT_EQ(sosfiltfilt(fp, Span<const double>(data.tau[j].data() + info.first, whole.size()), Span<double>(whole), Span<double>(workspace)),
-                  FilterStatus::Ok);
+        for (std::size_t k = 0; k < smoothed.size(); ++k) {
+            double acc = 0.0;
+            for (std::size_t i = 0; i < smoothing.size(); ++i) acc += smoothing[i] * data.tau[j][info.first + k - half + i];
+            smoothed[k] = acc;
+        }
+        ASSERT_EQ(sosfiltfilt(fp, Span<const double>(smoothed), Span<double>(whole), Span<double>(workspace)), FilterStatus::Ok);
         double worst = 0.0;
         for (std::size_t k = 0; k < whole.size(); ++k) worst = std::max(worst, std::abs(whole[k] - sink.torque[j][k]));
         EXPECT_LT(worst, 1e-12) << "joint " << j;
