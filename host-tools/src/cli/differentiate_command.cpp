@@ -124,7 +124,9 @@ void run(const DifferentiateOptions& o) {
     // One kernel per order for every segment: they share the grid period (docs/log-format.md).
     std::vector<KernelParams> jacobi;
     if (o.method == "jacobi") {
-        const double ts = io::check_uniform_time(log.tables.front(), o.time_column, o.time_tolerance).sample_period;
+        // With split, every segment is on the reader's grid (a first segment of one row has no step to measure).
+        const double ts = log.split && log.grid_period > 0.0 ? log.grid_period
+                                                             : io::check_uniform_time(log.tables.front(), o.time_column, o.time_tolerance).sample_period;
         for (int n : o.orders) jacobi.push_back(jacobi_params_for(o, n, ts));
     }
     std::string out = o.time_column;

@@ -65,7 +65,11 @@ identify::IdentifySettings identify_settings(const FitOptions& o, identify::Meth
     s.pipeline.method = method;
     s.pipeline.exact_discretization = o.discretization == "exact";
     if (o.weighted && o.unweighted) throw InputError("--weighted and --unweighted: give one of them");
-    if (o.std_method == "joint-hac" && o.pipeline.residual_lags < 0) throw InputError("--std-lags must be >= 0");
+    if (o.std_method == "joint-hac" && (o.pipeline.residual_lags < 0 || o.pipeline.residual_lags > 1000)) {
+        throw InputError(fmt::format("--std-lags {}: expected 0 to 1000 lags", o.pipeline.residual_lags));
+    }
+    // --weighting's default is wls, so only --weighted with an explicit --weighting ols can be told apart.
+    if (o.weighted && o.weighting == "ols") throw InputError("--weighted contradicts --weighting ols");
     const std::string weighting = o.weighted ? "wls" : o.unweighted ? "ols" : o.weighting;
     s.solve.weighted = weighting == "wls";
     s.solve.std_method = o.std_method == "pooled" ? identify::StdMethod::Pooled : identify::StdMethod::JointHac;

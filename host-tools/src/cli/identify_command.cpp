@@ -120,7 +120,8 @@ std::map<std::string, double> read_truth(const std::string& path) {
 // The joints' columns of each table (one, or one per segment with --on-gap split).
 std::vector<identify::LogColumns> columns_of(const LogSegments& logs, const robot::RobotDescription& robot, const IdentifyOptions& o) {
     std::vector<identify::LogColumns> columns;
-    for (const auto& table : logs.tables) columns.push_back(identify::log_columns(table, robot, o.time_column, o.time_tolerance));
+    const double grid_period = logs.split ? logs.grid_period : 0.0;
+    for (const auto& table : logs.tables) columns.push_back(identify::log_columns(table, robot, o.time_column, o.time_tolerance, grid_period));
     return columns;
 }
 

@@ -55,6 +55,7 @@ LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o
     io::LogReadReport report;
     out.tables = io::read_formatted_log_segments(path, format, names, settings, report);
     out.segments = report.segments;
+    out.grid_period = report.grid_period;
     // Skipped rows and the summary are always printed (never silently absorbed); the per-step lines only
     // without --quiet.
     for (const auto& s : report.skipped) fmt::print(stderr, "{} (skipped)\n", s);

@@ -38,6 +38,7 @@ struct LogSegments {
     std::vector<io::CsvTable> tables;
     std::vector<io::LogSegment> segments;  // as many as tables with --log-format, empty without
     bool split = false;                    // --on-gap split was given
+    double grid_period = 0.0;              // s, of every segment's grid (with --log-format)
 };
 LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period = 0.0);
 

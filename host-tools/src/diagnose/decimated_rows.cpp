@@ -66,6 +66,7 @@ private:
 DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::LogColumns& log, const identify::PipelineSettings& settings) {
     identify::PipelineSettings s = settings;
     s.plot_rows = 0;  // the rows come through the collector
+    s.residual_lags = 0;  // the diagnosis computes its own effective sample sizes from the rows
     s.progress = false;
     DecimatedRows r;
     r.names = model.parameter_names();

@@ -39,6 +39,7 @@ ModelSnapshot measure(const robot::RobotModel& model, const identify::LogColumns
     const ShiftedTorques shifted = shift_torques(log, delay);
     identify::PipelineSettings ps = s.pipeline;
     ps.progress = false;
+    ps.residual_lags = 0;  // solved with the pooled std below: no lagged products needed
     const identify::PipelineOutput out = identify::run_pipeline(model, shifted.log, ps);
     m.solution = identify::solve_least_squares(out.factors, model.parameter_names());
     m.residual_rms = m.solution.joint_residual_rms;
@@ -168,7 +169,8 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
             for (std::size_t j = 0; j < d.before.analysis.size(); ++j) {
                 const JointResidualAnalysis& a = d.before.analysis[j];
                 const auto rows_j = static_cast<double>(d.before.residual[j].size());
-                if (a.n_eff >= 0.2 * rows_j) continue;
+                // A residual that is exactly zero (NaN effective size) has no structure either.
+                if (!(a.n_eff < 0.2 * rows_j) || a.rms == 0.0) continue;
                 std::string where;
                 if (!a.velocity.empty()) {
                     const auto worst = std::max_element(a.velocity.begin(), a.velocity.end(),

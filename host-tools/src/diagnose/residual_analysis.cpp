@@ -62,7 +62,7 @@ std::vector<MotionStateBin> motion_states(const Eigen::VectorXd& r, const Eigen:
         states[s].rms += r[i] * r[i];
     }
     for (auto& st : states) {
-        st.row_share = static_cast<double>(st.count) / static_cast<double>(r.size());
+        st.row_share = r.size() > 0 ? static_cast<double>(st.count) / static_cast<double>(r.size()) : 0.0;
         st.energy_share = total > 0.0 ? st.rms / total : 0.0;
         if (st.count == 0) continue;
         st.mean /= static_cast<double>(st.count);

@@ -235,7 +235,10 @@ CoulombSmoothingChoice choose_coulomb_smoothing(const robot::RobotModel& model, 
 
     const CandidateModel candidate_model(model, fc_column, out.candidates);
     BlockGramSink grams(candidate_model, nominal, candidates, out.folds, log.samples());
-    const PipelineOutput run = run_pipeline(candidate_model, log, settings, &grams);
+    PipelineSettings candidate_settings = settings;
+    candidate_settings.residual_lags = 0;  // the choice needs the block Grams only, not the final fit's lagged products
+    candidate_settings.plot_rows = 0;
+    const PipelineOutput run = run_pipeline(candidate_model, log, candidate_settings, &grams);
     grams.finish();
 
     // The joints whose smoothing is chosen; the others keep the nominal FC column.
@@ -273,12 +276,12 @@ CoulombSmoothingChoice choose_coulomb_smoothing(const robot::RobotModel& model, 
     }
 
     // 1. One alpha for every joint: the candidate with the smallest sum over the joints of the held-out
-    //    mean squared error relative to the joint's torque variance (joints of different torque scales count alike).
+    //    mean squared error relative to the joint's mean square torque (joints of different torque scales count alike).
     if (!free_joints.empty()) {
-        std::vector<double> variance(static_cast<std::size_t>(joints), 1.0);
+        std::vector<double> mean_square(static_cast<std::size_t>(joints), 1.0);
         for (const int j : free_joints) {
             const GramSums own = selection.sum(choice, -1, false, j);
-            variance[static_cast<std::size_t>(j)] = own.rows > 0.0 && own.yy > 0.0 ? own.yy / own.rows : 1.0;
+            mean_square[static_cast<std::size_t>(j)] = own.rows > 0.0 && own.yy > 0.0 ? own.yy / own.rows : 1.0;
         }
         double best_score = std::numeric_limits<double>::infinity();
         int common = choice[static_cast<std::size_t>(free_joints.front())];
@@ -286,7 +289,7 @@ CoulombSmoothingChoice choose_coulomb_smoothing(const robot::RobotModel& model, 
         for (int c = 0; c < candidates; ++c) {
             for (const int j : free_joints) trial[static_cast<std::size_t>(j)] = c;
             double score = 0.0;
-            for (const int j : free_joints) score += mean(selection.heldout_mse(trial, j)) / variance[static_cast<std::size_t>(j)];
+            for (const int j : free_joints) score += mean(selection.heldout_mse(trial, j)) / mean_square[static_cast<std::size_t>(j)];
             out.common_score.push_back(score);
             if (score < best_score) best_score = score, common = c;
         }
@@ -313,7 +316,7 @@ CoulombSmoothingChoice choose_coulomb_smoothing(const robot::RobotModel& model, 
         }
         if (!changed) break;
     }
-    out.passes = std::min(out.passes, 4);
+    out.passes = free_joints.empty() ? 0 : std::min(out.passes, 4);
     for (const int j : free_joints) {
         auto& js = out.joints[static_cast<std::size_t>(j)];
         js.chosen = true;

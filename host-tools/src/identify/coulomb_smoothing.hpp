@@ -12,7 +12,7 @@
 //      joint's candidate columns, Y] (blocked cross-validation: a block is predicted by the fit on the others;
 //      contiguous blocks keep a held-out row's correlated neighbours out of its fit);
 //   3. one common alpha first: the candidate with the smallest sum over the joints of the held-out mean
-//      squared error relative to the joint's torque variance;
+//      squared error relative to the joint's mean square torque;
 //   4. then per joint, by coordinate descent (the others held at their current choice), a joint leaves the
 //      common value only for a candidate whose held-out error of that joint's torque is lower by more than
 //      one standard error of the block-by-block difference; passes repeat until no choice changes (at most 4).
@@ -38,7 +38,7 @@ struct JointSmoothing {
     bool chosen = false;             // false: kept the description's alpha (reason says why)
     std::string reason;              // why not chosen
     double alpha = 0.0;              // s/rad, the value used
-    std::vector<double> heldout_rms;  // N.m, per candidate, at the final choice of the other joints (empty if not chosen)
+    std::vector<double> heldout_rms;  // N.m, per candidate, with the other joints at their choice of the last pass (empty if not chosen)
 };
 
 struct CoulombSmoothingChoice {
@@ -46,7 +46,7 @@ struct CoulombSmoothingChoice {
     int folds = 0;
     int passes = 0;
     double common_alpha = 0.0;         // s/rad, step 1's choice for every joint (0: no joint chosen)
-    std::vector<double> common_score;  // per candidate: sum over joints of held-out MSE / torque variance
+    std::vector<double> common_score;  // per candidate: sum over joints of held-out MSE / mean square torque
     std::vector<JointSmoothing> joints;
     std::vector<double> alphas() const;  // per joint, the value to use
 };

@@ -9,12 +9,19 @@
 namespace jacobid::identify {
 
 LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
-                       double time_tolerance) {
+                       double time_tolerance, double grid_period) {
     LogColumns log;
     log.source = table.source();
-    const io::TimeAxis axis = io::check_uniform_time(table, time_column, time_tolerance);
-    log.sample_period = axis.sample_period;
-    log.start_time = axis.start;
+    if (grid_period > 0.0 && table.rows() < 2) {
+        // A one-row segment of a split log: its period is the grid's (there is no step to check); too short
+        // for any window, the pipeline reports it as unused.
+        log.sample_period = grid_period;
+        log.start_time = table.rows() == 1 ? table.column(time_column).front() : 0.0;
+    } else {
+        const io::TimeAxis axis = io::check_uniform_time(table, time_column, time_tolerance);
+        log.sample_period = axis.sample_period;
+        log.start_time = axis.start;
+    }
     for (const auto& j : robot.joints) {
         log.q.push_back(&table.column(j.position_column));  // InputError names the file and the columns it has
         log.q_names.push_back(j.position_column);

@@ -12,9 +12,10 @@
 namespace jacobid::identify {
 
 // Pointers into `table` (which must outlive the result). InputError names the file and a missing column,
-// or the time column's first non-uniform step.
+// or the time column's first non-uniform step. grid_period > 0 (a segment of a split log, on that grid): a
+// table of fewer than 2 rows takes it as its period instead of failing, so that the segment is reported unused.
 LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
-                       double time_tolerance);
+                       double time_tolerance, double grid_period = 0.0);
 
 // A log held in memory (e.g. simulated from code): joint j's positions q[j] (rad) and torques tau[j] (N.m),
 // all of one length, sampled every `sample_period` seconds from `start_time`. Columns are named q1.., tau1..;

@@ -162,6 +162,7 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     e.qd.assign(joints, std::vector<double>(n, 0.0));
     e.qdd.assign(joints, std::vector<double>(n, 0.0));
     e.tau.resize(joints);
+    std::vector<double> smoothing;  // Jacobi: the velocity kernel's low-pass, for a measured velocity
     if (s.method == Method::Jacobi) {
         KernelParams pv = jacobi_params(s, 1, ts), pa = jacobi_params(s, 2, ts);
         pv.window = info.velocity_window;
@@ -172,6 +173,7 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
         // The torque through the velocity kernel's own low-pass (torque_smoothing.hpp), so that Y and the
         // regressor see the same filter in F_p's band.
         const std::vector<double> ws = torque_smoothing_kernel(wv, ts);
+        if (s.measured_velocity) smoothing = ws;
         std::vector<double> out(n);
         for (std::size_t j = 0; j < joints; ++j) {
             // The central estimate of output k belongs to input sample k + (L - 1) / 2 (odd L).
@@ -208,7 +210,9 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     }
     if (s.measured_velocity) {
         // The drive's own velocity (often from a finer encoder or an observer) replaces the differentiated
-        // one; the Butterworth baseline filters it with the same F_q as the positions and torques.
+        // one, through the filter the torque went through: the same F_q in the Butterworth baseline, the
+        // velocity kernel's low-pass in the Jacobi method (otherwise FV and FC would see the filter mismatch
+        // that the torque smoothing removes).
         const Lowpass fq = s.method == Method::Butterworth
                                ? signal::design_butterworth_or_throw(s.butterworth_order, info.prefilter_cutoff, ts, "Butterworth prefilter")
                                : Lowpass{};
@@ -223,8 +227,16 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
                 throw InputError(fmt::format("--velocity measured: {}: velocity column qd{} has {} samples, the positions {}", log.source, j + 1,
                                              measured->size(), n));
             }
-            if (s.method == Method::Butterworth) filtfilt_or_throw(fq, measured->data(), e.qd[j].data(), n, workspace);
-            else e.qd[j] = *measured;
+            if (s.method == Method::Butterworth) {
+                filtfilt_or_throw(fq, measured->data(), e.qd[j].data(), n, workspace);
+                continue;
+            }
+            std::vector<double> out(n - smoothing.size() + 1);
+            const BatchStatus status = signal::differentiate_batch(Span<const double>(smoothing), Span<const double>(*measured),
+                                                                   Span<double>(out.data(), out.size()));
+            if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
+            std::fill(e.qd[j].begin(), e.qd[j].end(), 0.0);
+            std::copy(out.begin(), out.end(), e.qd[j].begin() + static_cast<std::ptrdiff_t>((smoothing.size() - 1) / 2));
         }
     }
     // A joint below the motion threshold is standing still: what its estimates contain is encoder

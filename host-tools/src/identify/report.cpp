@@ -45,8 +45,8 @@ std::string describe_std(const LsSolution& sol) {
     if (sol.std_method == StdMethod::Pooled) return s + "pooled: sigma_rho^2 (W^T W)^-1, one residual variance, rows independent";
     s += fmt::format("joint-hac: per-joint residual variances x long-run factors (Bartlett, {} lags) in a sandwich;", sol.std_lags);
     for (std::size_t j = 0; j < sol.joint_sigma.size(); ++j) {
-        s += fmt::format(" joint {} sigma {:.3g}, factor {:.2f}, lag-1 correlation {:.2f};", j + 1, sol.joint_sigma[j], sol.joint_long_run_factors[j],
-                         sol.joint_lag1_correlation[j]);
+        s += fmt::format(" joint {} sigma {:.3g}, factor {:.2f}, lag-1 correlation {};", j + 1, sol.joint_sigma[j], sol.joint_long_run_factors[j],
+                         num(sol.joint_lag1_correlation[j], "{:.2f}"));
     }
     s.pop_back();
     return s;

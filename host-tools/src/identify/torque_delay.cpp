@@ -57,6 +57,7 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
     PipelineSettings quiet = pipeline;
     quiet.progress = false;
     quiet.plot_rows = 0;
+    quiet.residual_lags = 0;  // only RSS is compared: no standard deviations, no lagged products
     // The first identification fixes the automatic choices (bandwidth, windows, decimation) so that every
     // shifted torque is fitted with the same equations and RSS values are comparable.
     const PipelineOutput first = run_pipeline(model, log, quiet);

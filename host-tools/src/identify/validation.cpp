@@ -38,6 +38,7 @@ ValidationResult validate_prediction(const robot::RobotModel& model, const LogCo
     // Filtered comparison: the identification pipeline on the new log, residual of the given X.
     PipelineSettings quiet = settings;
     quiet.progress = false;
+    quiet.residual_lags = 0;  // a residual, no standard deviations
     const PipelineOutput out = run_pipeline(model, log, quiet);
     double e2 = 0.0, y2 = 0.0;
     const Eigen::Index c = model.parameter_count();

@@ -304,12 +304,16 @@ std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, cons
     if (!std::isfinite(t.back() - t.front())) throw InputError(fmt::format("{}: the time span {} s to {} s is not finite", source, t.front(), t.back()));
     const double max_gap = settings.max_gap > 0.0 ? settings.max_gap : 3.0 * report.median_step;
     const UniformGrid grid = uniform_grid(t, max_gap, settings.period);
-    // A grid far denser than the log (an imposed period, or steps of 1e-300 s) would exhaust memory.
-    if (!(grid.period > 0.0) || grid.samples == 0 || !(static_cast<double>(grid.samples) <= 100.0 * static_cast<double>(t.size()) + 1e6)) {
+    // A grid far denser than the log (an imposed period, or steps of 1e-300 s) would exhaust memory. With
+    // split the whole span is never put on one grid (each segment is checked below), only its period is used.
+    const bool split = settings.on_gap == GapPolicy::Split;
+    const auto too_dense = [](std::size_t samples, std::size_t rows) {
+        return !(static_cast<double>(samples) <= 100.0 * static_cast<double>(rows) + 1e6);
+    };
+    if (!(grid.period > 0.0) || grid.samples == 0 || (!split && too_dense(grid.samples, t.size()))) {
         throw InputError(fmt::format("{}: a uniform grid every {:.6g} s over {:.6g} s would need {:.3g} samples for {} rows", source, grid.period,
                                      t.back() - t.front(), (t.back() - t.front()) / grid.period, t.size()));
     }
-    const bool split = settings.on_gap == GapPolicy::Split;
     std::vector<std::size_t> cuts{0};  // raw row indices where a segment starts (split only), then the end
     for (std::size_t i = 0; i + 1 < t.size(); ++i) {
         const double step = t[i + 1] - t[i];
@@ -352,6 +356,10 @@ std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, cons
         const std::vector<double> ts(t.begin() + b, t.begin() + e);
         UniformGrid g = several ? uniform_grid(ts, max_gap, grid.period) : grid;
         if (seg.rows == 1) g = {seg.start, grid.period, 1};
+        if (too_dense(g.samples, seg.rows)) {
+            throw InputError(fmt::format("{}: lines {}-{}: a uniform grid every {:.6g} s over {:.6g} s would need {} samples for {} rows", source,
+                                         seg.first_line, seg.last_line, g.period, seg.duration, g.samples, seg.rows));
+        }
         seg.samples = g.samples;
         const std::string name = several ? fmt::format("{} (lines {}-{})", source, seg.first_line, seg.last_line) : source;
         // Every channel onto the uniform grid by a natural cubic spline through the samples at their own times

@@ -10,6 +10,7 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "core/errors.hpp"
@@ -78,11 +79,18 @@ Study run_study(const StudySettings& s) {
             }
             const std::lock_guard<std::mutex> lock(progress_mutex);
             ++finished;
-            if (s.progress) s.progress(finished, s.runs);
+            try {
+                if (s.progress) s.progress(finished, s.runs);
+            } catch (...) {  // a progress callback that throws must not end a worker thread (std::terminate)
+            }
         }
     };
     std::vector<std::thread> pool;
-    for (int t = 1; t < study.threads; ++t) pool.emplace_back(worker);
+    try {
+        for (int t = 1; t < study.threads; ++t) pool.emplace_back(worker);
+    } catch (const std::system_error&) {
+        // Fewer threads than asked (the system refused one): the started ones and this one do the runs.
+    }
     worker();
     for (auto& t : pool) t.join();
     for (std::size_t k = 0; k < runs; ++k) {
@@ -92,6 +100,9 @@ Study run_study(const StudySettings& s) {
             std::rethrow_exception(errors[k]);
         } catch (const InputError& e) {
             throw InputError(fmt::format("{}: {}", where, e.what()));
+        } catch (const std::exception& e) {
+            // Not the user's input: still say which run, so that it can be reproduced with simulate + identify.
+            throw std::runtime_error(fmt::format("{}: {}", where, e.what()));
         }
     }
 

@@ -88,6 +88,32 @@ TEST(MeasuredVelocity, LoggedVelocityIdentifiesTheTruthAndIsReallyUsed) {
     EXPECT_NEAR(value(differentiated, "jacobi", "FV1"), 0.248, 0.01 * 0.248);
 }
 
+// Noise-free data (no torque noise, no quantization) with the exact velocity logged: the Jacobi method must
+// pass the measured velocity through the low-pass its torque goes through (the velocity kernel's), or the
+// friction sees the filter mismatch the torque smoothing removes. Truth: the paper's Table II.
+TEST(MeasuredVelocity, ExactLoggedVelocityGivesUnbiasedFrictionInTheJacobiMethod) {
+    const std::string log = path("mv_exact.csv"), states = path("mv_exact.states.csv"), robot = path("robot_exact.yaml");
+    std::ofstream(robot) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
+    const auto r = jacobid_cli("simulate --quiet --robot " + robot + " --out " + log + " --states " + states +
+                               " --duration 40 --encoder-counts 0 --torque-noise 0 --seed 3");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto measured = read_rows(log), truth = read_rows(states);
+    const std::string exact = path("mv_exact_qd.csv");
+    std::ofstream o(exact);
+    o << "t,q1,q2,tau1,tau2,qd1,qd2\n";
+    for (std::size_t k = 1; k < measured.size(); ++k) {
+        const auto& m = measured[k];
+        o << m[0] << ',' << m[1] << ',' << m[2] << ',' << m[3] << ',' << m[4] << ',' << truth[k][3] << ',' << truth[k][4] << '\n';
+    }
+    o.close();
+    const auto j = jacobid_cli("identify --quiet --robot " + robot + " --in " + exact + " --format json --velocity measured --torque-delay 0");
+    ASSERT_EQ(j.exit_code, 0) << j.err;
+    const json out = json::parse(j.out);
+    for (const auto& [name, t] : {std::pair{"FV1", 0.248}, std::pair{"FC1", 0.431}, std::pair{"FV2", 0.0144}, std::pair{"FC2", 0.1268}}) {
+        EXPECT_NEAR(value(out, "jacobi", name), t, 0.001 * t) << name;
+    }
+}
+
 TEST(MeasuredVelocity, MissingColumnOrMismatchedMethodIsAnError) {
     log_with_velocity("mv_good.csv", 1.0);
     const auto missing = jacobid_cli("identify --robot " + path("robot.yaml") + " --in " + path("mv.csv") + " --velocity measured");

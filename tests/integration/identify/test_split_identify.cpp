@@ -4,6 +4,7 @@
 // equations stacked by hand (no differentiator window or filter straddles the gap), a segment too short
 // for the windows is reported and not silently dropped, --validate is split too; differentiate writes each
 // segment on its own with a segment column; diagnose refuses split; the error policy names the gap's line.
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -189,6 +190,47 @@ TEST(SplitIdentify, TooShortSegmentIsReportedNotDropped) {
     const auto none = jacobid_cli(split_args(pieces) + " --on-gap split");
     EXPECT_EQ(none.exit_code, 2);
     EXPECT_NE(none.err.find("--on-gap split: no segment is usable; the longest of the 3: "), std::string::npos) << none.err;
+}
+
+// A lone row between two gaps is a segment of one row: reported unused, never the end of the run; and
+// differentiate, whose first segment may be that row, takes the grid's period.
+TEST(SplitIdentify, OneRowSegmentIsReportedNotFatal) {
+    const std::string log = log_without("lone.csv", {{25.0, 27.0}, {27.001, 29.0}});  // the row at t = 27.000 s stands alone
+    const auto r = jacobid_cli(split_args(log) + " --on-gap split --format json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json j = json::parse(r.out);
+    ASSERT_EQ(j["segments"].size(), 3u) << j.dump(1);
+    EXPECT_EQ(j["segments"][1]["samples"], 1);
+    EXPECT_FALSE(j["segments"][1]["used"].get<bool>());
+    for (const auto& [name, truth] : kTruth) EXPECT_NEAR(value(j, name), truth, 0.01 * truth) << name;
+    const std::string first = log_without("lone_first.csv", {{0.001, 2.0}});  // the row at t = 0 alone, then a gap
+    const auto d = jacobid_cli("differentiate --log-format " + path("format.yaml") + " --on-gap split --in " + first +
+                               " --columns q1 --orders 1 --window 0.3 -o -");
+    EXPECT_EQ(d.exit_code, 0) << d.err;
+    EXPECT_NE(d.err.find("segment 1"), std::string::npos) << d.err;
+}
+
+// Two runs an hour apart: the whole span would be a 3.6 million sample grid; split never builds it.
+TEST(SplitIdentify, RunsFarApartAreSplitWithoutAGridOverTheGap) {
+    const std::string log = path("hour.csv");
+    {
+        std::ifstream in(log_without("hour_src.csv", {}));
+        std::ofstream out(log);
+        std::string line;
+        std::getline(in, line);
+        out << line << '\n';
+        while (std::getline(in, line)) {
+            const std::size_t comma = line.find(',');
+            const double t = std::stod(line.substr(0, comma));
+            if (t >= 25.0 && t < 27.0) continue;
+            out << fmt::format("{:.6f}", t >= 27.0 ? t + 3600.0 : t) << line.substr(comma) << '\n';
+        }
+    }
+    const auto r = jacobid_cli(split_args(log) + " --on-gap split --format json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["segments"].size(), 2u);
+    for (const auto& [name, truth] : kTruth) EXPECT_NEAR(value(j, name), truth, 0.01 * truth) << name;
 }
 
 TEST(SplitIdentify, ValidationLogIsSplitToo) {
