@@ -47,6 +47,17 @@ TEST(HalUnwrap, SignedInt32WrapsAtTheLimits) {
     EXPECT_EQ(v.update(INT32_MIN + 10), static_cast<std::int64_t>(INT32_MAX) + 11);
 }
 
+// A field that never wraps (modulus 0) jumping across the whole int64 range (a corrupt 64-bit field, found by
+// fuzz_profile_generic): the difference wraps modulo 2^64 instead of overflowing (undefined behaviour), so
+// the unwrapped value follows the raw one.
+TEST(HalUnwrap, NonWrappingFieldAcrossTheWholeInt64Range) {
+    CountUnwrapper u(0);
+    EXPECT_EQ(u.update(INT64_MIN), INT64_MIN);
+    EXPECT_EQ(u.update(INT64_MAX), INT64_MAX);
+    EXPECT_EQ(u.update(INT64_MIN), INT64_MIN);
+    EXPECT_EQ(u.update(-3), -3);
+}
+
 TEST(HalUnwrap, ModulusThatIsNotAPowerOfTwo) {
     CountUnwrapper u(10000);  // a single-turn encoder, 10000 counts per revolution
     u.update(9990);

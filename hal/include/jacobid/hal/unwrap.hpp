@@ -37,7 +37,9 @@ public:
         // nor a modulus that is not a power of two can overflow or bias it.
         std::int64_t delta;
         if (modulus_ == 0) {
-            delta = raw - last_raw_;
+            // Two's-complement difference: a 64-bit field that jumps by more than 2^63 (a corrupt frame, never
+            // a joint) wraps instead of overflowing a signed subtraction (undefined behaviour).
+            delta = static_cast<std::int64_t>(static_cast<std::uint64_t>(raw) - static_cast<std::uint64_t>(last_raw_));
         } else {
             const std::uint64_t m = modulus_;
             const auto ur = static_cast<std::uint64_t>(raw);
@@ -52,7 +54,8 @@ public:
             delta = d >= (m + 1) / 2 ? -static_cast<std::int64_t>(m - d) : static_cast<std::int64_t>(d);
         }
         last_raw_ = raw;
-        unwrapped_ += delta;
+        // Modulo 2^64 like the difference above: turns counted past the int64 range wrap, never trap.
+        unwrapped_ = static_cast<std::int64_t>(static_cast<std::uint64_t>(unwrapped_) + static_cast<std::uint64_t>(delta));
         return unwrapped_;
     }
 
