@@ -29,9 +29,26 @@ std::vector<int> with(std::vector<int> columns, int first, int count) {
 // Per-joint residuals of the weighted fit over `columns` on all training rows.
 std::vector<Eigen::VectorXd> residuals(const DecimatedRows& rows, const std::vector<Eigen::VectorXd>& y, const std::vector<int>& columns,
                                        const Eigen::VectorXd& x) {
+    // An empty x is a failed solve: a logic error here, never an out-of-bounds product.
+    if (x.size() != static_cast<Eigen::Index>(columns.size())) throw std::logic_error("diagnose: residuals of an unsolved column set");
     std::vector<Eigen::VectorXd> r;
     for (int j = 0; j < rows.joints(); ++j) r.push_back(y[static_cast<std::size_t>(j)] - rows.w[static_cast<std::size_t>(j)](Eigen::all, columns) * x);
     return r;
+}
+
+// The first `count` catalogue columns kept in order while the kept set stays solvable under `weight2`.
+std::vector<int> identifiable_columns(const BlockedGrams& grams, int count, const std::vector<double>& weight2) {
+    std::vector<int> all(static_cast<std::size_t>(count));
+    for (int c = 0; c < count; ++c) all[static_cast<std::size_t>(c)] = c;
+    const GramSums g = grams.sum(all, weight2, -1, false);
+    std::vector<int> kept;
+    for (int c = 0; c < count; ++c) {
+        kept.push_back(c);
+        const bool excited = g.G(c, c) > 1e-12 * g.G.diagonal().maxCoeff();
+        if (excited && solve_subset(grams.sum(kept, weight2, -1, false)).ok) continue;
+        kept.pop_back();
+    }
+    return kept;
 }
 
 bool same_slot(const sim::EffectTerm& a, const sim::EffectTerm& b) {
@@ -52,31 +69,26 @@ SelectionResult select_effects(const sim::AugmentedModel& catalogue, const Decim
     // Nominal columns that the data excite: a joint that does not move leaves its columns zero, and a log that
     // moves one joint at a time leaves combinations of the others' columns collinear. Columns are kept in
     // model order while the kept set stays solvable (a maximal identifiable subset, as identify's pivoted QR
-    // keeps one); the others are named in a note.
-    std::vector<int> model;
+    // keeps one); the others are named in a note. Chosen unweighted first (for the joint weights), then
+    // again with the weights the search uses: reweighting a nearly collinear set can make it singular
+    // (a UR10e joint-at-a-time log does), and every later fit builds on this set.
     const int c0 = catalogue.nominal().parameter_count();
-    {
-        std::vector<int> all(static_cast<std::size_t>(c0));
-        for (int c = 0; c < c0; ++c) all[static_cast<std::size_t>(c)] = c;
-        const GramSums g = grams.sum(all, {}, -1, false);
-        for (int c = 0; c < c0; ++c) {
-            model.push_back(c);
-            const bool excited = g.G(c, c) > 1e-12 * g.G.diagonal().maxCoeff();
-            if (excited && solve_subset(grams.sum(model, {}, -1, false)).ok) continue;
-            model.pop_back();
-            result.unexcited.push_back(catalogue.nominal().parameter_names()[static_cast<std::size_t>(c)]);
-        }
-        if (model.empty()) throw InputError("diagnose: no nominal parameter is excited by this log (does any joint move?)");
-    }
+    std::vector<int> model = identifiable_columns(grams, c0, {});
+    if (model.empty()) throw InputError("diagnose: no nominal parameter is excited by this log (does any joint move?)");
     // Row weights 1 / sigma_j from the nominal fit, fixed for the whole selection.
     {
         const SubsetFit f = solve_subset(grams.sum(model, {}, -1, false));
-        if (!f.ok) throw InputError("diagnose: the nominal regressor is singular on this log");
         const auto r = residuals(train, train.y, model, f.x);
         for (const auto& rj : r) result.joint_sigma.push_back(std::max(1e-12, std::sqrt(rj.squaredNorm() / static_cast<double>(rj.size()))));
     }
     std::vector<double> weight2;
     for (double sj : result.joint_sigma) weight2.push_back(1.0 / (sj * sj));
+    model = identifiable_columns(grams, c0, weight2);
+    if (model.empty()) throw InputError("diagnose: the nominal regressor is singular on this log once its joints are weighted");
+    for (int c = 0; c < c0; ++c) {
+        if (std::find(model.begin(), model.end(), c) == model.end())
+            result.unexcited.push_back(catalogue.nominal().parameter_names()[static_cast<std::size_t>(c)]);
+    }
     const HeldOut heldout(grams, vgrams.get(), weight2);
 
     std::vector<bool> used(catalogue.terms().size(), false);
