@@ -12,6 +12,9 @@
 #  - tests/vm (ctest labels vcan, vm, gpio): those executables are linked -static for the VM initramfs,
 #    and ASan's runtime cannot be linked statically; they run unsanitized in scripts/vm-test.sh.
 #  - benchmarks: ctest does not run them, and timings under ASan mean nothing.
+#  - ctest labels examples and end-to-end (the numbered examples, README's quick start): whole jobs on long
+#    logs through the code the unit and integration tests already run here; under ASan they cost minutes
+#    of the CI budget and find nothing those tests do not. The native run keeps them.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${JACOBID_HARDENING_BUILD_DIR:-$root/build-hardening}"
@@ -30,7 +33,7 @@ echo "sanitize-test: built ${#executables[@]} executables in $(( built - start )
 # halt_on_error + abort_on_error: the first report ends the test with a failure; detect_leaks: LSan at exit.
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
 status=0
-ctest --test-dir "$build" -j "$jobs" -LE '^(vcan|vm|gpio)$' --output-on-failure --timeout 900 || status=$?
+ctest --test-dir "$build" -j "$jobs" -LE '^(vcan|vm|gpio|examples|end-to-end)$' --output-on-failure --timeout 900 || status=$?
 # A report that did not fail its test (e.g. in a child process whose exit code was not checked) still
 # shows in the logs: fail on any.
 if grep -lE '^(==[0-9]+==ERROR: |SUMMARY: (Address|Undefined|Leak)Sanitizer|.*runtime error: )' "$build/Testing/Temporary/LastTest.log" >/dev/null 2>&1; then
