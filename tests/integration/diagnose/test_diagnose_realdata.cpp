@@ -13,6 +13,7 @@
 #include <regex>
 #include <string>
 
+#include "realdata.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -20,12 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRealdata = std::getenv("JACOBID_REALDATA_DIR") ? std::getenv("JACOBID_REALDATA_DIR") : JACOBID_REALDATA_DIR;
-const fs::path kFormats = fs::path(JACOBID_SOURCE_DIR) / "examples" / "formats";
-
-#define REQUIRE_REALDATA()                                                                                                   \
-    if (!fs::exists(kRealdata / "README.md")) GTEST_SKIP() << "shared real logs not found at " << kRealdata                   \
-                                                           << " (configure with -DJACOBID_REALDATA_DIR=... or set it in the environment); test skipped"
+const fs::path kRealdata = jacobid::test::realdata_dir();
+const fs::path kFormats = jacobid::test::log_formats_dir();
 
 jacobid::test::CommandResult jacobid_cli(const std::string& args) { return jacobid::test::run_command(std::string(JACOBID_EXECUTABLE) + " " + args); }
 

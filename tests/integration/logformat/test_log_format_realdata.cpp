@@ -15,6 +15,7 @@
 
 #include "core/errors.hpp"
 #include "io/log_format.hpp"
+#include "realdata.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -23,13 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace jacobid::io;
 
-// The environment variable of the same name overrides the configured folder (e.g. to check the skip).
-const fs::path kRealdata = std::getenv("JACOBID_REALDATA_DIR") ? std::getenv("JACOBID_REALDATA_DIR") : JACOBID_REALDATA_DIR;
-const fs::path kFormats = fs::path(JACOBID_SOURCE_DIR) / "examples" / "formats";
-
-#define REQUIRE_REALDATA()                                                                                                   \
-    if (!fs::exists(kRealdata / "README.md")) GTEST_SKIP() << "shared real logs not found at " << kRealdata                   \
-                                                           << " (configure with -DJACOBID_REALDATA_DIR=... or set it in the environment); test skipped"
+const fs::path kRealdata = jacobid::test::realdata_dir();
+const fs::path kFormats = jacobid::test::log_formats_dir();
 
 std::size_t line_count(const fs::path& p) {
     std::ifstream in(p);
