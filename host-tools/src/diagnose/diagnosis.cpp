@@ -168,17 +168,16 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
             std::string structured;
             for (std::size_t j = 0; j < d.before.analysis.size(); ++j) {
                 const JointResidualAnalysis& a = d.before.analysis[j];
-                const auto rows_j = static_cast<double>(d.before.residual[j].size());
                 // A residual that is exactly zero (NaN effective size) has no structure either.
-                if (!(a.n_eff < 0.2 * rows_j) || a.rms == 0.0) continue;
+                if (!strongly_correlated(a, static_cast<std::size_t>(d.before.residual[j].size())) || a.rms == 0.0) continue;
                 std::string where;
                 if (!a.velocity.empty()) {
                     const auto worst = std::max_element(a.velocity.begin(), a.velocity.end(),
                                                         [](const Bin& x, const Bin& y) { return std::abs(x.mean) < std::abs(y.mean); });
                     where = fmt::format(", largest mean residual {:+.3g} N.m at {}", worst->mean, worst->label);
                 }
-                structured += fmt::format("{}joint {} (rho_1 {:.2f}, effective sample size {:.0f} of {:.0f} rows{})", structured.empty() ? "" : "; ", j + 1,
-                                          a.autocorrelation.empty() ? 0.0 : a.autocorrelation.front(), a.n_eff, rows_j, where);
+                structured += fmt::format("{}joint {} (rho_1 {:.2f}, effective sample size {:.0f} of {} rows{})", structured.empty() ? "" : "; ", j + 1,
+                                          a.autocorrelation.empty() ? 0.0 : a.autocorrelation.front(), a.n_eff, d.before.residual[j].size(), where);
             }
             const std::string what =
                 structured.empty() ? fmt::format("the data are explained by the nominal model to the noise floor (residual RMS {} N.m per joint, "

@@ -135,7 +135,7 @@ JointResidualAnalysis analyse_residual(const Eigen::VectorXd& r, const Eigen::Ma
                                      a.dominant_amplitude));
     a.findings.push_back(fmt::format("whiteness: rho_1 = {:.2f}, effective sample size {:.0f} of {} rows{}",
                                      a.autocorrelation.empty() ? 0.0 : a.autocorrelation.front(), a.n_eff, m,
-                                     a.n_eff < 0.2 * static_cast<double>(m) ? " (strongly correlated: structure left in the residual)" : ""));
+                                     strongly_correlated(a, static_cast<std::size_t>(m)) ? " (strongly correlated: structure left in the residual)" : ""));
     return a;
 }
 

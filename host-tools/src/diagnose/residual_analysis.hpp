@@ -40,6 +40,10 @@ struct JointResidualAnalysis {
     std::vector<std::string> findings;  // where the disagreement is largest, in words
 };
 
+// A residual whose effective sample size is below a fifth of its rows: structure is left in it (the bound of
+// the "strongly correlated" finding and of the "noise floor" verdict). False for NaN (an exactly zero residual).
+inline bool strongly_correlated(const JointResidualAnalysis& a, std::size_t rows) { return a.n_eff < 0.2 * static_cast<double>(rows); }
+
 // near_zero: |qd| below which a joint counts as slow (rad/s).
 JointResidualAnalysis analyse_residual(const Eigen::VectorXd& residual, const Eigen::MatrixXd& state, const std::vector<double>& t,
                                        double near_zero = 0.05, int max_order = 30);

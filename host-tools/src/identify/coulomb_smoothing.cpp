@@ -3,7 +3,6 @@
 
 #include <fmt/core.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -99,24 +98,6 @@ private:
     Eigen::VectorXd z_;
 };
 
-// Minimum-norm LS solution over the given (scaled) normal equations: LDLT when the columns are independent,
-// otherwise a truncated eigen-decomposition (a trajectory that leaves a combination unexcited still predicts
-// the held-out rows in the span it does excite).
-Eigen::VectorXd solve(const GramSums& s) {
-    const SubsetFit fit = solve_subset(s);
-    if (fit.ok) return fit.x;
-    const Eigen::Index k = s.G.rows();
-    Eigen::VectorXd scale(k);
-    for (Eigen::Index i = 0; i < k; ++i) scale[i] = s.G(i, i) > 0.0 ? 1.0 / std::sqrt(s.G(i, i)) : 0.0;
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(scale.asDiagonal() * s.G * scale.asDiagonal());
-    const Eigen::VectorXd& lambda = eig.eigenvalues();
-    const double cut = 1e-10 * std::max(lambda.maxCoeff(), 0.0);
-    Eigen::VectorXd inv = Eigen::VectorXd::Zero(k);
-    for (Eigen::Index i = 0; i < k; ++i) inv[i] = lambda[i] > cut ? 1.0 / lambda[i] : 0.0;
-    const Eigen::MatrixXd& V = eig.eigenvectors();
-    return scale.asDiagonal() * (V * (inv.asDiagonal() * (V.transpose() * (scale.asDiagonal() * s.b))));
-}
-
 class HeldOutSelection {
 public:
     HeldOutSelection(const BlockGramSink& grams, int nominal, int joints, int blocks, const std::vector<int>& fc_column)
@@ -156,7 +137,7 @@ public:
     std::vector<double> heldout_mse(const std::vector<int>& choice, int joint) const {
         std::vector<double> mse;
         for (int b = 0; b < blocks_; ++b) {
-            const Eigen::VectorXd x = solve(sum(choice, b, true));
+            const Eigen::VectorXd x = solve_minimum_norm(sum(choice, b, true));
             const GramSums held = sum(choice, b, false, joint);
             mse.push_back(held.rows > 0.0 ? prediction_sse(held, x) / held.rows : std::numeric_limits<double>::quiet_NaN());
         }
@@ -265,7 +246,7 @@ CoulombSmoothingChoice choose_coulomb_smoothing(const robot::RobotModel& model, 
     HeldOutSelection selection(grams, nominal, joints, out.folds, fc_column);
     if (smoothing.weighted) {
         // Gautier's weights from an OLS fit on all rows at the starting choice, as identify --weighted.
-        const Eigen::VectorXd x = solve(selection.sum(choice, -1, false));
+        const Eigen::VectorXd x = solve_minimum_norm(selection.sum(choice, -1, false));
         std::vector<double> weight2;
         for (int j = 0; j < joints; ++j) {
             const GramSums own = selection.sum(choice, -1, false, j);

@@ -25,6 +25,10 @@ struct SubsetFit {
 // LS solution of the normal equations (columns scaled to unit diagonal first; a pivot below 1e-10 of its
 // diagonal means the subset is collinear: ok = false).
 SubsetFit solve_subset(const GramSums& sums);
+// Minimum-norm LS solution: solve_subset's when the columns are independent, otherwise a truncated
+// eigen-decomposition of the scaled G (a trajectory that leaves a combination unexcited still predicts
+// held-out rows in the span it does excite).
+Eigen::VectorXd solve_minimum_norm(const GramSums& sums);
 // Sum of squared prediction errors of x on other rows: yy - 2 x.b + x^T G x.
 double prediction_sse(const GramSums& held_out, const Eigen::VectorXd& x);
 
