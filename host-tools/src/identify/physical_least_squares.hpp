@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Physically consistent least squares (identify --physical / --semi-physical; docs/method.md, "Physically
+// consistent identification"): the standard parameters s that minimise
+//     ||R K s - z||^2 / sigma^2  +  w sum_i ((s_i - p_i) / u_i)^2
+// over the physically possible set (physical_parametrization.hpp), where [R z] is the triangular factor of
+// the (weighted) identification problem over the base parameters (so the cost does not grow with the log),
+// K the regrouping (base = K s), p the prior standard values (the description's URDF/CAD inertials), u_i a
+// unit per kind and w the prior weight. The data term decides every direction the log excites; the small
+// prior term only picks, among the sets that fit equally well, the one nearest the prior, so the standard
+// parameters come out complete (a URDF can be written from them).
+// Solved by Levenberg-Marquardt over the unconstrained log-Cholesky variables, from two starts (the prior,
+// and the unconstrained solution moved to the nearest possible point); the better end is kept.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "identify/physical_parametrization.hpp"
+
+namespace jacobid::identify {
+
+struct PhysicalSettings {
+    PhysicalConstraint constraint = PhysicalConstraint::Full;
+    double prior_weight = 1e-3;  // w
+    Eigen::VectorXd prior;       // p, standard order; empty: 0 (with the constraint's floors)
+    int max_iterations = 400;
+};
+
+struct PhysicalFit {
+    PhysicalConstraint constraint = PhysicalConstraint::Full;
+    Eigen::VectorXd standard;  // s
+    Eigen::VectorXd base;      // K s
+    Eigen::VectorXd projected_standard;  // the unconstrained solution moved to the nearest possible point
+    double data_cost = 0.0;             // ||R K s - z||^2 / sigma^2 at s
+    double unconstrained_data_cost = 0.0;  // the same at the unconstrained LS solution
+    double prior_cost = 0.0;
+    int iterations = 0;
+    bool converged = false;
+    std::string start;                // "prior" or "projected least squares": the start that won
+    std::vector<std::string> active;  // constraints at (or within 1e-6 of) their bound, in words
+};
+
+// The kind's unit u_i in the prior term: 0.01 kg.m^2 (inertias, rotor inertias), 0.1 kg.m (first moments),
+// 1 kg (masses), 1 N.m (friction, offsets; per rad/s for viscous).
+double prior_unit(const std::string& standard_name);
+
+// factor: (c+1) x (c+1) upper triangular [R z] over the c base parameters; sigma2: the residual variance that
+// scales it (1 for a problem already weighted by 1 / sigma_j); regrouping: c x standard (base = K s);
+// unconstrained: the LS solution over the base parameters (NaN where not identified). std::invalid_argument
+// for sizes that do not match.
+PhysicalFit solve_physical(const Eigen::MatrixXd& factor, double sigma2, const Eigen::MatrixXd& regrouping,
+                           const std::vector<std::string>& standard_names, const Eigen::VectorXd& unconstrained,
+                           const PhysicalSettings& settings);
+
+}  // namespace jacobid::identify

@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+// Physically consistent least squares (identify/physical_parametrization.hpp, physical_least_squares.hpp),
+// checked against independent facts: the pseudo-inertia of a uniform box from its closed form, the
+// triangle inequalities computed from eigenvalues of the inertia about the centre of mass, and optimality of
+// the constrained solution by brute force (the problem is convex in the standard parameters, so no feasible
+// point on the segment towards any other feasible point may lower the cost).
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <random>
+
+#include "identify/physical_least_squares.hpp"
+#include "identify/physical_parametrization.hpp"
+
+namespace {
+
+using namespace jacobid::identify;
+
+const std::vector<std::string> kLinkNames = {"XX1", "XY1", "XZ1", "YY1", "YZ1", "ZZ1", "MX1", "MY1", "MZ1", "M1", "IA1", "FV1", "FC1", "FOFF1"};
+
+// A random rigid body: mass, centre of mass, principal moments that satisfy the triangle inequalities (a
+// box of random sides), a random orientation; its ten standard parameters about the frame origin.
+Eigen::Matrix<double, 10, 1> random_body(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.05, 1.0), c(-0.3, 0.3);
+    const double m = 10.0 * u(rng), a = u(rng), b = u(rng), h = u(rng);
+    const Eigen::Vector3d principal = m / 12.0 * Eigen::Vector3d(b * b + h * h, a * a + h * h, a * a + b * b);
+    const Eigen::Matrix3d R = Eigen::Quaterniond(Eigen::Vector4d::Random().normalized()).toRotationMatrix();
+    const Eigen::Vector3d com(c(rng), c(rng), c(rng));
+    const Eigen::Matrix3d I = R * principal.asDiagonal() * R.transpose() + m * (com.squaredNorm() * Eigen::Matrix3d::Identity() - com * com.transpose());
+    Eigen::Matrix<double, 10, 1> ten;
+    ten << I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2), m * com[0], m * com[1], m * com[2], m;
+    return ten;
+}
+
+Eigen::Vector3d inertia_eigenvalues_about_com(const Eigen::VectorXd& s) {
+    Eigen::Matrix3d I;
+    I << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
+    const Eigen::Vector3d c = Eigen::Vector3d(s[6], s[7], s[8]) / s[9];
+    const Eigen::Matrix3d Ic = I - s[9] * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ic).eigenvalues();
+}
+
+TEST(PhysicalParametrization, PseudoInertiaOfAUniformBoxIsItsSecondMoment) {
+    // Box of sides a, b, c centred at (x0, 0, 0), mass m: Sigma = int r r^T dm = m diag(a^2/12 + x0^2, b^2/12, c^2/12).
+    const double m = 3.0, a = 0.4, b = 0.2, c = 0.1, x0 = 0.5;
+    double ten[10] = {m * (b * b + c * c) / 12.0, 0, 0, m * (a * a + c * c) / 12.0 + m * x0 * x0, 0, m * (a * a + b * b) / 12.0 + m * x0 * x0,
+                      m * x0, 0, 0, m};
+    const Eigen::Matrix4d J = pseudo_inertia(ten);
+    EXPECT_NEAR(J(0, 0), m * (a * a / 12.0 + x0 * x0), 1e-12);
+    EXPECT_NEAR(J(1, 1), m * b * b / 12.0, 1e-12);
+    EXPECT_NEAR(J(2, 2), m * c * c / 12.0, 1e-12);
+    EXPECT_NEAR(J(0, 3), m * x0, 1e-12);
+    EXPECT_NEAR(J(3, 3), m, 1e-12);
+    double back[10];
+    from_pseudo_inertia(J, back);
+    for (int k = 0; k < 10; ++k) EXPECT_NEAR(back[k], ten[k], 1e-12) << k;
+}
+
+TEST(PhysicalParametrization, FeasiblePointsRoundTripThroughTheVariables) {
+    std::mt19937 rng(7);
+    for (const auto constraint : {PhysicalConstraint::Full, PhysicalConstraint::Semi}) {
+        const PhysicalParametrization map(kLinkNames, constraint);
+        ASSERT_EQ(map.variable_count(), 14);
+        for (int trial = 0; trial < 50; ++trial) {
+            Eigen::VectorXd s(14);
+            s.head<10>() = random_body(rng);
+            s.tail<4>() << 0.02, 0.5, 1.5, -0.7;
+            const Eigen::VectorXd back = map.standard(map.variables(s, 0.0, 0.0));
+            EXPECT_LT((back - s).cwiseAbs().maxCoeff(), 1e-9 * s.cwiseAbs().maxCoeff()) << to_string(constraint) << " trial " << trial;
+        }
+    }
+}
+
+TEST(PhysicalParametrization, AnyVariablesGiveABodyFullAlsoKeepsTheTriangleInequalities) {
+    std::mt19937 rng(11);
+    std::normal_distribution<double> n(0.0, 1.5);
+    int semi_triangle_violations = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        Eigen::VectorXd v(14);
+        for (int k = 0; k < 14; ++k) v[k] = n(rng);
+        for (const auto constraint : {PhysicalConstraint::Full, PhysicalConstraint::Semi}) {
+            const Eigen::VectorXd s = PhysicalParametrization(kLinkNames, constraint).standard(v);
+            ASSERT_GT(s[9], 0.0);
+            const Eigen::Vector3d l = inertia_eigenvalues_about_com(s);  // ascending
+            EXPECT_GT(l[0], 0.0);
+            EXPECT_GE(s[10], 0.0);
+            EXPECT_GE(s[11], 0.0);
+            EXPECT_GE(s[12], 0.0);
+            const bool triangle = l[0] + l[1] >= l[2] * (1.0 - 1e-9);
+            if (constraint == PhysicalConstraint::Full) EXPECT_TRUE(triangle) << "trial " << trial << ": " << l.transpose();
+            else semi_triangle_violations += !triangle;
+        }
+    }
+    // The semi-physical set is larger: some of its bodies break the triangle inequalities.
+    EXPECT_GT(semi_triangle_violations, 0);
+}
+
+// A one-link problem: base = standard (14 columns), a random well-conditioned factor, data from `truth`.
+struct Problem {
+    Eigen::MatrixXd factor, regrouping;
+    Eigen::VectorXd unconstrained;
+};
+
+Problem make_problem(const Eigen::VectorXd& truth, unsigned seed, int rows = 400, double noise = 1e-3) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> n(0.0, 1.0);
+    const Eigen::Index p = truth.size();
+    Eigen::MatrixXd W(rows, p + 1);
+    for (int r = 0; r < rows; ++r)
+        for (Eigen::Index c = 0; c < p; ++c) W(r, c) = n(rng);
+    W.col(p) = W.leftCols(p) * truth;
+    for (int r = 0; r < rows; ++r) W(r, p) += noise * n(rng);
+    Problem pr;
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(W);
+    pr.factor = qr.matrixQR().topRows(p + 1).triangularView<Eigen::Upper>();
+    pr.regrouping = Eigen::MatrixXd::Identity(p, p);
+    pr.unconstrained = W.leftCols(p).colPivHouseholderQr().solve(W.col(p));
+    return pr;
+}
+
+double data_cost(const Problem& pr, const Eigen::VectorXd& s) {
+    const Eigen::Index c = pr.regrouping.rows();
+    return (pr.factor.topLeftCorner(c + 1, c) * pr.regrouping * s - pr.factor.col(c)).squaredNorm();
+}
+
+TEST(PhysicalLeastSquares, AFeasibleTruthIsReproducedAsTheUnconstrainedFit) {
+    std::mt19937 rng(3);
+    Eigen::VectorXd truth(14);
+    truth.head<10>() = random_body(rng);
+    truth.tail<4>() << 0.05, 0.8, 1.2, 0.3;
+    const Problem pr = make_problem(truth, 5);
+    PhysicalSettings settings;
+    settings.prior_weight = 1e-9;
+    const PhysicalFit fit = solve_physical(pr.factor, 1.0, pr.regrouping, kLinkNames, pr.unconstrained, settings);
+    EXPECT_TRUE(fit.converged);
+    EXPECT_TRUE(fit.active.empty()) << fit.active.front();
+    EXPECT_LT((fit.base - pr.unconstrained).cwiseAbs().maxCoeff(), 1e-6);
+    EXPECT_NEAR(fit.data_cost, fit.unconstrained_data_cost, 1e-9 * std::max(1.0, fit.unconstrained_data_cost));
+}
+
+// Brute-force optimality: f convex, the feasible set convex, so f(s + t (s' - s)) >= f(s) for every feasible
+// s' and t in (0, 1]; tried for thousands of random bodies s' and several t.
+void expect_optimal(const Problem& pr, const PhysicalFit& fit, PhysicalConstraint constraint, unsigned seed) {
+    const PhysicalParametrization map(kLinkNames, constraint);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> n(0.0, 2.0);
+    const double f0 = data_cost(pr, fit.standard);
+    double worst = 0.0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        Eigen::VectorXd v(14);
+        for (int k = 0; k < 14; ++k) v[k] = n(rng);
+        const Eigen::VectorXd other = map.standard(v);
+        for (const double t : {1e-4, 1e-3, 1e-2, 0.1, 1.0}) worst = std::min(worst, data_cost(pr, fit.standard + t * (other - fit.standard)) - f0);
+    }
+    EXPECT_GT(worst, -1e-6 * std::max(1.0, f0)) << "a feasible point lowers the cost by " << -worst;
+}
+
+TEST(PhysicalLeastSquares, AnImpossibleTruthEndsOnTheBoundaryAtTheConstrainedOptimum) {
+    std::mt19937 rng(9);
+    Eigen::VectorXd truth(14);
+    truth.head<10>() = random_body(rng);
+    truth[5] = -0.5 * std::abs(truth[5]);  // ZZ1 < 0: no body has it
+    truth.tail<4>() << -0.02, -0.3, 1.0, 0.2;  // a negative rotor inertia and viscous coefficient
+    const Problem pr = make_problem(truth, 13);
+    for (const auto constraint : {PhysicalConstraint::Full, PhysicalConstraint::Semi}) {
+        PhysicalSettings settings;
+        settings.constraint = constraint;
+        settings.prior_weight = 1e-9;
+        const PhysicalFit fit = solve_physical(pr.factor, 1.0, pr.regrouping, kLinkNames, pr.unconstrained, settings);
+        EXPECT_TRUE(fit.converged) << to_string(constraint);
+        EXPECT_GT(fit.data_cost, fit.unconstrained_data_cost);
+        bool ia = false, fv = false, link = false;
+        for (const auto& a : fit.active) {
+            ia = ia || a == "IA1 at 0";
+            fv = fv || a == "FV1 at 0";
+            link = link || a.rfind("link 1 ", 0) == 0;
+        }
+        EXPECT_TRUE(ia && fv && link) << to_string(constraint) << ": " << fit.active.size() << " active";
+        EXPECT_GT(inertia_eigenvalues_about_com(fit.standard)[0], -1e-9);
+        expect_optimal(pr, fit, constraint, 21);
+    }
+}
+
+TEST(PhysicalLeastSquares, TheProjectedUnconstrainedSolutionIsFeasibleButWorse) {
+    std::mt19937 rng(17);
+    Eigen::VectorXd truth(14);
+    truth.head<10>() = random_body(rng);
+    truth[9] = -1.0;  // negative mass
+    truth.tail<4>() << 0.01, 0.2, -0.1, 0.0;
+    const Problem pr = make_problem(truth, 19);
+    const PhysicalFit fit = solve_physical(pr.factor, 1.0, pr.regrouping, kLinkNames, pr.unconstrained, PhysicalSettings{});
+    const PhysicalParametrization map(kLinkNames, PhysicalConstraint::Full);
+    EXPECT_GE(map.link_relative_min_eigenvalue(fit.projected_standard, 0), 0.0);
+    EXPECT_LE(fit.data_cost, data_cost(pr, fit.projected_standard));
+}
+
+TEST(PhysicalLeastSquares, MismatchedSizesAreRefused) {
+    const Problem pr = make_problem(Eigen::VectorXd::Ones(14), 1);
+    EXPECT_THROW(solve_physical(pr.factor, 1.0, pr.regrouping, {"XX1"}, pr.unconstrained, {}), std::invalid_argument);
+    EXPECT_THROW(PhysicalParametrization({"XX1", "XY1", "MX1"}, PhysicalConstraint::Full), std::invalid_argument);
+}
+
+}  // namespace
