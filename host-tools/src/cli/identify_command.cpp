@@ -21,6 +21,7 @@
 #include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
+#include "identify/physical_identification.hpp"
 #include "identify/pipeline.hpp"
 #include "identify/plausibility.hpp"
 #include "identify/report.hpp"
@@ -60,7 +61,23 @@ struct IdentifyOptions : FitOptions {
     std::string can_config;
     std::string velocity;               // measured | jacobi | butterworth; empty: the method's own
     LogFormatOptions log_format;
+    bool physical = false;       // --physical
+    bool semi_physical = false;  // --semi-physical
+    double prior_weight = identify::PhysicalSettings{}.prior_weight;
 };
+
+// --physical / --semi-physical as solver settings; nullopt for neither. InputError for both, or a bad weight.
+std::optional<identify::PhysicalSettings> physical_settings(const IdentifyOptions& o) {
+    if (o.physical && o.semi_physical) throw InputError("--physical and --semi-physical: give one of them");
+    if (!(o.prior_weight >= 0.0) || !std::isfinite(o.prior_weight)) {
+        throw InputError(fmt::format("--prior-weight {}: expected a finite weight >= 0", o.prior_weight));
+    }
+    if (!o.physical && !o.semi_physical) return std::nullopt;
+    identify::PhysicalSettings s;
+    s.constraint = o.physical ? identify::PhysicalConstraint::Full : identify::PhysicalConstraint::Semi;
+    s.prior_weight = o.prior_weight;
+    return s;
+}
 
 // A CSV log (with --on-gap split, one table per segment), or with --can-config a candump capture decoded by
 // the firmware's joint profiles.
@@ -175,6 +192,7 @@ void run(IdentifyOptions o) {
         return;
     }
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
+    const std::optional<identify::PhysicalSettings> physical = physical_settings(o);
     const auto parse_start = Clock::now();
     const LogSegments input = read_log(o.in, robot, o);
     const std::vector<identify::LogColumns> logs = columns_of(input, robot, o);
@@ -226,6 +244,7 @@ void run(IdentifyOptions o) {
         } else {
             fit = identify::identify_log(robot, *model, log, {settings, solve, given_torque_delay(o)});
         }
+        if (physical) identify::make_physically_consistent(fit, robot, *model, *physical);
         const robot::RobotModel& fitted = fit.smoothed.get(*model);
         identify::MethodResult& r = fit.result;
         if (o.essential_flag) r.essential = identify::essential_parameters(fit.factors, fitted.parameter_names(), o.essential, solve);
@@ -292,6 +311,16 @@ void add_identify_command(CLI::App& app) {
         ->each([o](const std::string&) { o->essential_flag = true; })
         ->expected(0, 1)
         ->default_str("10");
+    cmd->add_flag("--physical", o->physical,
+                  "physically consistent parameters: every link's pseudo-inertia positive definite (positive mass, positive definite "
+                  "inertia, triangle inequalities), rotor inertias and friction coefficients >= 0; the standard parameters nearest the "
+                  "description's (URDF) values among those that fit the data, reported with the active constraints (mdh/urdf models)");
+    cmd->add_flag("--semi-physical", o->semi_physical,
+                  "as --physical without the triangle inequalities: positive mass and positive definite inertia about the centre of mass");
+    cmd->add_option("--prior-weight", o->prior_weight,
+                    "weight of the description's standard values in --physical: w sum ((s - prior) / unit)^2 beside the data's chi^2 "
+                    "(units 0.01 kg.m^2, 0.1 kg.m, 1 kg, 1 N.m); it decides only what the log does not excite")
+        ->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] {
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;

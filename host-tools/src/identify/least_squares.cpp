@@ -84,6 +84,11 @@ Eigen::MatrixXd joint_hac_covariance(const JointFactors& f, const std::vector<in
 
 }  // namespace
 
+Eigen::MatrixXd stacked_factor(const JointFactors& factors, const std::vector<double>& scale) {
+    std::size_t rows = 0;
+    return stack(factors, scale, rows);
+}
+
 const char* to_string(StdMethod m) { return m == StdMethod::Pooled ? "pooled" : "joint-hac"; }
 
 LsSolution solve_least_squares(const JointFactors& factors, const std::vector<std::string>& names, const SolveOptions& options) {

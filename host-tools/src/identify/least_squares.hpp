@@ -76,6 +76,10 @@ struct SolveOptions {
     StdMethod std_method = StdMethod::Pooled;
 };
 
+// The triangular factor [R z] of every joint's rows stacked, joint j's scaled by scale[j] (the weights of a
+// solution: LsSolution::joint_weights), over all columns.
+Eigen::MatrixXd stacked_factor(const JointFactors& factors, const std::vector<double>& scale);
+
 // Solves the (weighted) LS problem for the active columns of the per-joint factors.
 LsSolution solve_least_squares(const JointFactors& factors, const std::vector<std::string>& names, const SolveOptions& options = {});
 

@@ -5,12 +5,13 @@
 //     ||R K s - z||^2 / sigma^2  +  w sum_i ((s_i - p_i) / u_i)^2
 // over the physically possible set (physical_parametrization.hpp), where [R z] is the triangular factor of
 // the (weighted) identification problem over the base parameters (so the cost does not grow with the log),
-// K the regrouping (base = K s), p the prior standard values (the description's URDF/CAD inertials), u_i a
-// unit per kind and w the prior weight. The data term decides every direction the log excites; the small
+// K the regrouping (base = K s), p the prior standard values (the description's URDF/CAD inertials; the
+// sum runs over the parameters that have one), u_i a unit per kind and w the prior weight. The data term decides every direction the log excites; the small
 // prior term only picks, among the sets that fit equally well, the one nearest the prior, so the standard
 // parameters come out complete (a URDF can be written from them).
-// Solved by Levenberg-Marquardt over the unconstrained log-Cholesky variables, from two starts (the prior,
-// and the unconstrained solution moved to the nearest possible point); the better end is kept.
+// The cost is quadratic in s and the constraints are linear matrix inequalities in s, so the problem is
+// convex: an interior-point method (lmi_barrier.hpp) finds its global minimum with a certified gap, started
+// from the unconstrained solution moved to the nearest possible point (physical_parametrization.hpp).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -22,8 +23,8 @@ namespace jacobid::identify {
 struct PhysicalSettings {
     PhysicalConstraint constraint = PhysicalConstraint::Full;
     double prior_weight = 1e-3;  // w
-    Eigen::VectorXd prior;       // p, standard order; empty: 0 (with the constraint's floors)
-    int max_iterations = 400;
+    Eigen::VectorXd prior;       // p, standard order; NaN (or empty: all) for no prior term on that parameter
+    double gap = 1e-6;  // duality-gap bound at which the interior point stops (chi^2 units)
 };
 
 struct PhysicalFit {
@@ -34,10 +35,19 @@ struct PhysicalFit {
     double data_cost = 0.0;             // ||R K s - z||^2 / sigma^2 at s
     double unconstrained_data_cost = 0.0;  // the same at the unconstrained LS solution
     double prior_cost = 0.0;
-    int iterations = 0;
-    bool converged = false;
-    std::string start;                // "prior" or "projected least squares": the start that won
-    std::vector<std::string> active;  // constraints at (or within 1e-6 of) their bound, in words
+    int iterations = 0;        // Newton steps
+    bool converged = false;    // the duality-gap bound reached PhysicalSettings::gap
+    double duality_gap = 0.0;  // bound on cost - optimal cost
+    std::vector<std::string> active;  // constraints at their bound (relative eigenvalue below 1e-5), in words
+};
+
+// What identify reports of a consistent fit (MethodResult::physical).
+struct PhysicalReport {
+    PhysicalFit fit;
+    double prior_weight = 0.0;
+    double seconds = 0.0;  // solve time
+    std::vector<std::string> standard_names;
+    Eigen::VectorXd unconstrained_x;  // the least-squares base values it replaced (NaN where not identified)
 };
 
 // The kind's unit u_i in the prior term: 0.01 kg.m^2 (inertias, rotor inertias), 0.1 kg.m (first moments),

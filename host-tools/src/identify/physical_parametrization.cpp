@@ -141,6 +141,34 @@ Eigen::VectorXd PhysicalParametrization::variables(const Eigen::VectorXd& s, dou
     return v;
 }
 
+std::vector<LmiBlock> PhysicalParametrization::constraint_blocks() const {
+    std::vector<LmiBlock> blocks;
+    for (const Link& link : links_) {
+        LmiBlock b;
+        b.size = constraint_ == PhysicalConstraint::Full ? 4 : 6;
+        for (int k = 0; k < 10; ++k) {
+            double unit[10] = {};
+            unit[k] = 1.0;
+            Eigen::MatrixXd F;
+            if (constraint_ == PhysicalConstraint::Full) {
+                F = pseudo_inertia(unit);
+            } else {
+                F = Eigen::MatrixXd::Zero(6, 6);
+                F.topLeftCorner<3, 3>() = inertia_matrix(unit);
+                Eigen::Matrix3d S;  // S(h): S(h) v = h x v
+                S << 0.0, -unit[8], unit[7], unit[8], 0.0, -unit[6], -unit[7], unit[6], 0.0;
+                F.bottomLeftCorner<3, 3>() = S;
+                F.topRightCorner<3, 3>() = S.transpose();
+                F.bottomRightCorner<3, 3>() = unit[9] * Eigen::Matrix3d::Identity();
+            }
+            if (F.cwiseAbs().maxCoeff() > 0.0) b.terms.push_back({link.first_column + k, F});
+        }
+        blocks.push_back(std::move(b));
+    }
+    for (const int c : nonnegative_) blocks.push_back({1, {{c, Eigen::MatrixXd::Ones(1, 1)}}});
+    return blocks;
+}
+
 double PhysicalParametrization::link_relative_min_eigenvalue(const Eigen::VectorXd& s, int link) const {
     const double* ten = s.data() + links_[static_cast<std::size_t>(link)].first_column;
     if (constraint_ == PhysicalConstraint::Full) {

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "identify/lmi_barrier.hpp"
+
 namespace jacobid::identify {
 
 enum class PhysicalConstraint { Full, Semi };
@@ -46,6 +48,10 @@ public:
     // Smallest eigenvalue of link j's constrained matrix (J for Full, I_c for Semi) over its largest, and the
     // mass, at the given standard parameters: the constraint's distance to its boundary.
     double link_relative_min_eigenvalue(const Eigen::VectorXd& standard, int link) const;
+    // The constraints as linear matrix inequalities in the standard parameters, every block positive definite:
+    // per link J(s) (Full) or [[I, S(h)^T], [S(h), m 1]] (Semi: by the Schur complement, m > 0 and
+    // I_c = I - S(h)^T S(h) / m positive definite), and a 1x1 block per non-negative column.
+    std::vector<LmiBlock> constraint_blocks() const;
     // Standard columns that must be non-negative (IA, FV, FC).
     const std::vector<int>& nonnegative_columns() const { return nonnegative_; }
 

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "core/errors.hpp"
+#include "identify/physical_identification.hpp"
 #include "plot/gnuplot.hpp"
 
 namespace jacobid::identify {
@@ -165,6 +166,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
         s += fmt::format("{}: {}\n", method_title(r), describe_std(r.solution));
         if (r.info.bandwidth_estimated) s += fmt::format("{} bandwidth estimate: {}\n", method_title(r), r.info.bandwidth_estimate.description);
         if (r.coulomb_smoothing) s += fmt::format("{} {}\n", method_title(r), describe(*r.coulomb_smoothing, ctx.joint_names));
+        if (r.physical) s += fmt::format("{} {}\n", method_title(r), describe(*r.physical));
         if (r.essential) {
             s += fmt::format("{} essential parameters (drop largest %sigma_r above threshold):\n", method_title(r));
             for (const auto& step : r.essential->steps) {
@@ -286,6 +288,7 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
         j["coulomb_smoothing"] = {{"auto", true},         {"candidates", c.candidates},     {"folds", c.folds},  {"passes", c.passes},
                                   {"common_alpha", c.common_alpha}, {"common_score", c.common_score}, {"joints", joints}};
     }
+    if (r.physical) j["physical"] = physical_json(*r.physical);
     j["warnings"] = identifiability_warnings(r, ctx.joint_names);
     if (!r.segments.empty()) j["segments"] = segments_json(r.segments);
     if (!r.validation_segments.empty()) j["validation_segments"] = segments_json(r.validation_segments);

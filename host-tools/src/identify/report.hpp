@@ -11,6 +11,7 @@
 
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/least_squares.hpp"
+#include "identify/physical_least_squares.hpp"
 #include "identify/pipeline.hpp"
 #include "identify/plausibility.hpp"
 #include "identify/static_validation.hpp"
@@ -37,6 +38,7 @@ struct MethodResult {
     std::vector<PlausibilityViolation> violations;
     TorqueDelayResult torque_delay;
     std::optional<CoulombSmoothingChoice> coulomb_smoothing;  // friction alpha: auto
+    std::optional<PhysicalReport> physical;                   // --physical / --semi-physical
     PlotRows plot;
     // Which segments of a log split at its gaps (--on-gap split) the method used; empty otherwise.
     std::vector<SegmentReport> segments, validation_segments;

@@ -285,18 +285,20 @@ std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
     throw InputError(fmt::format("{}: unknown model '{}' (known models: {})", d.source, d.model, kKnownModels));
 }
 
-Eigen::VectorXd true_parameters(const RobotDescription& d, const RobotModel& model) {
-    if (const auto* serial = dynamic_cast<const SerialRobotModel*>(&model)) {
-        Eigen::VectorXd standard = Eigen::VectorXd::Zero(serial->standard_parameter_count());
-        for (const auto* list : {&d.model_parameters, &d.parameters}) {
-            for (const auto& [name, value] : *list) {
-                const int index = serial->standard_index(name);
-                if (index < 0) throw InputError(fmt::format("{}: parameters: model {} has no standard parameter '{}'", d.source, model.model_name(), name));
-                standard[index] = value;
-            }
+Eigen::VectorXd standard_values(const RobotDescription& d, const SerialRobotModel& serial) {
+    Eigen::VectorXd standard = Eigen::VectorXd::Zero(serial.standard_parameter_count());
+    for (const auto* list : {&d.model_parameters, &d.parameters}) {
+        for (const auto& [name, value] : *list) {
+            const int index = serial.standard_index(name);
+            if (index < 0) throw InputError(fmt::format("{}: parameters: model {} has no standard parameter '{}'", d.source, serial.model_name(), name));
+            standard[index] = value;
         }
-        return serial->base_values(standard);
     }
+    return standard;
+}
+
+Eigen::VectorXd true_parameters(const RobotDescription& d, const RobotModel& model) {
+    if (const auto* serial = dynamic_cast<const SerialRobotModel*>(&model)) return serial->base_values(standard_values(d, *serial));
     Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
     if (const auto* planar = dynamic_cast<const Planar2RModel*>(&model)) {
         const auto table = paper_table2_parameters(*planar);

@@ -85,6 +85,10 @@ std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& description
 // parameters (URDF inertials, overridden by `parameters`, others 0) mapped to base parameters by the
 // regrouping.
 Eigen::VectorXd true_parameters(const RobotDescription& description, const RobotModel& model);
+// A serial model's standard parameters from the description (URDF inertials, overridden by `parameters`,
+// others 0), in the model's standard order: the values true_parameters regroups.
+class SerialRobotModel;
+Eigen::VectorXd standard_values(const RobotDescription& description, const SerialRobotModel& model);
 
 // The description as YAML (round-trips through parse_robot_description).
 std::string to_yaml(const RobotDescription& description);

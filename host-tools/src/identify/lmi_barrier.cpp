@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+#include "identify/lmi_barrier.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace jacobid::identify {
+
+Eigen::MatrixXd LmiBlock::at(const Eigen::VectorXd& x) const {
+    Eigen::MatrixXd F = Eigen::MatrixXd::Zero(size, size);
+    for (const Term& t : terms) F += x[t.column] * t.matrix;
+    return F;
+}
+
+namespace {
+
+// -sum log det F_i(x); +infinity when a block is not positive definite.
+double barrier(const std::vector<LmiBlock>& blocks, const Eigen::VectorXd& x) {
+    double b = 0.0;
+    for (const LmiBlock& block : blocks) {
+        const Eigen::LLT<Eigen::MatrixXd> llt(block.at(x));
+        if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+        const Eigen::VectorXd d = llt.matrixLLT().diagonal();
+        if (!(d.minCoeff() > 0.0)) return std::numeric_limits<double>::infinity();
+        b -= 2.0 * d.array().log().sum();
+    }
+    return b;
+}
+
+}  // namespace
+
+BarrierResult minimise_with_lmis(const Eigen::MatrixXd& Q, const Eigen::VectorXd& c, const std::vector<LmiBlock>& blocks, Eigen::VectorXd x,
+                                 const BarrierSettings& settings) {
+    const Eigen::Index n = x.size();
+    if (!std::isfinite(barrier(blocks, x))) throw std::invalid_argument("minimise_with_lmis: the start is not strictly feasible");
+    auto objective = [&](const Eigen::VectorXd& v) { return v.dot(Q * v) - 2.0 * c.dot(v); };
+    double degree = 0.0;
+    for (const LmiBlock& block : blocks) degree += block.size;
+
+    BarrierResult r;
+    // t so that the first round weighs the objective and the barrier alike.
+    double t = degree / std::max(1.0, std::abs(objective(x)));
+    const double ridge = 1e-14 * std::max(1.0, Q.diagonal().cwiseAbs().maxCoeff());
+    while (true) {
+        // Newton on t f + barrier.
+        for (int inner = 0; inner < 200 && r.newton_steps < settings.max_newton; ++inner, ++r.newton_steps) {
+            Eigen::MatrixXd H = 2.0 * t * Q;
+            H.diagonal().array() += t * ridge;
+            Eigen::VectorXd g = 2.0 * t * (Q * x - c);
+            for (const LmiBlock& block : blocks) {
+                const Eigen::MatrixXd Finv = block.at(x).llt().solve(Eigen::MatrixXd::Identity(block.size, block.size));
+                std::vector<Eigen::MatrixXd> P;  // F^-1 F_k
+                P.reserve(block.terms.size());
+                for (const auto& term : block.terms) P.push_back(Finv * term.matrix);
+                for (std::size_t a = 0; a < block.terms.size(); ++a) {
+                    g[block.terms[a].column] -= P[a].trace();
+                    for (std::size_t b = a; b < block.terms.size(); ++b) {
+                        const double h = (P[a].cwiseProduct(P[b].transpose())).sum();  // tr(P_a P_b)
+                        H(block.terms[a].column, block.terms[b].column) += h;
+                        if (b != a) H(block.terms[b].column, block.terms[a].column) += h;
+                    }
+                }
+            }
+            const Eigen::VectorXd step = H.ldlt().solve(-g);
+            const double decrement = -g.dot(step);  // Newton decrement squared
+            if (!(decrement > 1e-10)) break;
+            const double phi = t * objective(x) + barrier(blocks, x);
+            double alpha = 1.0;
+            Eigen::VectorXd trial = x + step;
+            double phi_trial = t * objective(trial) + barrier(blocks, trial);
+            while (!(phi_trial <= phi - 0.25 * alpha * decrement) && alpha > 1e-12) {
+                alpha *= 0.5;
+                trial = x + alpha * step;
+                phi_trial = t * objective(trial) + barrier(blocks, trial);
+            }
+            if (alpha <= 1e-12) break;  // no progress to rounding
+            x = trial;
+        }
+        r.gap = degree / t;
+        if (r.gap <= settings.gap) {
+            r.converged = true;
+            break;
+        }
+        if (r.newton_steps >= settings.max_newton) break;
+        t *= 20.0;
+    }
+    (void)n;
+    r.objective = objective(x);
+    r.x = std::move(x);
+    return r;
+}
+
+}  // namespace jacobid::identify
