@@ -11,8 +11,9 @@
 //    I_c = L L^T (lower triangular, positive diagonal): positive mass and a positive definite I_c, without
 //    the triangle inequalities.
 // Rotor inertias (IA), viscous (FV) and Coulomb (FC) coefficients are exp(b) >= 0; offsets (FOFF) and kinds
-// this file does not know are free. The log-Cholesky form (Rucker and Wensing 2022) keeps the map smooth
-// and lets an unconstrained Levenberg-Marquardt (physical_least_squares.hpp) solve the constrained problem.
+// this file does not know are free. The log-Cholesky form (Rucker and Wensing 2022) gives the nearest
+// possible point of any standard vector (the interior point's start) and random bodies for tests; the
+// constraints themselves go to the solver as linear matrix inequalities (constraint_blocks).
 #include <Eigen/Core>
 #include <string>
 #include <vector>

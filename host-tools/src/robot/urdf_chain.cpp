@@ -57,6 +57,8 @@ public:
         static const char* kNames[10] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
         for (std::size_t j = 0; j < inertials_.size(); ++j) {
             for (int k = 0; k < 10; ++k) chain_.standard_parameters.emplace_back(fmt::format("{}{}", kNames[k], j + 1), inertials_[j][static_cast<std::size_t>(k)]);
+            // Friction only where the URDF gives <dynamics>: an absent value is unknown, not a prior of 0.
+            if (!has_dynamics_[j]) continue;
             chain_.standard_parameters.emplace_back(fmt::format("FV{}", j + 1), damping_[j]);
             chain_.standard_parameters.emplace_back(fmt::format("FC{}", j + 1), friction_[j]);
         }
@@ -123,6 +125,7 @@ private:
             if (joint.dynamics && (!std::isfinite(joint.dynamics->damping) || !std::isfinite(joint.dynamics->friction))) {
                 throw InputError(fmt::format("{}: <dynamics damping friction> must be finite numbers", element(joint)));
             }
+            has_dynamics_.push_back(joint.dynamics != nullptr);
             damping_.push_back(joint.dynamics ? joint.dynamics->damping : 0.0);
             friction_.push_back(joint.dynamics ? joint.dynamics->friction : 0.0);
             visit(*child, index, Transform{});
@@ -141,6 +144,7 @@ private:
     UrdfChain chain_;
     std::vector<Inertial10> inertials_;
     std::vector<double> damping_, friction_;
+    std::vector<bool> has_dynamics_;
 };
 
 }  // namespace
