@@ -67,7 +67,9 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
 void run(const MonteCarloOptions& o) {
     montecarlo::StudySettings s;
     s.robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
-    s.simulation = simulation_settings(o);
+    SimulationOptions simulation = o;  // the description's controller, if any
+    apply_controller(s.robot, simulation);
+    s.simulation = simulation_settings(simulation);
     s.measurement = measurement_settings(o, static_cast<int>(s.robot.joints.size()));
     for (const identify::Method m : methods_of(o.method)) s.methods.push_back(identify_settings(o, m));
     s.runs = o.runs;
