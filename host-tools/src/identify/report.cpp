@@ -52,6 +52,17 @@ std::string describe_std(const LsSolution& sol) {
     return s;
 }
 
+// The iterated estimator's line: which, from what, how it ended, and what its std is.
+std::string describe_estimator(const EstimatorRun& run) {
+    const bool iv = run.estimator == Estimator::Iv;
+    return fmt::format("estimator {} ({}), from the LS above: {} iteration{}, {} (last relative change of X {:.2g}, tolerance {:g} or at most "
+                       "{} iterations){}",
+                       to_string(run.estimator), iv ? "IDIM-IV, instruments from the closed-loop simulation of the identified model" : "DIDIM, regressor of the closed-loop simulation of the identified model",
+                       run.iterations, run.iterations == 1 ? "" : "s", run.converged ? "converged" : "NOT converged",
+                       run.changes.empty() ? 0.0 : run.changes.back(), run.tolerance, run.max_iterations,
+                       iv ? "; std: IV sandwich s^2 (Z'SW)^-1 Z'SZ (W'SZ)^-1, rows independent" : "");
+}
+
 }  // namespace
 
 std::vector<std::string> identifiability_warnings(const MethodResult& r, const std::vector<std::string>& joint_names) {
@@ -163,6 +174,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
     for (const auto& r : results) {
         s += fmt::format("{}: {}; {}\n", method_title(r), settings_line(r.info), describe(r.torque_delay));
         s += fmt::format("{}: {}\n", method_title(r), describe_std(r.solution));
+        if (r.estimator) s += fmt::format("{}: {}\n", method_title(r), describe_estimator(*r.estimator));
         if (r.info.bandwidth_estimated) s += fmt::format("{} bandwidth estimate: {}\n", method_title(r), r.info.bandwidth_estimate.description);
         if (r.coulomb_smoothing) s += fmt::format("{} {}\n", method_title(r), describe(*r.coulomb_smoothing, ctx.joint_names));
         if (r.essential) {
@@ -228,7 +240,13 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
     if (sol.weighted) j["joint_weights"] = sol.joint_weights;
     // How "std" was computed (least_squares.hpp StdMethod; docs/method.md "Bias and standard deviations").
     j["weighting"] = sol.weighted ? "wls" : "ols";
-    j["std_method"] = to_string(sol.std_method);
+    j["std_method"] = r.estimator && r.estimator->estimator == Estimator::Iv ? "iv-sandwich" : to_string(sol.std_method);
+    j["estimator"] = r.estimator ? to_string(r.estimator->estimator) : sol.weighted ? "wls" : "ols";
+    if (r.estimator) {
+        j["iterations"] = r.estimator->iterations;
+        j["converged"] = r.estimator->converged;
+        j["estimator_changes"] = r.estimator->changes;
+    }
     if (sol.std_method == StdMethod::JointHac) {
         auto finite_list = [](const std::vector<double>& v) {
             json a = json::array();
