@@ -113,6 +113,31 @@ TEST(EstimatorsCli, LogWithoutReferenceIsOneLineNamingTheFileAndTheColumn) {
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
 }
 
+TEST(EstimatorsCli, LogFormatReferencesAreTheReferenceColumns) {
+    // The same log with the columns renamed, read through a log format whose references: name them.
+    std::ifstream in(noisy_log());
+    std::ofstream out(path("renamed.csv"));
+    std::string line;
+    std::getline(in, line);
+    out << "time,a,b,ta,tb,ra,rb,va,vb\n";
+    while (std::getline(in, line)) out << line << "\n";
+    out.close();
+    std::ofstream(path("renamed.yaml")) << "time: {column: time}\npositions: [a, b]\ntorques: [ta, tb]\nreferences: [ra, rb, va, vb]\n";
+    const json direct = identify("didim");
+    const auto r = jacobid_cli("identify --robot " + robot() + " --in " + path("renamed.csv") + " --log-format " + path("renamed.yaml") +
+                               " --bandwidth 3 --format json --estimator didim");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json formatted = json::parse(r.out);
+    for (const char* name : {"ZZ1R", "FV1", "FC1", "ZZ2", "MX2", "MY2", "FV2", "FC2"}) {
+        const double a = direct["parameters"][name]["value"].get<double>(), b = formatted["parameters"][name]["value"].get<double>();
+        EXPECT_NEAR(a, b, 1e-6 * std::abs(a)) << name;
+    }
+    std::ofstream(path("short_references.yaml")) << "time: {column: time}\npositions: [a, b]\ntorques: [ta, tb]\nreferences: [ra, rb]\n";
+    const auto bad = jacobid_cli("identify --robot " + robot() + " --in " + path("renamed.csv") + " --log-format " + path("short_references.yaml"));
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.err.find("references: must be a list of 4 columns"), std::string::npos) << bad.err;
+}
+
 TEST(EstimatorsCli, DescriptionWithoutControllerIsAnError) {
     std::ofstream(path("no_controller.yaml")) << "model: planar2r\nfriction: {coulomb: smooth, alpha: 100}\n";
     const auto r = jacobid_cli("identify --robot " + path("no_controller.yaml") + " --in " + noisy_log() + " --estimator iv");
