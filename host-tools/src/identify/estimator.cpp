@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -44,13 +45,15 @@ EstimatorRun iterate_estimator(const EstimatorSettings& settings, const LsSoluti
     solution = start;
     for (int k = 0; k < settings.max_iterations; ++k) {
         LsSolution next = step(solution);
-        double change = 0.0, norm = 0.0;
+        // Each parameter's change relative to its own size (a vector norm would be ZZ1R's alone and stop
+        // while a small friction coefficient still drifts), or to its std when it is smaller than that (a
+        // parameter near 0 has no relative change to settle).
+        double relative = 0.0;
         for (Eigen::Index c = 0; c < next.x.size(); ++c) {
             if (!std::isfinite(next.x[c]) || !std::isfinite(solution.x[c])) continue;
-            change += (next.x[c] - solution.x[c]) * (next.x[c] - solution.x[c]);
-            norm += solution.x[c] * solution.x[c];
+            const double scale = std::max(std::abs(next.x[c]), std::isfinite(next.std_dev[c]) ? next.std_dev[c] : 0.0);
+            if (scale > 0.0) relative = std::max(relative, std::abs(next.x[c] - solution.x[c]) / scale);
         }
-        const double relative = norm > 0.0 ? std::sqrt(change / norm) : std::sqrt(change);
         solution = std::move(next);
         run.iterations = k + 1;
         run.changes.push_back(relative);

@@ -5,7 +5,7 @@
 // iterate on closed-loop simulations of the identified model along the log's reference:
 //  - iv:    IDIM-IV, the same measured rows, instruments from the simulated states (instrumental_variables.hpp);
 //  - didim: DIDIM, the regressor of the simulated states against the measured torque (didim.hpp).
-// Both stop when the relative change of the parameter vector falls below `tolerance` or after
+// Both stop when every parameter's relative change falls below `tolerance` or after
 // `max_iterations`, and say which.
 #include <Eigen/Core>
 #include <functional>
@@ -25,7 +25,7 @@ inline bool is_iterated(Estimator e) { return e == Estimator::Iv || e == Estimat
 struct EstimatorSettings {
     Estimator estimator = Estimator::Wls;
     int max_iterations = 20;
-    double tolerance = 1e-4;  // ||X_k+1 - X_k|| / ||X_k|| over the identified parameters
+    double tolerance = 1e-4;  // max over the identified parameters of |X_k+1 - X_k| / max(|X_k+1|, sigma)
 };
 
 // How an iterated estimator ended.
