@@ -48,14 +48,20 @@ TEST(ControllerDescription, BothFormsRoundTripThroughToYaml) {
 }
 
 TEST(ControllerDescription, MalformedOnesNameTheKey) {
-    EXPECT_NE(error_of("{omega: 30, gain: 2}").find("controller.gain: unknown key"), std::string::npos) << error_of("{omega: 30, gain: 2}");
-    EXPECT_NE(error_of("{kp: [1, 2, 3], kd: [1, 2]}").find("controller.kp"), std::string::npos);
-    EXPECT_NE(error_of("{kp: [1, 2]}").find("controller.kd: missing"), std::string::npos);
-    EXPECT_NE(error_of("{kp: [1, 2], kd: [1, 2], omega: 3}").find("controller.omega"), std::string::npos);
-    EXPECT_NE(error_of("{rate: 1000}").find("controller.omega: missing"), std::string::npos);
-    EXPECT_NE(error_of("{omega: -3}").find("controller.omega"), std::string::npos);
-    EXPECT_NE(error_of("{kp: [1, -2], kd: [1, 2]}").find("must be >= 0"), std::string::npos);
-    EXPECT_NE(error_of("[1, 2]").find("controller"), std::string::npos);
+    const std::pair<const char*, const char*> cases[] = {
+        {"{omega: 30, gain: 2}", "controller.gain: unknown key"},
+        {"{kp: [1, 2, 3], kd: [1, 2]}", "controller.kp"},
+        {"{kp: [1, 2]}", "controller.kd: missing"},
+        {"{kp: [1, 2], kd: [1, 2], omega: 3}", "controller.omega"},
+        {"{rate: 1000}", "controller.omega: missing"},
+        {"{omega: -3}", "controller.omega"},
+        {"{kp: [1, -2], kd: [1, 2]}", "must be >= 0"},
+        {"[1, 2]", "controller"},
+    };
+    for (const auto& [controller, expected] : cases) {
+        const std::string error = error_of(controller);
+        EXPECT_NE(error.find(expected), std::string::npos) << controller << ": " << error;
+    }
 }
 
 TEST(ReferenceSimulation, TrueParametersReproduceTheSimulatorsStates) {
