@@ -29,12 +29,12 @@ std::string robot() {
     return path("robot.yaml");
 }
 
-// 15 s, seed 3, torque noise 0.05 / 0.01 N.m, position noise 1e-3 rad on top of the 16-bit encoder.
+// 10 s, seed 3, torque noise 0.05 / 0.01 N.m, position noise 1e-3 rad on top of the 16-bit encoder.
 const std::string& noisy_log() {
     static const std::string log = [] {
         const std::string out = path("noisy.csv");
         const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + out +
-                                   " --duration 15 --seed 3 --torque-noise 0.05,0.01 --position-noise 1e-3");
+                                   " --duration 10 --seed 3 --torque-noise 0.05,0.01 --position-noise 1e-3");
         EXPECT_EQ(r.exit_code, 0) << r.err;
         return out;
     }();
@@ -62,8 +62,9 @@ TEST(EstimatorsCli, IvAndDidimRemoveTheBiasThatPositionNoiseGivesLeastSquares) {
     const json ols = identify("ols"), iv = identify("iv"), didim = identify("didim");
     EXPECT_EQ(ols["estimator"], "ols");
     for (const char* name : {"ZZ1R", "ZZ2"}) {
-        // The noise in the differentiated accelerations attenuates the inertias (errors in variables).
-        EXPECT_LT(error_percent(ols, name), -1.0) << name;
+        // The noise in the differentiated velocities and accelerations biases LS (errors in variables): on
+        // this log ZZ1R by -1.6 % and ZZ2 by -13 % (its reported 1-sigma: 0.3 % and 4 %).
+        EXPECT_GT(std::abs(error_percent(ols, name)), 1.0) << name;
         EXPECT_LT(std::abs(error_percent(iv, name)), 0.3) << name;
         EXPECT_LT(std::abs(error_percent(didim, name)), 0.3) << name;
     }
