@@ -32,7 +32,15 @@ void add_fit_options(CLI::App* cmd, FitOptions& o) {
                     "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
                     "significant, reported with its std) or SECONDS (read the torque that much later; negative: earlier; 0: off)")
         ->capture_default_str();
-    cmd->add_option("--weighting", o.weighting,
+    cmd->add_option("--estimator", o.estimator,
+                    "ols | wls: least squares on the pipeline's rows (the same as --weighting ols | wls; default wls); "
+                    "iv: IDIM-IV, instruments from a closed-loop simulation of the identified model along the log's reference; "
+                    "didim: DIDIM, the regressor of that simulation (no differentiated positions). iv and didim start from the LS and "
+                    "iterate until X changes by less than 1e-4 (at most 20 times); they use the WLS joint weights unless --weighting ols, "
+                    "and need the log's reference (columns q_refJ, qd_refJ as jacobid simulate writes them) and the robot "
+                    "description's controller (docs/method.md, \"Estimators\")")
+        ->check(CLI::IsMember({"ols", "wls", "iv", "didim"}));
+    o.weighting_option = cmd->add_option("--weighting", o.weighting,
                     "wls: each joint's rows weighted by 1 / sigma_j of its own OLS residual (Gautier; the default: joints whose noise "
                     "differs are not pooled), or ols (ordinary LS)")
         ->check(CLI::IsMember({"wls", "ols"}))
@@ -70,7 +78,17 @@ identify::IdentifySettings identify_settings(const FitOptions& o, identify::Meth
     }
     // --weighting's default is wls, so only --weighted with an explicit --weighting ols can be told apart.
     if (o.weighted && o.weighting == "ols") throw InputError("--weighted contradicts --weighting ols");
-    const std::string weighting = o.weighted ? "wls" : o.unweighted ? "ols" : o.weighting;
+    std::string weighting = o.weighted ? "wls" : o.unweighted ? "ols" : o.weighting;
+    if (o.estimator == "ols" || o.estimator == "wls") {
+        // --estimator ols | wls is the weighting by another name: one given explicitly must agree.
+        const bool explicit_weighting = o.weighted || o.unweighted || (o.weighting_option && o.weighting_option->count() > 0);
+        if (explicit_weighting && weighting != o.estimator) {
+            throw InputError(fmt::format("--estimator {} contradicts the weighting {} (--weighting, --weighted or --unweighted): give one of them",
+                                         o.estimator, weighting));
+        }
+        weighting = o.estimator;
+    }
+    s.estimator.estimator = o.estimator.empty() ? identify::parse_estimator(weighting) : identify::parse_estimator(o.estimator);
     s.solve.weighted = weighting == "wls";
     s.solve.std_method = o.std_method == "pooled" ? identify::StdMethod::Pooled : identify::StdMethod::JointHac;
     s.solve.rank_tolerance = o.rank_tolerance;

@@ -11,7 +11,8 @@
 
 namespace CLI {
 class App;
-}
+class Option;
+}  // namespace CLI
 
 namespace jacobid::cli {
 
@@ -22,17 +23,19 @@ struct FitOptions {
     bool weighted = false;             // --weighted (kept for scripts): the same as --weighting wls
     bool unweighted = false;           // --unweighted: the same as --weighting ols
     std::string weighting = "wls";     // wls | ols
+    std::string estimator;             // ols | wls | iv | didim; empty: the weighting's least squares
+    const CLI::Option* weighting_option = nullptr;  // to tell an explicit --weighting from its default
     std::string std_method = "joint-hac";  // joint-hac | pooled
     double rank_tolerance = 1e-7;
 };
 
-// --bandwidth ... --min-motion, --torque-delay, --weighting (--weighted, --unweighted), --std, --std-lags, --rank-tolerance.
+// --bandwidth ... --min-motion, --torque-delay, --estimator, --weighting (--weighted, --unweighted), --std, --std-lags, --rank-tolerance.
 void add_fit_options(CLI::App* cmd, FitOptions& o);
 
 // --torque-delay: nullopt for auto, else the seconds given (InputError naming the option if malformed).
 std::optional<double> given_torque_delay(const FitOptions& o);
 
-// The settings of identify::identify_log for `method` (--discretization and the weighting resolved, --torque-delay
+// The settings of identify::identify_log for `method` (--discretization, the estimator and the weighting resolved, --torque-delay
 // parsed; InputError for contradicting options).
 identify::IdentifySettings identify_settings(const FitOptions& o, identify::Method method);
 

@@ -229,7 +229,15 @@ void run(IdentifyOptions o) {
                                          "(use --velocity measured, or --method {})",
                                          o.velocity, o.method, o.velocity));
         }
-        const identify::SolveOptions solve = identify_settings(o, m).solve;
+        const identify::IdentifySettings resolved = identify_settings(o, m);
+        const identify::SolveOptions solve = resolved.solve;
+        if (identify::is_iterated(resolved.estimator.estimator) && input.split) {
+            throw InputError(fmt::format("--estimator {}: {} is split at its gaps (--on-gap split); the estimator simulates one continuous log",
+                                         identify::to_string(resolved.estimator.estimator), o.in));
+        }
+        if (resolved.estimator.estimator == identify::Estimator::Iv && o.essential_flag) {
+            throw InputError("--essential with --estimator iv: the essential parameters are chosen by least squares (use wls or didim)");
+        }
         identify::IdentifiedLog fit;
         if (input.split) {
             // Every segment with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp):
@@ -242,7 +250,7 @@ void run(IdentifyOptions o) {
             fit = identify::solve_identification(std::move(split.merged), std::move(smoothed), std::move(delay), *model, solve);
             fit.result.segments = segment_reports(input.segments, split.used, split.why, identify::to_string(m), o.in);
         } else {
-            fit = identify::identify_log(robot, *model, log, {settings, solve, given_torque_delay(o)});
+            fit = identify::identify_log(robot, *model, log, {settings, solve, given_torque_delay(o), resolved.estimator});
         }
         if (physical) identify::make_physically_consistent(fit, robot, *model, *physical);
         const robot::RobotModel& fitted = fit.smoothed.get(*model);

@@ -43,7 +43,9 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
     c.robot = o.robot.empty() ? "built-in planar2r" : o.robot;
     const sim::SimulationSettings& sim = s.simulation;
     const sim::MeasurementSettings& ms = s.measurement;
-    const std::string weighting = o.weighted ? "wls" : o.unweighted ? "ols" : o.weighting;
+    // As identify_settings resolved them (--estimator ols | wls is the weighting by another name).
+    const std::string weighting = s.methods.front().solve.weighted ? "wls" : "ols";
+    const std::string estimator = identify::to_string(s.methods.front().estimator.estimator);
     c.settings = {{"runs", o.runs},
                   {"seed", sim.seed},
                   {"noise_seed", ms.seed},
@@ -52,22 +54,27 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
                                   {"substeps", sim.substeps}, {"omega_dyn", sim.omega_dyn}, {"damping", sim.damping},
                                   {"move_duration", o.move_duration}, {"dwell", sim.moves.max_dwell}}},
                   {"measurement", {{"encoder_counts_per_rev", ms.encoder_counts_per_rev}, {"torque_noise", ms.torque_noise},
-                                   {"ripple_amplitude", ms.ripple_amplitude}, {"ripple_periods_per_rev", ms.ripple_periods_per_rev}}},
-                  {"identify", {{"weighting", weighting}, {"weighted", weighting == "wls"}, {"std_method", o.std_method}, {"torque_delay", o.torque_delay}, {"discretization", o.discretization},
+                                   {"ripple_amplitude", ms.ripple_amplitude}, {"ripple_periods_per_rev", ms.ripple_periods_per_rev},
+                                   {"position_noise", ms.position_noise}}},
+                  {"identify", {{"estimator", estimator}, {"weighting", weighting}, {"weighted", weighting == "wls"}, {"std_method", o.std_method}, {"torque_delay", o.torque_delay}, {"discretization", o.discretization},
                                 {"bandwidth", o.pipeline.bandwidth}, {"cutoff", o.pipeline.differentiator_cutoff},
                                 {"decimation_cutoff", o.pipeline.decimation_cutoff}, {"decimation", o.pipeline.decimation}}}};
     std::string noise;
     for (double v : ms.torque_noise) noise += fmt::format("{}{:g}", noise.empty() ? "" : "/", v);
     c.settings_line = fmt::format("{} runs (seeds {}..{}, noise seeds {}..{}), {:g} s at {:g} Hz, torque noise {} N.m{}", o.runs, sim.seed,
                                   sim.seed + static_cast<std::uint64_t>(o.runs) - 1, ms.seed, ms.seed + static_cast<std::uint64_t>(o.runs) - 1,
-                                  sim.duration, sim.output_rate, noise, weighting == "wls" ? ", weighted LS" : ", ordinary LS");
+                                  sim.duration, sim.output_rate, noise, weighting == "wls" ? ", weighted LS" : ", ordinary LS") +
+                       (ms.position_noise > 0.0 ? fmt::format(", position noise {:g} rad", ms.position_noise) : std::string()) +
+                       (estimator == "iv" || estimator == "didim" ? ", then estimator " + estimator : std::string());
     return c;
 }
 
 void run(const MonteCarloOptions& o) {
     montecarlo::StudySettings s;
     s.robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
-    s.simulation = simulation_settings(o);
+    SimulationOptions simulation = o;  // the description's controller, if any
+    apply_controller(s.robot, simulation);
+    s.simulation = simulation_settings(simulation);
     s.measurement = measurement_settings(o, static_cast<int>(s.robot.joints.size()));
     for (const identify::Method m : methods_of(o.method)) s.methods.push_back(identify_settings(o, m));
     s.runs = o.runs;

@@ -81,6 +81,7 @@ void run(SimulateOptions o) {
     const Eigen::VectorXd x = robot::true_parameters(robot, *model);
 
     sim::MeasurementSettings ms = measurement_settings(o, n);
+    apply_controller(robot, o);
     o.settings = simulation_settings(o);
 
     // Hidden effects: the truth is the nominal model plus the effects' columns with the injected
@@ -112,6 +113,10 @@ void run(SimulateOptions o) {
     std::string header = "t";
     for (const auto& j : robot.joints) header += "," + j.position_column;
     for (const auto& j : robot.joints) header += "," + j.torque_column;
+    // The reference the controller tracked, after the measured columns (what IDIM-IV and DIDIM simulate along).
+    for (const char* prefix : {"q_ref", "qd_ref"}) {
+        for (int j = 1; j <= n; ++j) header += fmt::format(",{}{}", prefix, j);
+    }
     header += "\n";
     CsvWriter log(o.out, header);
     std::unique_ptr<CsvWriter> states;
@@ -135,6 +140,9 @@ void run(SimulateOptions o) {
         fmt::format_to(std::back_inserter(b), "{:.6f}", t);
         for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.12g}", s.q_measured[j]);
         for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.10g}", s.tau_measured[j]);
+        for (const Eigen::VectorXd* v : {&s.q_ref, &s.qd_ref}) {
+            for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.15g}", (*v)[j]);
+        }
         b.push_back('\n');
         log.row_done();
         if (states) {
@@ -169,6 +177,7 @@ void run(SimulateOptions o) {
                            {"dwell", o.settings.moves.max_dwell}};
     truth["measurement"] = {{"encoder_counts_per_rev", ms.encoder_counts_per_rev}, {"torque_noise", ms.torque_noise},
                             {"ripple_amplitude", ms.ripple_amplitude},           {"ripple_periods_per_rev", ms.ripple_periods_per_rev},
+                            {"position_noise", ms.position_noise},
                             {"seed", ms.seed},
                             {"torque_delay", ms.torque_delay}};
     truth["effects"] = nlohmann::json::array();
@@ -182,7 +191,8 @@ void add_simulate_command(CLI::App& app) {
     auto o = std::make_shared<SimulateOptions>();
     CLI::App* cmd = app.add_subcommand(
         "simulate",
-        "simulate a PD-controlled robot on random quintic point-to-point moves; write the measured log (CSV t,q..,tau..) "
+        "simulate a PD-controlled robot on random quintic point-to-point moves; write the measured log (CSV t,q..,tau.., then the "
+        "reference q_ref..,qd_ref..) "
         "and the truth (JSON parameters, optional CSV of noise-free states)");
     cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (a description whose alpha is auto, the default, is simulated with 100 s/rad)");
     cmd->add_option("--out,-o", o->out, "output log (CSV)")->required();

@@ -11,6 +11,11 @@
 
 namespace CLI {
 class App;
+class Option;
+}  // namespace CLI
+
+namespace jacobid::robot {
+struct RobotDescription;
 }
 
 namespace jacobid::cli {
@@ -23,11 +28,18 @@ struct SimulationOptions {
     double ripple_periods = 50.0;
     std::uint64_t noise_seed = 2;
     std::vector<double> move_duration{0.6, 1.6};
+    double position_noise = 0.0;  // rad
+    // --omega-dyn, --damping, --control-rate, --substeps as registered (to tell a given one from its default).
+    std::vector<const CLI::Option*> controller_options;
 };
 
 // --duration, --rate, --control-rate, --substeps, --omega-dyn, --damping, --seed, --move-duration, --dwell,
-// --encoder-counts, --torque-noise, --ripple, --ripple-periods, --noise-seed.
+// --encoder-counts, --position-noise, --torque-noise, --ripple, --ripple-periods, --noise-seed.
 void add_simulation_options(CLI::App* cmd, SimulationOptions& o);
+
+// The description's controller (robot/controller_description.hpp), if it has one, replaces the controller
+// options; InputError if one of them is given as well (two controllers for one run).
+void apply_controller(const robot::RobotDescription& description, SimulationOptions& o);
 
 // The checked settings for a robot of `joints` joints (InputError naming the option otherwise).
 sim::SimulationSettings simulation_settings(const SimulationOptions& o);

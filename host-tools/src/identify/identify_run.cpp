@@ -3,7 +3,10 @@
 
 #include <utility>
 
+#include "identify/didim.hpp"
+#include "identify/instrumental_variables.hpp"
 #include "identify/plausibility.hpp"
+#include "identify/reference_simulation.hpp"
 
 namespace jacobid::identify {
 
@@ -36,15 +39,33 @@ IdentifiedLog solve_identification(PipelineOutput out, SmoothedModel smoothed, T
     return fit;
 }
 
+void refine_estimate(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& aligned,
+                     const IdentifySettings& settings, IdentifiedLog& fit) {
+    const Estimator estimator = settings.estimator.estimator;
+    if (!is_iterated(estimator)) return;
+    require_reference_simulation(aligned, description, to_string(estimator));
+    const robot::RobotModel& fitted = fit.smoothed.get(nominal);
+    const ReferenceSimulation simulation{description, nominal, fitted, aligned, settings.pipeline, fit.result.info};
+    MethodResult& r = fit.result;
+    const LsSolution start = r.solution;
+    r.estimator = estimator == Estimator::Iv ? identify_iv(simulation, settings.estimator, start, r.solution)
+                                             : identify_didim(simulation, settings.estimator, start, settings.solve, r.solution, fit.factors);
+    r.violations = plausibility_violations(sign_constraints(fitted), r.solution);
+}
+
 IdentifiedLog identify_log(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& log,
                            const IdentifySettings& settings) {
     // The delay is estimated with the description's alpha, then each joint's alpha (friction alpha: auto) is
     // chosen on the aligned log.
+    // A log an iterated estimator cannot simulate along fails before any work.
+    if (is_iterated(settings.estimator.estimator)) require_reference_simulation(log, description, to_string(settings.estimator.estimator));
     TorqueDelayResult delay = resolve_torque_delay(nominal, log, settings.pipeline, settings.solve, settings.torque_delay);
     const ShiftedTorques aligned = shift_torques(log, delay.applied());
     SmoothedModel smoothed = resolve_coulomb_smoothing(description, nominal, aligned.log, settings.pipeline, settings.solve.weighted);
     PipelineOutput out = run_pipeline(smoothed.get(nominal), aligned.log, settings.pipeline);
-    return solve_identification(std::move(out), std::move(smoothed), std::move(delay), nominal, settings.solve);
+    IdentifiedLog fit = solve_identification(std::move(out), std::move(smoothed), std::move(delay), nominal, settings.solve);
+    refine_estimate(description, nominal, aligned.log, settings, fit);
+    return fit;
 }
 
 }  // namespace jacobid::identify

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "identify/coulomb_smoothing.hpp"
+#include "identify/estimator.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/pipeline.hpp"
 #include "identify/report.hpp"
@@ -20,6 +21,8 @@ struct IdentifySettings {
     PipelineSettings pipeline;           // pipeline.method: the method
     SolveOptions solve;
     std::optional<double> torque_delay;  // s, given (0: off); nullopt: estimated (--torque-delay auto)
+    // ols | wls: the least squares of `solve`; iv | didim: iterated from it (estimator.hpp).
+    EstimatorSettings estimator;
 };
 
 // What the rest of identify (essential parameters, validation, reports) needs beside the result.
@@ -37,7 +40,13 @@ TorqueDelayResult resolve_torque_delay(const robot::RobotModel& model, const Log
 IdentifiedLog solve_identification(PipelineOutput out, SmoothedModel smoothed, TorqueDelayResult delay, const robot::RobotModel& nominal,
                                    const SolveOptions& solve);
 
-// The whole flow on one log (one segment). InputError as run_pipeline (log too short ...).
+// IDIM-IV or DIDIM (settings.estimator) from fit's least-squares solution on `aligned` (the log with
+// fit's torque delay applied): fit.result.solution and .estimator become the estimator's, and DIDIM's
+// factors replace fit.factors.
+void refine_estimate(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& aligned,
+                     const IdentifySettings& settings, IdentifiedLog& fit);
+
+// The whole flow on one log (one segment); settings.estimator iv or didim refine it (refine_estimate). InputError as run_pipeline (log too short ...).
 IdentifiedLog identify_log(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& log,
                            const IdentifySettings& settings);
 

@@ -33,6 +33,11 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
     for (std::size_t j = 1; j <= robot.joints.size(); ++j) {
         const std::string name = "qd" + std::to_string(j);  // as io::LogColumnNames and simulate --states name them
         log.qd.push_back(table.has_column(name) ? &table.column(name) : nullptr);
+        // As simulate writes them (and --log-format's references: name them).
+        for (auto [prefix, list] : {std::pair{"q_ref", &log.q_ref}, std::pair{"qd_ref", &log.qd_ref}}) {
+            const std::string column = prefix + std::to_string(j);
+            list->push_back(table.has_column(column) ? &table.column(column) : nullptr);
+        }
     }
     return log;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "identify/bandwidth.hpp"
@@ -257,15 +258,21 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
 }
 
 PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, RowSink* sink) {
-    PipelineOutput out;
-    out.info = plan_pipeline(log, s);
-    PipelineInfo& info = out.info;
+    PipelineInfo info = plan_pipeline(log, s);
     if (s.progress) {
         fmt::print(stderr, "identify [{}]: {} samples, bandwidth {:.3g} Hz{}, F_p {:.3g} Hz, decimation {}\n", to_string(s.method),
                    log.samples(), info.bandwidth, info.bandwidth_estimated ? " (estimated)" : "", info.decimation_cutoff, info.decimation);
     }
     const StateEstimates e = estimate_states(log, s, info);
     if (s.progress) fmt::print(stderr, "identify [{}]: derivatives in {:.2f} s\n", to_string(s.method), info.seconds_differentiate);
+    return fold_states(model, log, s, std::move(info), e, sink);
+}
+
+PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, PipelineInfo planned,
+                           const StateEstimates& e, RowSink* sink) {
+    PipelineOutput out;
+    out.info = std::move(planned);
+    PipelineInfo& info = out.info;
 
     const int joints = model.joint_count();
     const int c = model.parameter_count();

@@ -65,6 +65,9 @@ struct LogColumns {
     // Measured velocities (column qdJ, e.g. from --log-format's velocities), nullptr where not logged; used
     // with PipelineSettings::measured_velocity.
     std::vector<const std::vector<double>*> qd;
+    // The reference the controller tracked (columns q_refJ, qd_refJ, or references: in --log-format), nullptr
+    // where not logged; what the estimators IDIM-IV and DIDIM simulate the identified model along.
+    std::vector<const std::vector<double>*> q_ref, qd_ref;
     std::vector<std::string> q_names, tau_names;
     std::size_t samples() const { return q.empty() ? 0 : q.front()->size(); }
 };
@@ -136,6 +139,10 @@ struct StateEstimates {
 // enough; InputError names the option or the file otherwise.
 PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& settings);
 StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& settings, PipelineInfo& info);
+// Steps 2-4 on given full-rate states (estimate_states', or a simulation's for the estimators IDIM-IV and
+// DIDIM) with `info` from plan_pipeline on `log`: the same rows, F_p and decimation whatever the states.
+PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings, PipelineInfo info,
+                           const StateEstimates& states, RowSink* rows = nullptr);
 // `rows`, if given, receives every decimated row and the filtered torque (RowSink above).
 PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings,
                             RowSink* rows = nullptr);

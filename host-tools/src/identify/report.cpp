@@ -41,7 +41,12 @@ std::string settings_line(const PipelineInfo& i) {
 }
 
 // One line on how sigma_X was computed, so that %sigma_r can be read for what it is.
-std::string describe_std(const LsSolution& sol) {
+std::string describe_std(const MethodResult& r) {
+    const LsSolution& sol = r.solution;
+    if (r.estimator && r.estimator->estimator == Estimator::Iv) {
+        return fmt::format("{} IV, std: the IV sandwich s^2 (Z'SW)^-1 Z'SZ (W'SZ)^-1, rows independent",
+                           sol.weighted ? "weighted (1 / sigma_j of the LS per joint)" : "unweighted");
+    }
     std::string s = fmt::format("{} LS, std ", sol.weighted ? "weighted (1 / sigma_j per joint)" : "ordinary");
     if (sol.std_method == StdMethod::Pooled) return s + "pooled: sigma_rho^2 (W^T W)^-1, one residual variance, rows independent";
     s += fmt::format("joint-hac: per-joint residual variances x long-run factors (Bartlett, {} lags) in a sandwich;", sol.std_lags);
@@ -51,6 +56,16 @@ std::string describe_std(const LsSolution& sol) {
     }
     s.pop_back();
     return s;
+}
+
+// The iterated estimator's line: which, from what, how it ended, and what its std is.
+std::string describe_estimator(const EstimatorRun& run) {
+    const bool iv = run.estimator == Estimator::Iv;
+    return fmt::format("estimator {} ({}), from the WLS/OLS estimate: {} iteration{}, {} (last relative change of X {:.2g}, tolerance {:g} or at most "
+                       "{} iterations)",
+                       to_string(run.estimator), iv ? "IDIM-IV, instruments from the closed-loop simulation of the identified model" : "DIDIM, regressor of the closed-loop simulation of the identified model",
+                       run.iterations, run.iterations == 1 ? "" : "s", run.converged ? "converged" : "NOT converged",
+                       run.changes.empty() ? 0.0 : run.changes.back(), run.tolerance, run.max_iterations);
 }
 
 }  // namespace
@@ -163,7 +178,8 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
     }
     for (const auto& r : results) {
         s += fmt::format("{}: {}; {}\n", method_title(r), settings_line(r.info), describe(r.torque_delay));
-        s += fmt::format("{}: {}\n", method_title(r), describe_std(r.solution));
+        s += fmt::format("{}: {}\n", method_title(r), describe_std(r));
+        if (r.estimator) s += fmt::format("{}: {}\n", method_title(r), describe_estimator(*r.estimator));
         if (r.info.bandwidth_estimated) s += fmt::format("{} bandwidth estimate: {}\n", method_title(r), r.info.bandwidth_estimate.description);
         if (r.coulomb_smoothing) s += fmt::format("{} {}\n", method_title(r), describe(*r.coulomb_smoothing, ctx.joint_names));
         if (r.physical) s += fmt::format("{} {}\n", method_title(r), describe(*r.physical));
@@ -230,7 +246,13 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
     if (sol.weighted) j["joint_weights"] = sol.joint_weights;
     // How "std" was computed (least_squares.hpp StdMethod; docs/method.md "Bias and standard deviations").
     j["weighting"] = sol.weighted ? "wls" : "ols";
-    j["std_method"] = to_string(sol.std_method);
+    j["std_method"] = r.estimator && r.estimator->estimator == Estimator::Iv ? "iv-sandwich" : to_string(sol.std_method);
+    j["estimator"] = r.estimator ? to_string(r.estimator->estimator) : sol.weighted ? "wls" : "ols";
+    if (r.estimator) {
+        j["iterations"] = r.estimator->iterations;
+        j["converged"] = r.estimator->converged;
+        j["estimator_changes"] = r.estimator->changes;
+    }
     if (sol.std_method == StdMethod::JointHac) {
         auto finite_list = [](const std::vector<double>& v) {
             json a = json::array();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "identify/coulomb_smoothing.hpp"
+#include "identify/estimator.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/physical_least_squares.hpp"
 #include "identify/pipeline.hpp"
@@ -42,6 +43,8 @@ struct MethodResult {
     PlotRows plot;
     // Which segments of a log split at its gaps (--on-gap split) the method used; empty otherwise.
     std::vector<SegmentReport> segments, validation_segments;
+    // --estimator iv | didim: how the iteration ended (absent: the least squares of `solution`).
+    std::optional<EstimatorRun> estimator;
 };
 
 struct ReportContext {

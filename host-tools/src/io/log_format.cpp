@@ -44,9 +44,9 @@ ColumnRef column_ref(const Section& s, const YAML::Node& n, const std::string& k
     return {0, v};
 }
 
-std::vector<ColumnRef> column_list(Section& s, const std::string& key, bool nullable, bool header, std::size_t size) {
-    const YAML::Node list = size == 0 ? s.list(key, 1, kMaxJoints, "columns (1-based index or header name)")
-                                      : s.list(key, size, size, "columns (one per joint, as positions)");
+std::vector<ColumnRef> column_list(Section& s, const std::string& key, bool nullable, bool header, std::size_t size,
+                                   const char* of = "columns (one per joint, as positions)") {
+    const YAML::Node list = size == 0 ? s.list(key, 1, kMaxJoints, "columns (1-based index or header name)") : s.list(key, size, size, of);
     std::vector<ColumnRef> refs;
     for (std::size_t i = 0; i < list.size(); ++i) refs.push_back(column_ref(s, list[i], fmt::format("{}[{}]", key, i), nullable, header));
     return refs;
@@ -93,6 +93,12 @@ LogFormat parse_log_format(const std::string& yaml_text, const std::string& sour
         f.velocities = column_list(s, "velocities", true, f.header, joints);
     } else {
         s.mark_used("velocities");
+    }
+    if (s.has("references")) {
+        f.references = column_list(s, "references", false, f.header, 2 * joints,
+                                   "columns: the joints' reference positions, then their reference velocities");
+    } else {
+        s.mark_used("references");
     }
     const bool torques = s.has("torques"), currents = s.has("currents");
     if (torques && currents) s.fail("currents", "give either torques or currents (with gains), not both");
@@ -204,6 +210,11 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         if (!format.velocities[j].present()) continue;
         uses.push_back({resolve(format.velocities[j], fmt::format("velocities[{}]", j)), fmt::format("velocities[{}]", j), 1.0});
         table_names.push_back(names.qd[j]);
+    }
+    for (std::size_t k = 0; k < format.references.size(); ++k) {
+        const std::string key = fmt::format("references[{}]", k);
+        uses.push_back({resolve(format.references[k], key), key, 1.0});
+        table_names.push_back(fmt::format("{}{}", k < joints ? "q_ref" : "qd_ref", k % joints + 1));
     }
     const char* effort = format.currents ? "currents" : "torques";
     std::vector<std::size_t> zero_torque;  // table columns of joints without actuator

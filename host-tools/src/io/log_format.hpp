@@ -32,6 +32,9 @@ struct LogFormat {
     double time_scale = 1.0;  // seconds per unit of the time column
     std::vector<ColumnRef> positions;
     std::vector<ColumnRef> velocities;  // empty: none logged; an absent entry: not logged for that joint
+    // The reference the controller tracked (references: [q_ref.., qd_ref..], 2 x joints columns), loaded as
+    // q_refJ, qd_refJ (what identify --estimator iv | didim simulate along); empty: not logged.
+    std::vector<ColumnRef> references;
     std::vector<ColumnRef> efforts;     // torques, or currents; an absent entry: no actuator (torque 0)
     bool currents = false;
     std::vector<double> gains;  // tau = gain * effort, per joint (1 for torques)

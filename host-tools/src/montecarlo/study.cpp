@@ -32,7 +32,11 @@ RunResult one_run(const StudySettings& s, const robot::RobotModel& model, const 
     sensors.seed = run_noise_seed(s, k);
     sim::MeasurementModel measurement(sensors);
     const sim::MeasuredLog simulated = sim::simulate_log(model, truth, s.robot.joints, simulation, measurement);
-    const identify::LogColumns log = identify::log_columns(simulated.q, simulated.tau, simulated.sample_period, fmt::format("run {}", k + 1));
+    identify::LogColumns log = identify::log_columns(simulated.q, simulated.tau, simulated.sample_period, fmt::format("run {}", k + 1));
+    for (std::size_t j = 0; j < simulated.q_ref.size(); ++j) {
+        log.q_ref.push_back(&simulated.q_ref[j]);
+        log.qd_ref.push_back(&simulated.qd_ref[j]);
+    }
     RunResult r;
     for (const auto& method : s.methods) {
         const identify::IdentifiedLog fit = identify::identify_log(s.robot, model, log, method);

@@ -238,6 +238,8 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
         }
         parameters.reject_unknown();  // a parameter given twice
     }
+    top.mark_used("controller");
+    if (top.has("controller")) d.controller = parse_controller(source, root["controller"], d.joints.size());
     top.reject_unknown();
     return d;
 }
@@ -360,6 +362,7 @@ std::string to_yaml(const RobotDescription& d) {
         for (const auto& [name, value] : d.parameters) out << YAML::Key << name << YAML::Value << value;
         out << YAML::EndMap;
     }
+    if (d.controller) write_controller(out, *d.controller);
     out << YAML::EndMap;
     return std::string(out.c_str()) + "\n";
 }

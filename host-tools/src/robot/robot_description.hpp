@@ -13,6 +13,7 @@
 //     offset: false          # constant friction offset per joint (FOFF1, FOFF2)
 //   rotor_inertia: false     # separate rotor inertia of joint 2 (IA2)
 //   parameters: {ZZ1R: 3.496, ...}  # optional: true values, used by `jacobid simulate`
+//   controller: {omega: 30, damping: 1, rate: 1000}  # optional: the position loop (controller_description.hpp)
 //
 // Serial robots (docs/robots.md):
 //
@@ -30,12 +31,14 @@
 #include <Eigen/Core>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "jacobid/robot/coulomb_sign.hpp"
 #include "jacobid/robot/kinematic_chain.hpp"
 #include "jacobid/robot/mdh_joint.hpp"
+#include "robot/controller_description.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::robot {
@@ -61,6 +64,7 @@ struct RobotDescription {
     bool friction_offset = false;
     bool rotor_inertia = false;
     std::vector<std::pair<std::string, double>> parameters;  // in file order; empty: not given
+    std::optional<ControllerDescription> controller;         // the position loop (simulate, identify --estimator iv|didim)
     // Serial robots (model mdh or urdf).
     Eigen::Vector3d gravity{0.0, 0.0, -9.81};  // m/s^2, base frame
     std::vector<MdhJoint> mdh;                 // model mdh: the table as written

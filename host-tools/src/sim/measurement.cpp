@@ -5,9 +5,10 @@
 
 namespace jacobid::sim {
 
-MeasurementModel::MeasurementModel(MeasurementSettings settings) : settings_(std::move(settings)), rng_(settings_.seed) {}
+MeasurementModel::MeasurementModel(MeasurementSettings settings) : settings_(std::move(settings)), rng_(settings_.seed), position_rng_(settings_.seed + 1) {}
 
-double MeasurementModel::position(double q) const {
+double MeasurementModel::position(double q) {
+    if (settings_.position_noise > 0.0) q += settings_.position_noise * normal_(position_rng_);
     if (!(settings_.encoder_counts_per_rev > 0.0)) return q;
     const double count = 2.0 * M_PI / settings_.encoder_counts_per_rev;
     return std::round(q / count) * count;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "sim/closed_loop.hpp"
 #include "sim/torque_delay_line.hpp"
 
 namespace jacobid::sim {
@@ -50,108 +51,53 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     const int n = model.joint_count();
     robot::ForwardDynamics dynamics(model, parameters);
 
-    std::vector<double> lower, upper, start;
-    for (int j = 0; j < n; ++j) {
-        const auto& joint = joints[static_cast<std::size_t>(j)];
+    const Eigen::VectorXd q0 = start_configuration(joints);
+    const std::vector<double> start(q0.data(), q0.data() + n);
+    std::vector<double> lower, upper;
+    for (const auto& joint : joints) {
         lower.push_back(joint.lower_limit);
         upper.push_back(joint.upper_limit);
-        start.push_back(std::clamp(0.0, joint.lower_limit, joint.upper_limit));
     }
     QuinticTrajectory trajectory(start, lower, upper, settings.moves, settings.seed);
 
-    // PD gains from the wanted bandwidth and the inertia seen by each joint at the start configuration.
-    const Eigen::MatrixXd M0 = dynamics.inertia(start.data());
-    Eigen::VectorXd kp(n), kd(n);
-    for (int j = 0; j < n; ++j) {
-        kp[j] = M0(j, j) * settings.omega_dyn * settings.omega_dyn;
-        kd[j] = 2.0 * settings.damping * M0(j, j) * settings.omega_dyn;
-    }
+    // PD gains: given (the description's controller), or from the wanted bandwidth and the inertia seen by
+    // each joint at the start configuration.
+    PdGains gains{settings.kp, settings.kd};
+    if (gains.kp.size() == 0) gains = bandwidth_gains(dynamics, q0, settings.omega_dyn, settings.damping);
 
-    const double control_period = 1.0 / settings.control_rate;
-    const double h = control_period / settings.substeps;
-    const std::size_t output_every = steps_per_output(settings);
-    const std::size_t samples = simulated_sample_count(settings);
-    const std::size_t total_steps = (samples - 1) * output_every;
-
-    Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(start.data(), n), qd = Eigen::VectorXd::Zero(n);
-    Eigen::VectorXd u_prev = Eigen::VectorXd::Zero(n), u_cur = Eigen::VectorXd::Zero(n);
-    double control_time = 0.0;
-    ReferenceSample ref;
-    // Motor torque at time t inside the current control period (first-order hold).
-    Eigen::VectorXd tau(n);
-    auto torque_at = [&](double t, Eigen::VectorXd& out) {
-        const double s = std::clamp((t - control_time) / control_period, 0.0, 1.0);
-        out = u_prev + s * (u_cur - u_prev);
-    };
-    // State derivative for RK4: (qd, qdd).
-    Eigen::VectorXd k_q[4], k_qd[4];
-    for (int i = 0; i < 4; ++i) {
-        k_q[i].resize(n);
-        k_qd[i].resize(n);
-    }
-    Eigen::VectorXd q_stage(n), qd_stage(n), tau_stage(n);
-    // True parameters no rigid body can have (a negative inertia) leave no dynamics to integrate.
-    auto accelerations = [&](const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, const Eigen::VectorXd& u, Eigen::VectorXd& qdd) {
-        if (!dynamics.accelerations(qs.data(), qds.data(), u.data(), qdd.data())) {
-            throw InputError("simulate: the robot's parameters give an inertia matrix that is not positive definite (a negative mass or inertia?)");
-        }
-    };
-    auto derivative = [&](double t, const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, Eigen::VectorXd& dq, Eigen::VectorXd& dqd) {
-        torque_at(t, tau_stage);
-        dq = qds;
-        accelerations(qs, qds, tau_stage, dqd);
-    };
+    ClosedLoopSettings loop;
+    loop.control_rate = settings.control_rate;
+    loop.substeps = settings.substeps;
+    loop.steps_per_output = steps_per_output(settings);
+    loop.samples = simulated_sample_count(settings);
 
     const double delay = measurement.settings().torque_delay;
     TorqueDelayLine delay_line(delay, 1.0 / settings.output_rate);
     SimulatedSample sample;
-    sample.q.resize(n);
-    sample.qd.resize(n);
-    sample.qdd.resize(n);
-    sample.tau.resize(n);
     sample.q_measured.resize(n);
     sample.tau_measured.resize(n);
-
-    for (std::size_t step = 0;; ++step) {
-        const double t = static_cast<double>(step) * h;
-        if (step % static_cast<std::size_t>(settings.substeps) == 0) {
-            trajectory.evaluate(t, ref);
-            u_prev = u_cur;
-            control_time = t;
+    sample.q_ref.resize(n);
+    sample.qd_ref.resize(n);
+    // True parameters no rigid body can have (a negative inertia) leave no dynamics to integrate.
+    run_closed_loop(
+        dynamics, q0, Eigen::VectorXd::Zero(n), gains, loop, [&](double t, ReferenceSample& ref) { trajectory.evaluate(t, ref); },
+        "simulate: the robot's parameters give an inertia matrix that is not positive definite (a negative mass or inertia?)",
+        [&](const ClosedLoopSample& s) {
+            sample.t = s.t;
+            sample.q = *s.q;
+            sample.qd = *s.qd;
+            sample.qdd = *s.qdd;
+            sample.tau = *s.tau;
+            const Eigen::VectorXd& logged_tau = delay > 0.0 ? delay_line.push(*s.tau) : *s.tau;
             for (int j = 0; j < n; ++j) {
                 const auto js = static_cast<std::size_t>(j);
-                u_cur[j] = kp[j] * (ref.q[js] - q[j]) + kd[j] * (ref.qd[js] - qd[j]);
-            }
-        }
-        if (step % output_every == 0) {
-            torque_at(t, tau);
-            sample.t = t;
-            sample.q = q;
-            sample.qd = qd;
-            sample.tau = tau;
-            accelerations(q, qd, tau, sample.qdd);
-            const Eigen::VectorXd& logged_tau = delay > 0.0 ? delay_line.push(tau) : tau;
-            for (int j = 0; j < n; ++j) {
-                sample.q_measured[j] = measurement.position(q[j]);
-                sample.tau_measured[j] = measurement.torque(static_cast<std::size_t>(j), logged_tau[j], q[j]);
+                sample.q_measured[j] = measurement.position((*s.q)[j]);
+                sample.tau_measured[j] = measurement.torque(js, logged_tau[j], (*s.q)[j]);
+                sample.q_ref[j] = s.reference->q[js];
+                sample.qd_ref[j] = s.reference->qd[js];
             }
             sink(sample);
-        }
-        if (step == total_steps) break;
-        // RK4 over [t, t + h]; the torque is linear inside the control period.
-        derivative(t, q, qd, k_q[0], k_qd[0]);
-        q_stage = q + 0.5 * h * k_q[0];
-        qd_stage = qd + 0.5 * h * k_qd[0];
-        derivative(t + 0.5 * h, q_stage, qd_stage, k_q[1], k_qd[1]);
-        q_stage = q + 0.5 * h * k_q[1];
-        qd_stage = qd + 0.5 * h * k_qd[1];
-        derivative(t + 0.5 * h, q_stage, qd_stage, k_q[2], k_qd[2]);
-        q_stage = q + h * k_q[2];
-        qd_stage = qd + h * k_qd[2];
-        derivative(t + h, q_stage, qd_stage, k_q[3], k_qd[3]);
-        q += h / 6.0 * (k_q[0] + 2.0 * k_q[1] + 2.0 * k_q[2] + k_q[3]);
-        qd += h / 6.0 * (k_qd[0] + 2.0 * k_qd[1] + 2.0 * k_qd[2] + k_qd[3]);
-    }
+        });
 }
 
 MeasuredLog simulate_log(const robot::RobotModel& model, const Eigen::VectorXd& parameters, const std::vector<robot::JointDescription>& joints,
@@ -159,17 +105,17 @@ MeasuredLog simulate_log(const robot::RobotModel& model, const Eigen::VectorXd& 
     MeasuredLog log;
     log.sample_period = 1.0 / settings.output_rate;
     const auto n = static_cast<std::size_t>(model.joint_count());
-    log.q.resize(n);
-    log.tau.resize(n);
     const std::size_t samples = simulated_sample_count(settings);
-    for (std::size_t j = 0; j < n; ++j) {
-        log.q[j].reserve(samples);
-        log.tau[j].reserve(samples);
+    for (auto* columns : {&log.q, &log.tau, &log.q_ref, &log.qd_ref}) {
+        columns->resize(n);
+        for (auto& c : *columns) c.reserve(samples);
     }
     simulate(model, parameters, joints, settings, measurement, [&](const SimulatedSample& s) {
         for (std::size_t j = 0; j < n; ++j) {
             log.q[j].push_back(s.q_measured[static_cast<Eigen::Index>(j)]);
             log.tau[j].push_back(s.tau_measured[static_cast<Eigen::Index>(j)]);
+            log.q_ref[j].push_back(s.q_ref[static_cast<Eigen::Index>(j)]);
+            log.qd_ref[j].push_back(s.qd_ref[static_cast<Eigen::Index>(j)]);
         }
     });
     return log;

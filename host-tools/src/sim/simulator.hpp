@@ -2,6 +2,7 @@
 #pragma once
 // Closed-loop simulation of a robot model: PD position control tracking quintic point-to-point moves.
 //
+//  - The loop itself (controller, drive, integrator) is sim/closed_loop.hpp, shared with the estimators.
 //  - Dynamics: forward dynamics from the model's regressor and the true parameters (robot::ForwardDynamics),
 //    integrated with classic RK4 at control_rate * substeps (5 kHz by default).
 //  - Control at control_rate (1 kHz): u = Kp (q_ref - q) + Kd (qd_ref - qd), Kp = M_jj(q0) omega^2,
@@ -33,6 +34,8 @@ struct SimulationSettings {
     double damping = 1.0;        // zeta of the PD loop
     MoveSettings moves{};
     std::uint64_t seed = 1;      // trajectory seed (the measurement model has its own)
+    // Explicit PD gains per joint (the robot description's controller); empty: from omega_dyn and damping.
+    Eigen::VectorXd kp, kd;
 };
 
 // One logged sample: truth and measurement.
@@ -40,6 +43,7 @@ struct SimulatedSample {
     double t = 0.0;
     Eigen::VectorXd q, qd, qdd, tau;  // truth (tau = motor torque acting at t)
     Eigen::VectorXd q_measured, tau_measured;
+    Eigen::VectorXd q_ref, qd_ref;  // the reference the controller tracked (at the last control instant)
 };
 
 // Number of samples simulate() will emit: floor(duration * output_rate) + 1 (t = 0 included).
@@ -60,6 +64,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
 struct MeasuredLog {
     double sample_period = 0.0;
     std::vector<std::vector<double>> q, tau;
+    std::vector<std::vector<double>> q_ref, qd_ref;  // the reference tracked (for --estimator iv | didim)
 };
 
 // simulate() kept in memory as a MeasuredLog.

@@ -236,7 +236,8 @@ TEST(SimulateCli, WritesHeaderRowsTruthAndHelp) {
     std::ifstream in(log);
     std::string header;
     std::getline(in, header);
-    EXPECT_EQ(header, "t,q1,q2,tau1,tau2");
+    // The measured columns, then the reference the controller tracked (for --estimator iv | didim).
+    EXPECT_EQ(header, "t,q1,q2,tau1,tau2,q_ref1,q_ref2,qd_ref1,qd_ref2");
     std::size_t rows = 0;
     for (std::string l; std::getline(in, l);) ++rows;
     EXPECT_EQ(rows, 201u);

@@ -46,7 +46,8 @@ std::string log_with_velocity(const std::string& name, double scale) {
         EXPECT_EQ(r.exit_code, 0) << r.err;
     }
     const auto measured = read_rows(log), truth = read_rows(states);
-    EXPECT_EQ(measured.front(), (std::vector<std::string>{"t", "q1", "q2", "tau1", "tau2"}));
+    // The measured columns (then the reference, which this test does not use).
+    EXPECT_EQ(measured.front(), (std::vector<std::string>{"t", "q1", "q2", "tau1", "tau2", "q_ref1", "q_ref2", "qd_ref1", "qd_ref2"}));
     EXPECT_EQ(truth.front()[3], "qd1");
     EXPECT_EQ(measured.size(), truth.size());
     std::mt19937 rng(5);

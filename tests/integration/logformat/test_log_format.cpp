@@ -66,7 +66,7 @@ TEST(LogFormat, EveryKeyWithHeaderNamesAndNull) {
 
 TEST(LogFormat, ErrorsNameTheKeyAndPosition) {
     EXPECT_EQ(error_of([] { fmt_of("time: {column: 1}\npositions: [2]\ntorques: [3]\ncolour: red\n"); }),
-              "f.yaml:4:1: colour: unknown key (known: currents, delimiter, gains, header, positions, skip_rows, time, torques, velocities)");
+              "f.yaml:4:1: colour: unknown key (known: currents, delimiter, gains, header, positions, references, skip_rows, time, torques, velocities)");
     EXPECT_EQ(error_of([] { fmt_of("time: {column: 1, offset: 2}\npositions: [2]\ntorques: [3]\n"); }),
               "f.yaml:1:19: time.offset: unknown key (known: column, scale)");
     EXPECT_EQ(error_of([] { fmt_of("header: false\ntime: {column: t}\npositions: [2]\ntorques: [3]\n"); }),

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+#include "identify/instrumental_variables.hpp"
+
+#include <Eigen/Dense>
+#include <fmt/core.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+
+namespace jacobid::identify {
+namespace {
+
+// The decimated rows of one pass, in order (IV pairs the measured and simulated rows of one sample).
+class RowCollector : public RowSink {
+public:
+    void row(const DecimatedRow& r) override {
+        w.push_back(r.w);
+        y.push_back(r.y);
+        sample.push_back(r.sample);
+    }
+    std::vector<Eigen::MatrixXd> w;
+    std::vector<Eigen::VectorXd> y;
+    std::vector<std::size_t> sample;
+};
+
+LsSolution iv_solution(const RowCollector& measured, const RowCollector& instruments, const LsSolution& current) {
+    if (measured.sample != instruments.sample) throw std::logic_error("IDIM-IV: measured and simulated rows of different samples");
+    // Identified columns only (the start dropped the others, and simulable_parameters required none).
+    std::vector<Eigen::Index> active;
+    for (std::size_t c = 0; c < current.identified.size(); ++c) {
+        if (current.identified[c]) active.push_back(static_cast<Eigen::Index>(c));
+    }
+    const auto p = static_cast<Eigen::Index>(active.size());
+    const Eigen::Index joints = measured.y.empty() ? 0 : measured.y.front().size();
+    Eigen::VectorXd s2 = Eigen::VectorXd::Ones(joints);  // squared joint weights
+    for (Eigen::Index j = 0; j < joints && static_cast<std::size_t>(j) < current.joint_weights.size(); ++j) {
+        s2[j] = current.joint_weights[static_cast<std::size_t>(j)] * current.joint_weights[static_cast<std::size_t>(j)];
+    }
+    Eigen::MatrixXd ZW = Eigen::MatrixXd::Zero(p, p), ZZ = Eigen::MatrixXd::Zero(p, p);
+    Eigen::VectorXd Zy = Eigen::VectorXd::Zero(p);
+    Eigen::VectorXd w(p), z(p);
+    for (std::size_t r = 0; r < measured.w.size(); ++r) {
+        for (Eigen::Index j = 0; j < joints; ++j) {
+            for (Eigen::Index a = 0; a < p; ++a) {
+                w[a] = measured.w[r](j, active[static_cast<std::size_t>(a)]);
+                z[a] = instruments.w[r](j, active[static_cast<std::size_t>(a)]);
+            }
+            ZW.noalias() += s2[j] * z * w.transpose();
+            ZZ.noalias() += s2[j] * z * z.transpose();
+            Zy.noalias() += s2[j] * measured.y[r][j] * z;
+        }
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(ZW);
+    if (lu.rank() < p) throw InputError("--estimator iv: the instruments do not excite every identified parameter (Z' W is singular)");
+    const Eigen::VectorXd x = lu.solve(Zy);
+
+    LsSolution s = current;
+    s.x.setConstant(std::numeric_limits<double>::quiet_NaN());
+    for (Eigen::Index a = 0; a < p; ++a) s.x[active[static_cast<std::size_t>(a)]] = x[a];
+    // Residuals of the measured rows at X_iv.
+    double weighted = 0.0, y2 = 0.0;
+    std::vector<double> joint_sq(static_cast<std::size_t>(joints), 0.0);
+    for (std::size_t r = 0; r < measured.w.size(); ++r) {
+        for (Eigen::Index j = 0; j < joints; ++j) {
+            double fit = 0.0;
+            for (Eigen::Index a = 0; a < p; ++a) fit += measured.w[r](j, active[static_cast<std::size_t>(a)]) * x[a];
+            const double e = measured.y[r][j] - fit;
+            weighted += s2[j] * e * e;
+            y2 += s2[j] * measured.y[r][j] * measured.y[r][j];
+            joint_sq[static_cast<std::size_t>(j)] += e * e;
+        }
+    }
+    const auto equations = static_cast<double>(measured.w.size() * static_cast<std::size_t>(joints));
+    const double sigma2 = weighted / std::max(1.0, equations - static_cast<double>(p));
+    const Eigen::MatrixXd inverse = lu.inverse();
+    const Eigen::MatrixXd cov = sigma2 * inverse * ZZ * inverse.transpose();
+    s.std_dev.setConstant(std::numeric_limits<double>::quiet_NaN());
+    s.rel_std_percent.setConstant(std::numeric_limits<double>::quiet_NaN());
+    for (Eigen::Index a = 0; a < p; ++a) {
+        const Eigen::Index c = active[static_cast<std::size_t>(a)];
+        s.std_dev[c] = std::sqrt(std::max(0.0, cov(a, a)));
+        s.rel_std_percent[c] = 100.0 * s.std_dev[c] / std::abs(x[a]);
+    }
+    s.residual_norm = std::sqrt(weighted);
+    s.y_norm = std::sqrt(y2);
+    s.relative_error_norm = s.y_norm > 0.0 ? s.residual_norm / s.y_norm : 0.0;
+    s.sigma_rho = std::sqrt(sigma2);
+    for (std::size_t j = 0; j < joint_sq.size(); ++j) {
+        s.joint_residual_rms[j] = std::sqrt(joint_sq[j] / std::max<double>(1.0, static_cast<double>(measured.w.size())));
+    }
+    // The sandwich above, not the least-squares formulas the start's std method names.
+    s.std_method = StdMethod::Pooled;
+    s.std_lags = 0;
+    s.joint_sigma.clear();
+    s.joint_long_run_factors.clear();
+    s.joint_lag1_correlation.clear();
+    return s;
+}
+
+}  // namespace
+
+EstimatorRun identify_iv(const ReferenceSimulation& simulation, const EstimatorSettings& settings, const LsSolution& start, LsSolution& solution) {
+    const LogColumns& log = simulation.log;
+    PipelineInfo info = simulation.info;
+    RowCollector measured;
+    fold_states(simulation.model, log, simulation.pipeline, info, estimate_states(log, simulation.pipeline, info), &measured);
+    return iterate_estimator(settings, start, [&](const LsSolution& current) {
+        RowCollector instruments;
+        fold_states(simulation.model, log, simulation.pipeline, simulation.info,
+                    simulation.states(simulable_parameters(current, Estimator::Iv)), &instruments);
+        return iv_solution(measured, instruments, current);
+    }, solution);
+}
+
+}  // namespace jacobid::identify

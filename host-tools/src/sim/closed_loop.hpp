@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The closed loop of the simulated robot, shared by `jacobid simulate` (tracking its quintic moves) and by
+// the estimators that simulate the identified model along a log's reference (IDIM-IV, DIDIM; docs/method.md,
+// "Estimators"): one integrator, so that the instruments and the simulated regressor come from exactly
+// the dynamics and the drive the simulated logs were written with.
+//
+//  - Control at control_rate: u = Kp (q_ref - q) + Kd (qd_ref - qd) from the state at the control instant.
+//  - The drive interpolates each command linearly over one control period (first-order hold, one period
+//    of latency), so the motor torque is continuous and the logged torque at t is the torque acting at t.
+//  - Forward dynamics (robot::ForwardDynamics) integrated with classic RK4 at control_rate * substeps.
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "robot/controller_description.hpp"
+#include "robot/robot_description.hpp"
+#include "robot/robot_model.hpp"
+#include "sim/quintic_trajectory.hpp"
+
+namespace jacobid::sim {
+
+struct PdGains {
+    Eigen::VectorXd kp, kd;  // per joint, N.m/rad and N.m s/rad
+};
+
+// Kp = M_jj(q0) omega^2, Kd = 2 zeta M_jj(q0) omega: each joint's position loop has roughly the bandwidth
+// omega (rad/s) at q0 (the simulator's rule; `robot::ControllerDescription` with omega uses it too).
+PdGains bandwidth_gains(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0, double omega, double damping);
+
+// Where the simulator starts: each joint at 0 clamped to its limits.
+Eigen::VectorXd start_configuration(const std::vector<robot::JointDescription>& joints);
+
+// The gains of a description's controller: its kp and kd, or bandwidth_gains at the start configuration
+// with `truth` (dynamics of the description's true parameters, as `jacobid simulate` integrates).
+PdGains described_gains(const robot::ControllerDescription& controller, robot::ForwardDynamics& truth, const std::vector<robot::JointDescription>& joints);
+
+struct ClosedLoopSettings {
+    double control_rate = 1000.0;      // Hz
+    int substeps = 5;                  // RK4 steps per control period
+    std::size_t steps_per_output = 5;  // RK4 steps between two output samples
+    std::size_t samples = 0;           // output samples, the first at t = 0
+};
+
+// One output sample of the loop (valid during the sink call only).
+struct ClosedLoopSample {
+    std::size_t index = 0;
+    double t = 0.0;
+    const Eigen::VectorXd* q = nullptr;
+    const Eigen::VectorXd* qd = nullptr;
+    const Eigen::VectorXd* qdd = nullptr;
+    const Eigen::VectorXd* tau = nullptr;  // motor torque acting at t
+    const ReferenceSample* reference = nullptr;  // the reference of the last control instant
+};
+
+// Reference at control instant t (t never decreases between calls).
+using ReferenceFunction = std::function<void(double t, ReferenceSample& out)>;
+
+// Integrates the loop from rest state (q0, qd0). `failure` is the InputError message when the dynamics
+// have no positive definite inertia matrix on the way (parameters no rigid body can have).
+void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0, const PdGains& gains,
+                     const ClosedLoopSettings& settings, const ReferenceFunction& reference, const std::string& failure,
+                     const std::function<void(const ClosedLoopSample&)>& sink);
+
+}  // namespace jacobid::sim
