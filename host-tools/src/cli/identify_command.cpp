@@ -235,6 +235,10 @@ void run(IdentifyOptions o) {
             throw InputError(fmt::format("--estimator {}: {} is split at its gaps (--on-gap split); the estimator simulates one continuous log",
                                          identify::to_string(resolved.estimator.estimator), o.in));
         }
+        if (identify::is_iterated(resolved.estimator.estimator) && physical) {
+            throw InputError(fmt::format("--{} with --estimator {}: the physically consistent fit is a least-squares one (use wls or ols)",
+                                         identify::to_string(physical->constraint), identify::to_string(resolved.estimator.estimator)));
+        }
         if (resolved.estimator.estimator == identify::Estimator::Iv && o.essential_flag) {
             throw InputError("--essential with --estimator iv: the essential parameters are chosen by least squares (use wls or didim)");
         }

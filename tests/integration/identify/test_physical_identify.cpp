@@ -88,6 +88,11 @@ TEST(PhysicalIdentify, OptionsAreCheckedAndAPlanarModelIsRefused) {
                                     "/examples/robots/planar2r.yaml --physical");
     EXPECT_NE(planar.exit_code, 0);
     EXPECT_NE(planar.err.find("model mdh or urdf"), std::string::npos) << planar.err;
+    const std::string arm_log = (dir / "arm.csv").string();
+    ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + kRobot + " --duration 1 -o " + arm_log).exit_code, 0);
+    const auto iv = run_command(kJacobid + " identify --quiet --in " + arm_log + " --robot " + kRobot + " --physical --estimator iv");
+    EXPECT_NE(iv.exit_code, 0);
+    EXPECT_NE(iv.err.find("--physical with --estimator iv"), std::string::npos) << iv.err;
     const auto weight = run_command(kJacobid + " identify --quiet --in " + log + " --robot " + kRobot + " --physical --prior-weight -1");
     EXPECT_NE(weight.exit_code, 0);
     EXPECT_NE(weight.err.find("--prior-weight"), std::string::npos) << weight.err;
