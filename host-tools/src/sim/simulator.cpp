@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "jacobid/robot/presliding_friction.hpp"
+#include "robot/presliding_model.hpp"
 #include "sim/torque_delay_line.hpp"
 
 namespace jacobid::sim {
@@ -90,6 +92,21 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
         k_qd[i].resize(n);
     }
     Eigen::VectorXd q_stage(n), qd_stage(n), tau_stage(n);
+    // Presliding friction (a PreslidingModel): its Dahl state integrated along the true positions (no
+    // quantization, no play), held over each integration step; the joints feel -FDj s_j, which the
+    // controller's torque then carries into the log (docs/method.md, "Presliding friction (Dahl)").
+    const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(&model);
+    std::vector<robot::DahlState> dahl;
+    Eigen::VectorXd held_friction = Eigen::VectorXd::Zero(n);
+    if (presliding) {
+        for (int j = 0; j < n; ++j) dahl.emplace_back(presliding->settings().displacement[static_cast<std::size_t>(j)]);
+    }
+    const auto update_presliding = [&](const Eigen::VectorXd& before, const Eigen::VectorXd& after) {
+        for (std::size_t j = 0; j < dahl.size(); ++j) {
+            const auto je = static_cast<Eigen::Index>(j);
+            held_friction[je] = parameters[presliding->first_presliding_column() + je] * dahl[j].step(after[je] - before[je]);
+        }
+    };
     // True parameters no rigid body can have (a negative inertia) leave no dynamics to integrate.
     auto accelerations = [&](const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, const Eigen::VectorXd& u, Eigen::VectorXd& qdd) {
         if (!dynamics.accelerations(qs.data(), qds.data(), u.data(), qdd.data())) {
@@ -98,6 +115,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     };
     auto derivative = [&](double t, const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, Eigen::VectorXd& dq, Eigen::VectorXd& dqd) {
         torque_at(t, tau_stage);
+        tau_stage -= held_friction;
         dq = qds;
         accelerations(qs, qds, tau_stage, dqd);
     };
@@ -129,7 +147,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
             sample.q = q;
             sample.qd = qd;
             sample.tau = tau;
-            accelerations(q, qd, tau, sample.qdd);
+            accelerations(q, qd, tau - held_friction, sample.qdd);
             const Eigen::VectorXd& logged_tau = delay > 0.0 ? delay_line.push(tau) : tau;
             for (int j = 0; j < n; ++j) {
                 sample.q_measured[j] = measurement.position(q[j]);
@@ -149,8 +167,10 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
         q_stage = q + h * k_q[2];
         qd_stage = qd + h * k_qd[2];
         derivative(t + h, q_stage, qd_stage, k_q[3], k_qd[3]);
+        q_stage = q;
         q += h / 6.0 * (k_q[0] + 2.0 * k_q[1] + 2.0 * k_q[2] + k_q[3]);
         qd += h / 6.0 * (k_qd[0] + 2.0 * k_qd[1] + 2.0 * k_qd[2] + k_qd[3]);
+        update_presliding(q_stage, q);
     }
 }
 
