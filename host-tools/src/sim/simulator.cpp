@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "jacobid/robot/presliding_friction.hpp"
 #include "robot/presliding_model.hpp"
+#include "sim/augmented_model.hpp"
 #include "sim/torque_delay_line.hpp"
 
 namespace jacobid::sim {
@@ -95,7 +96,8 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     // Presliding friction (a PreslidingModel): its Dahl state integrated along the true positions (no
     // quantization, no play), held over each integration step; the joints feel -FDj s_j, which the
     // controller's torque then carries into the log (docs/method.md, "Presliding friction (Dahl)").
-    const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(&model);
+    const auto* augmented = dynamic_cast<const AugmentedModel*>(&model);
+    const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(augmented ? &augmented->nominal() : &model);
     std::vector<robot::DahlState> dahl;
     Eigen::VectorXd held_friction = Eigen::VectorXd::Zero(n);
     if (presliding) {
