@@ -48,6 +48,11 @@ void PreslidingModel::history_columns(const double* state, Eigen::Ref<Eigen::Mat
     for (int j = 0; j < joint_count(); ++j) D(j, p + j) = state[j];
 }
 
+const RobotModel& rigid_body(const RobotModel& model) {
+    const auto* presliding = dynamic_cast<const PreslidingModel*>(&model);
+    return presliding ? presliding->nominal() : model;
+}
+
 std::vector<double> presliding_states(const std::vector<double>& q, double displacement, double play_width, double initial_state) {
     PreslidingFriction friction(displacement, 0.5 * play_width, initial_state);
     std::vector<double> s(q.size());

@@ -49,6 +49,10 @@ private:
     std::vector<std::string> names_;
 };
 
+// The model without its presliding columns (itself when it has none): what regrouping and plausibility
+// checks of the rigid-body parameters look at. The presliding columns come last.
+const RobotModel& rigid_body(const RobotModel& model);
+
 // One joint's Dahl state along a position column (the play operator of total width `play_width`, then
 // the exact Dahl update; presliding_friction.hpp).
 std::vector<double> presliding_states(const std::vector<double>& q, double displacement, double play_width, double initial_state = 0.0);
