@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "identify/pipeline.hpp"
+#include "identify/presliding_displacement.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/robot_model.hpp"
 
@@ -64,9 +65,12 @@ std::string describe(const CoulombSmoothingChoice& choice, const std::vector<std
 
 // The model to identify with: the description's, or, with friction alpha: auto and smooth Coulomb friction,
 // the one with each joint's alpha chosen on `log` (`choice` then says how). `nominal` is the description's model.
+// With presliding: dahl and presliding_displacement: auto, each joint's x_p is chosen first (at the
+// description's alpha), then alpha with the chosen x_p (`presliding` says how).
 struct SmoothedModel {
     std::unique_ptr<robot::RobotModel> chosen;  // null: use `nominal` as it is
     std::optional<CoulombSmoothingChoice> choice;
+    std::optional<PreslidingDisplacementChoice> presliding;
     const robot::RobotModel& get(const robot::RobotModel& nominal) const { return chosen ? *chosen : nominal; }
 };
 SmoothedModel resolve_coulomb_smoothing(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& log,

@@ -30,6 +30,7 @@ IdentifiedLog solve_identification(PipelineOutput out, SmoothedModel smoothed, T
     MethodResult& r = fit.result;
     r.torque_delay = std::move(delay);
     r.coulomb_smoothing = smoothed.choice;
+    r.presliding_displacement = smoothed.presliding;
     r.info = std::move(out.info);
     r.plot = std::move(out.plot);
     r.solution = solve_least_squares(out.factors, fitted.parameter_names(), solve);

@@ -273,6 +273,11 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
     PipelineOutput out;
     out.info = std::move(planned);
     PipelineInfo& info = out.info;
+    // Columns with memory (presliding friction): their state integrated once along the whole log's raw
+    // positions, then written into every row before F_p, so they are filtered and decimated like the rest.
+    const auto history_size = static_cast<std::size_t>(model.history_size());
+    std::vector<double> history;
+    model.integrate_history(log.q, history);
 
     const int joints = model.joint_count();
     const int c = model.parameter_count();
@@ -327,6 +332,7 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                 qdds[js] = e.qdd[js][k];
             }
             model.regressor(qs.data(), qds.data(), qdds.data(), D);
+            if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
             for (int j = 0; j < joints; ++j) {
                 const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
                 for (int p = 0; p < c; ++p) buffer[base + static_cast<std::size_t>(p)][i] = D(j, p);

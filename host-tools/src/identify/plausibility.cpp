@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "robot/presliding_model.hpp"
 #include "robot/serial_robot_model.hpp"
 
 namespace jacobid::identify {
@@ -81,6 +82,12 @@ bool provably_non_negative(const std::vector<std::pair<std::string, double>>& te
 }  // namespace
 
 std::vector<SignConstraint> sign_constraints(const robot::RobotModel& model) {
+    if (const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(&model)) {
+        // The rigid-body model's constraints, then every presliding level FDj >= 0.
+        std::vector<SignConstraint> out = sign_constraints(presliding->nominal());
+        for (int j = 0; j < presliding->joint_count(); ++j) out.push_back({presliding->first_presliding_column() + j, "a presliding friction level"});
+        return out;
+    }
     std::vector<SignConstraint> out;
     const auto& names = model.parameter_names();
     if (const auto* serial = dynamic_cast<const robot::SerialRobotModel*>(&model)) {

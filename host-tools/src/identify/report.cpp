@@ -183,6 +183,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
         if (r.info.bandwidth_estimated) s += fmt::format("{} bandwidth estimate: {}\n", method_title(r), r.info.bandwidth_estimate.description);
         if (r.coulomb_smoothing) s += fmt::format("{} {}\n", method_title(r), describe(*r.coulomb_smoothing, ctx.joint_names));
         if (r.physical) s += fmt::format("{} {}\n", method_title(r), describe(*r.physical));
+        if (r.presliding_displacement) s += fmt::format("{} {}\n", method_title(r), describe(*r.presliding_displacement, ctx.joint_names));
         if (r.essential) {
             s += fmt::format("{} essential parameters (drop largest %sigma_r above threshold):\n", method_title(r));
             for (const auto& step : r.essential->steps) {
@@ -299,6 +300,18 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                          {"estimated", !r.torque_delay.given},           {"compensated", r.torque_delay.estimate.compensated},
                          {"at_bound", r.torque_delay.estimate.at_bound}, {"applied_seconds", r.torque_delay.applied()},
                          {"samples_used", r.torque_delay.estimate.samples_used}};
+    if (r.presliding_displacement) {
+        const PreslidingDisplacementChoice& p = *r.presliding_displacement;
+        json joints = json::array();
+        for (std::size_t k = 0; k < p.shape.joints.size(); ++k) {
+            const JointShape& js = p.shape.joints[k];
+            std::vector<json> heldout;
+            for (const double e : js.heldout_rms) heldout.push_back(finite(e));
+            joints.push_back({{"displacement", p.displacement[k]}, {"chosen", js.chosen}, {"reason", js.reason}, {"heldout_rms", heldout}});
+        }
+        j["presliding_displacement"] = {{"auto", true}, {"candidates", p.candidates}, {"folds", p.shape.folds}, {"passes", p.shape.passes},
+                                        {"joints", joints}};
+    }
     if (r.coulomb_smoothing) {
         const CoulombSmoothingChoice& c = *r.coulomb_smoothing;
         json joints = json::array();

@@ -40,6 +40,7 @@ struct MethodResult {
     TorqueDelayResult torque_delay;
     std::optional<CoulombSmoothingChoice> coulomb_smoothing;  // friction alpha: auto
     std::optional<PhysicalReport> physical;                   // --physical / --semi-physical
+    std::optional<PreslidingDisplacementChoice> presliding_displacement;  // friction presliding_displacement: auto
     PlotRows plot;
     // Which segments of a log split at its gaps (--on-gap split) the method used; empty otherwise.
     std::vector<SegmentReport> segments, validation_segments;

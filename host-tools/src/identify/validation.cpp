@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "identify/pipeline.hpp"
+#include "identify/presliding_initial_state.hpp"
 
 namespace jacobid::identify {
 
@@ -21,11 +22,14 @@ PipelineSettings validation_settings(const PipelineSettings& identification, con
     return v;
 }
 
-ValidationResult validate_prediction(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings,
+ValidationResult validate_prediction(const robot::RobotModel& fitted, const LogColumns& log, const PipelineSettings& settings,
                                      const Eigen::VectorXd& x_in) {
     PipelineInfo info = plan_pipeline(log, settings);
     const StateEstimates e = estimate_states(log, settings, info);
     const Eigen::VectorXd x = x_in.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+    // Friction with memory starts from the state observed at the log's start (presliding_initial_state.hpp).
+    std::unique_ptr<robot::RobotModel> observed;
+    const robot::RobotModel& model = with_observed_initial_state(fitted, log, x, observed);
     const int joints = model.joint_count();
     ValidationResult r;
     r.source = log.source;
@@ -64,6 +68,9 @@ ValidationResult validate_prediction(const robot::RobotModel& model, const LogCo
     // Raw full-rate comparison over the valid derivative range.
     Eigen::MatrixXd D(joints, model.parameter_count());
     std::vector<double> q(nj), qd(nj), qdd(nj);
+    const auto history_size = static_cast<std::size_t>(model.history_size());
+    std::vector<double> history;  // presliding state along the raw positions, as in run_pipeline
+    model.integrate_history(log.q, history);
     for (std::size_t k = e.first; k < e.last; ++k) {
         for (std::size_t j = 0; j < nj; ++j) {
             q[j] = e.q[j][k];
@@ -71,6 +78,7 @@ ValidationResult validate_prediction(const robot::RobotModel& model, const LogCo
             qdd[j] = e.qdd[j][k];
         }
         model.regressor(q.data(), qd.data(), qdd.data(), D);
+        if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
         const Eigen::VectorXd tau = D * x;
         for (std::size_t j = 0; j < nj; ++j) {
             const double err = (*log.tau[j])[k] - tau[static_cast<Eigen::Index>(j)];

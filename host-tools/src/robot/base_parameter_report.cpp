@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include "robot/presliding_model.hpp"
 #include "robot/serial_robot_model.hpp"
 
 namespace jacobid::robot {
@@ -24,7 +25,7 @@ std::vector<std::string> no_effect_names(const SerialRobotModel& serial) {
 
 std::string base_parameter_text(const RobotDescription& d, const RobotModel& model) {
     const Eigen::VectorXd truth = true_parameters(d, model);
-    const auto* serial = dynamic_cast<const SerialRobotModel*>(&model);
+    const auto* serial = dynamic_cast<const SerialRobotModel*>(&rigid_body(model));
     std::string s = fmt::format("model {} ({}): {} joints", model.model_name(), d.source, model.joint_count());
     if (serial) s += fmt::format(", {} standard parameters", serial->standard_parameter_count());
     s += fmt::format(", {} base parameters\n", model.parameter_count());
@@ -39,6 +40,9 @@ std::string base_parameter_text(const RobotDescription& d, const RobotModel& mod
     std::size_t width = 0;
     for (const auto& r : relations) width = std::max(width, r.size());
     for (std::size_t b = 0; b < relations.size(); ++b) s += fmt::format("  {:<{}}   value {:.6g}\n", relations[b], width, truth[static_cast<Eigen::Index>(b)]);
+    for (int b = static_cast<int>(relations.size()); b < model.parameter_count(); ++b) {  // presliding levels FDj
+        s += fmt::format("  {:<{}}   value {:.6g}\n", model.parameter_names()[static_cast<std::size_t>(b)], width, truth[b]);
+    }
     const auto none = no_effect_names(*serial);
     if (!none.empty()) s += fmt::format("no effect on the torques (not identifiable at all): {}\n", joined(none));
     return s;
@@ -51,12 +55,12 @@ nlohmann::json base_parameter_json(const RobotDescription& d, const RobotModel& 
     j["robot"] = d.source;
     j["joints"] = model.joint_count();
     nlohmann::json base = nlohmann::json::array();
-    const auto* serial = dynamic_cast<const SerialRobotModel*>(&model);
+    const auto* serial = dynamic_cast<const SerialRobotModel*>(&rigid_body(model));
     for (int b = 0; b < model.parameter_count(); ++b) {
         nlohmann::json entry;
         entry["name"] = model.parameter_names()[static_cast<std::size_t>(b)];
         entry["value"] = truth[b];
-        if (serial) {
+        if (serial && b < serial->parameter_count()) {
             nlohmann::json terms = nlohmann::json::array();
             for (int c = 0; c < serial->standard_parameter_count(); ++c) {
                 const double k = serial->base().regrouping(b, c);

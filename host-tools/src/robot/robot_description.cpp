@@ -15,6 +15,7 @@
 
 #include "core/errors.hpp"
 #include "robot/planar2r_model.hpp"
+#include "robot/presliding_model.hpp"
 #include "robot/serial_robot_model.hpp"
 #include "robot/urdf_chain.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
@@ -143,31 +144,55 @@ void parse_urdf(Section& top, RobotDescription& d) {
                     });
 }
 
-// friction.alpha: auto, one positive number for every joint, or a list with one per joint.
-void read_coulomb_alpha(Section& friction, RobotDescription& d) {
-    if (!friction.has("alpha")) {
-        friction.mark_used("alpha");
+// A friction shape option that is `auto`, one positive number for every joint, or a list with one per
+// joint (friction.alpha, friction.presliding_displacement).
+void read_auto_or_per_joint(Section& friction, const char* key, const char* unit, std::size_t joints, bool& is_auto, double& common,
+                            std::vector<double>& per_joint) {
+    if (!friction.has(key)) {
+        friction.mark_used(key);
         return;
     }
-    const YAML::Node node = friction.get("alpha");
+    const YAML::Node node = friction.get(key);
     const auto positive = [&](const YAML::Node& n) {
-        const double v = friction.number_element(n, "alpha", "s/rad");
-        if (!(v > 0.0)) friction.fail(n, "alpha", "must be > 0 s/rad");
+        const double v = friction.number_element(n, key, unit);
+        if (!(v > 0.0)) friction.fail(n, key, fmt::format("must be > 0 {}", unit));
         return v;
     };
     if (node.IsScalar() && node.Scalar() == "auto") {
-        d.coulomb_alpha_auto = true;
+        is_auto = true;
     } else if (node.IsSequence()) {
-        const std::size_t n = d.joints.size();
-        if (node.size() != n) friction.fail(node, "alpha", fmt::format("must be auto, a number, or a list of {} numbers (one per joint)", n));
-        for (const auto& entry : node) d.coulomb_alpha.push_back(positive(entry));
-        d.coulomb_alpha_auto = false;
+        if (node.size() != joints) friction.fail(node, key, fmt::format("must be auto, a number, or a list of {} numbers (one per joint)", joints));
+        for (const auto& entry : node) per_joint.push_back(positive(entry));
+        is_auto = false;
     } else if (node.IsScalar()) {
-        d.coulomb.alpha = positive(node);
-        d.coulomb_alpha_auto = false;
+        common = positive(node);
+        is_auto = false;
     } else {
-        friction.fail(node, "alpha", "expected auto, a number or a list of numbers (s/rad)");
+        friction.fail(node, key, fmt::format("expected auto, a number or a list of numbers ({})", unit));
     }
+}
+
+void emit_auto_or_per_joint(YAML::Emitter& out, bool is_auto, double common, const std::vector<double>& per_joint) {
+    if (is_auto && per_joint.empty()) {
+        out << "auto";
+    } else if (!per_joint.empty()) {
+        out << YAML::Flow << YAML::BeginSeq;
+        for (const double a : per_joint) out << a;
+        out << YAML::EndSeq;
+    } else {
+        out << common;
+    }
+}
+
+std::unique_ptr<RobotModel> make_rigid_body_model(const RobotDescription& d);
+
+// Names a `parameters:` entry may take beyond the model's own: the presliding levels FDj.
+std::vector<std::string> presliding_names(const RobotDescription& d) {
+    std::vector<std::string> names;
+    if (d.presliding) {
+        for (std::size_t j = 0; j < d.joints.size(); ++j) names.push_back(fmt::format("FD{}", j + 1));
+    }
+    return names;
 }
 
 StandardParameterOptions options_of(const RobotDescription& d) {
@@ -215,8 +240,19 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
         d.coulomb.model = friction.choice("coulomb", d.coulomb.model == CoulombModel::Sign ? "sign" : "smooth", {"sign", "smooth"}) == "sign"
                               ? CoulombModel::Sign
                               : CoulombModel::SmoothAtan;
-        read_coulomb_alpha(friction, d);
+        read_auto_or_per_joint(friction, "alpha", "s/rad", d.joints.size(), d.coulomb_alpha_auto, d.coulomb.alpha, d.coulomb_alpha);
         d.friction_offset = friction.boolean("offset", d.friction_offset);
+        d.presliding = friction.choice("presliding", d.presliding ? "dahl" : "none", {"none", "dahl"}) == "dahl";
+        for (const char* key : {"presliding_displacement", "presliding_play"}) {
+            if (friction.has(key) && !d.presliding) friction.fail(key, "needs presliding: dahl");
+        }
+        read_auto_or_per_joint(friction, "presliding_displacement", "rad", d.joints.size(), d.presliding_displacement_auto,
+                               d.presliding_displacement, d.presliding_displacements);
+        if (friction.has("presliding_play")) {
+            d.presliding_play = friction.number("presliding_play", d.presliding_play);
+            if (!(d.presliding_play >= 0.0)) friction.fail("presliding_play", "must be >= 0 rad (the play operator's total width)");
+        }
+        friction.mark_used("presliding_play");
         friction.reject_unknown();
     }
     d.rotor_inertia = top.boolean("rotor_inertia", d.rotor_inertia);
@@ -224,8 +260,11 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
     if (top.has("parameters")) {
         Section parameters = top.child("parameters");
         // Serial robots take standard parameters (the base ones are derived); planar2r takes its base parameters.
-        const std::vector<std::string> known =
+        std::vector<std::string> known =
             is_serial(d.model) ? standard_parameter_names(static_cast<int>(d.chain.size()), options_of(d)) : make_robot_model(d)->parameter_names();
+        if (is_serial(d.model)) {
+            for (auto& name : presliding_names(d)) known.push_back(std::move(name));
+        }
         for (const auto& entry : parameters.node()) {
             if (!entry.first.IsScalar()) parameters.fail(entry.first, "", "expected a parameter name, found a list or map used as a key");
             const std::string name = entry.first.Scalar();
@@ -259,6 +298,22 @@ std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& d) {
 }
 
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
+    std::unique_ptr<RobotModel> nominal = make_rigid_body_model(d);
+    if (!d.presliding) return nominal;
+    return std::make_unique<PreslidingModel>(std::move(nominal), presliding_settings(d));
+}
+
+PreslidingSettings presliding_settings(const RobotDescription& d) {
+    PreslidingSettings s;
+    s.displacement.assign(d.joints.size(), d.presliding_displacement);
+    for (std::size_t j = 0; j < s.displacement.size() && j < d.presliding_displacements.size(); ++j) s.displacement[j] = d.presliding_displacements[j];
+    s.play_width = d.presliding_play;
+    return s;
+}
+
+namespace {
+// The model without friction memory.
+std::unique_ptr<RobotModel> make_rigid_body_model(const RobotDescription& d) {
     if (d.model == "planar2r") {
         Planar2RConfig config;
         config.L1 = d.L1;
@@ -286,6 +341,7 @@ std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
     }
     throw InputError(fmt::format("{}: unknown model '{}' (known models: {})", d.source, d.model, kKnownModels));
 }
+}  // namespace
 
 Eigen::VectorXd standard_values(const RobotDescription& d, const SerialRobotModel& serial) {
     Eigen::VectorXd standard = Eigen::VectorXd::Zero(serial.standard_parameter_count());
@@ -300,6 +356,21 @@ Eigen::VectorXd standard_values(const RobotDescription& d, const SerialRobotMode
 }
 
 Eigen::VectorXd true_parameters(const RobotDescription& d, const RobotModel& model) {
+    if (const auto* presliding = dynamic_cast<const PreslidingModel*>(&model)) {
+        // The rigid-body values, then FDj from `parameters` (0 when not given).
+        RobotDescription rigid = d;
+        rigid.parameters.clear();
+        const std::vector<std::string> fd = presliding_names(d);
+        std::vector<std::pair<std::string, double>> levels;
+        for (const auto& entry : d.parameters) {
+            (std::find(fd.begin(), fd.end(), entry.first) == fd.end() ? rigid.parameters : levels).push_back(entry);
+        }
+        const Eigen::VectorXd x0 = true_parameters(rigid, presliding->nominal());
+        Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
+        x.head(x0.size()) = x0;
+        for (const auto& [name, value] : levels) x[model.parameter_index(name)] = value;
+        return x;
+    }
     if (const auto* serial = dynamic_cast<const SerialRobotModel*>(&model)) return serial->base_values(standard_values(d, *serial));
     Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
     if (const auto* planar = dynamic_cast<const Planar2RModel*>(&model)) {
@@ -346,16 +417,14 @@ std::string to_yaml(const RobotDescription& d) {
     out << YAML::Key << "friction" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "coulomb" << YAML::Value << (d.coulomb.model == CoulombModel::Sign ? "sign" : "smooth");
     out << YAML::Key << "alpha" << YAML::Value;
-    if (d.coulomb_alpha_auto && d.coulomb_alpha.empty()) {
-        out << "auto";
-    } else if (!d.coulomb_alpha.empty()) {
-        out << YAML::Flow << YAML::BeginSeq;
-        for (const double a : d.coulomb_alpha) out << a;
-        out << YAML::EndSeq;
-    } else {
-        out << d.coulomb.alpha;
+    emit_auto_or_per_joint(out, d.coulomb_alpha_auto, d.coulomb.alpha, d.coulomb_alpha);
+    out << YAML::Key << "offset" << YAML::Value << d.friction_offset;
+    if (d.presliding) {
+        out << YAML::Key << "presliding" << YAML::Value << "dahl" << YAML::Key << "presliding_displacement" << YAML::Value;
+        emit_auto_or_per_joint(out, d.presliding_displacement_auto, d.presliding_displacement, d.presliding_displacements);
+        out << YAML::Key << "presliding_play" << YAML::Value << d.presliding_play;
     }
-    out << YAML::Key << "offset" << YAML::Value << d.friction_offset << YAML::EndMap;
+    out << YAML::EndMap;
     out << YAML::Key << "rotor_inertia" << YAML::Value << d.rotor_inertia;
     if (!d.parameters.empty()) {
         out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;

@@ -11,6 +11,9 @@
 //     coulomb: smooth        # sign | smooth (2/pi atan(alpha qd))
 //     alpha: auto            # s/rad: auto (default: chosen per joint on held-out data), a number, or one per joint
 //     offset: false          # constant friction offset per joint (FOFF1, FOFF2)
+//     presliding: none       # none | dahl: presliding friction with memory, FDj s_j (robot/presliding_model.hpp)
+//     presliding_displacement: auto  # rad: auto (chosen per joint on held-out data), a number, or one per joint
+//     presliding_play: 2e-4  # rad: total width of the play operator that removes quantization flicker (0: none)
 //   rotor_inertia: false     # separate rotor inertia of joint 2 (IA2)
 //   parameters: {ZZ1R: 3.496, ...}  # optional: true values, used by `jacobid simulate`
 //   controller: {omega: 30, damping: 1, rate: 1000}  # optional: the position loop (controller_description.hpp)
@@ -39,6 +42,7 @@
 #include "jacobid/robot/kinematic_chain.hpp"
 #include "jacobid/robot/mdh_joint.hpp"
 #include "robot/controller_description.hpp"
+#include "robot/presliding_model.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::robot {
@@ -62,6 +66,14 @@ struct RobotDescription {
     bool coulomb_alpha_auto = true;
     std::vector<double> coulomb_alpha;  // s/rad per joint (a list in the file, or chosen); empty: coulomb.alpha for all
     bool friction_offset = false;
+    // friction.presliding: dahl (docs/method.md, "Presliding friction (Dahl)"). presliding_displacement:
+    // `auto` (the default) lets identify choose x_p per joint on held-out data
+    // (identify/presliding_displacement.hpp); until then, and in simulation, the common value applies.
+    bool presliding = false;
+    bool presliding_displacement_auto = true;
+    double presliding_displacement = 3e-4;                // rad, every joint
+    std::vector<double> presliding_displacements;         // rad per joint (a list, or chosen); empty: the common value
+    double presliding_play = 2e-4;                        // rad, play operator's total width
     bool rotor_inertia = false;
     std::vector<std::pair<std::string, double>> parameters;  // in file order; empty: not given
     std::optional<ControllerDescription> controller;         // the position loop (simulate, identify --estimator iv|didim)
@@ -81,8 +93,11 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
 // Each joint's Coulomb sign function: coulomb with the joint's alpha (coulomb_alpha) when given.
 std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& description);
 
-// The model the description names. InputError for an unknown model.
+// The model the description names (wrapped in a PreslidingModel with presliding: dahl). InputError for an
+// unknown model.
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& description);
+// The presliding settings of the description's joints (displacement per joint, play width).
+PreslidingSettings presliding_settings(const RobotDescription& description);
 
 // True parameter values for simulation, in model order: the model's reference values (the paper's Table II
 // for planar2r), overridden by the description's `parameters`. Serial models: the description's standard

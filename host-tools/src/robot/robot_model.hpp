@@ -30,6 +30,18 @@ public:
 
     // Index of a parameter by name, -1 if the model has none of that name.
     int parameter_index(const std::string& name) const;
+
+    // Friction with memory (presliding, docs/method.md "Presliding friction (Dahl)"): some columns depend on
+    // the path of the positions, which a stateless regressor call cannot see. Such a model says how many
+    // state values per sample it needs, integrates them once along a whole log's (raw) positions into
+    // `state` (samples x history_size(), row-major), and writes its history columns from one sample's
+    // values after regressor() has left them 0. Stateless models: size 0, nothing to do.
+    virtual int history_size() const { return 0; }
+    virtual void integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const {
+        (void)q;
+        state.clear();
+    }
+    virtual void history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const { (void)state, (void)D; }
 };
 
 // Rigid-body forward dynamics from the regressor alone (valid for every model linear in its parameters):

@@ -32,7 +32,7 @@ PdGains described_gains(const robot::ControllerDescription& c, robot::ForwardDyn
 
 void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0, const PdGains& gains,
                      const ClosedLoopSettings& settings, const ReferenceFunction& reference, const std::string& failure,
-                     const std::function<void(const ClosedLoopSample&)>& sink) {
+                     const std::function<void(const ClosedLoopSample&)>& sink, HeldFriction* friction) {
     const Eigen::Index n = q0.size();
     const double control_period = 1.0 / settings.control_rate;
     const double h = control_period / settings.substeps;
@@ -55,9 +55,11 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
         k_q[i].resize(n);
         k_qd[i].resize(n);
     }
-    Eigen::VectorXd q_stage(n), qd_stage(n), tau_stage(n), tau(n), qdd(n);
+    Eigen::VectorXd q_stage(n), qd_stage(n), tau_stage(n), tau(n), qdd(n), q_before(n);
+    Eigen::VectorXd held = Eigen::VectorXd::Zero(n);  // friction with memory, over the current step
     auto derivative = [&](double t, const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, Eigen::VectorXd& dq, Eigen::VectorXd& dqd) {
         torque_at(t, tau_stage);
+        tau_stage -= held;
         dq = qds;
         accelerations(qs, qds, tau_stage, dqd);
     };
@@ -81,7 +83,7 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
         }
         if (step % settings.steps_per_output == 0) {
             torque_at(t, tau);
-            accelerations(q, qd, tau, qdd);
+            accelerations(q, qd, tau - held, qdd);
             sample.index = step / settings.steps_per_output;
             sample.t = t;
             sink(sample);
@@ -98,8 +100,10 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
         q_stage = q + h * k_q[2];
         qd_stage = qd + h * k_qd[2];
         derivative(t + h, q_stage, qd_stage, k_q[3], k_qd[3]);
+        q_before = q;
         q += h / 6.0 * (k_q[0] + 2.0 * k_q[1] + 2.0 * k_q[2] + k_q[3]);
         qd += h / 6.0 * (k_qd[0] + 2.0 * k_qd[1] + 2.0 * k_qd[2] + k_qd[3]);
+        if (friction) friction->step(q_before, q, held);
     }
 }
 

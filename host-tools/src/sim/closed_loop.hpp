@@ -55,13 +55,22 @@ struct ClosedLoopSample {
     const ReferenceSample* reference = nullptr;  // the reference of the last control instant
 };
 
+// A friction torque with memory (presliding, docs/method.md "Presliding friction (Dahl)"): held over each
+// integration step, updated from the positions before and after it; the joints feel -torque.
+class HeldFriction {
+public:
+    virtual ~HeldFriction() = default;
+    virtual void step(const Eigen::VectorXd& before, const Eigen::VectorXd& after, Eigen::VectorXd& torque) = 0;
+};
+
 // Reference at control instant t (t never decreases between calls).
 using ReferenceFunction = std::function<void(double t, ReferenceSample& out)>;
 
 // Integrates the loop from rest state (q0, qd0). `failure` is the InputError message when the dynamics
-// have no positive definite inertia matrix on the way (parameters no rigid body can have).
+// have no positive definite inertia matrix on the way (parameters no rigid body can have). `friction`, if
+// given, acts on the joints besides the dynamics' own terms (the sample's tau stays the motor torque).
 void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0, const PdGains& gains,
                      const ClosedLoopSettings& settings, const ReferenceFunction& reference, const std::string& failure,
-                     const std::function<void(const ClosedLoopSample&)>& sink);
+                     const std::function<void(const ClosedLoopSample&)>& sink, HeldFriction* friction = nullptr);
 
 }  // namespace jacobid::sim

@@ -5,13 +5,41 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/errors.hpp"
+#include "jacobid/robot/presliding_friction.hpp"
+#include "robot/presliding_model.hpp"
+#include "sim/augmented_model.hpp"
 #include "sim/closed_loop.hpp"
 #include "sim/torque_delay_line.hpp"
 
 namespace jacobid::sim {
 namespace {
+
+// Presliding friction of a PreslidingModel: each joint's Dahl state integrated along the true positions (no
+// quantization, no play), the joints feel FDj s_j, which the controller's torque then carries into the log
+// (docs/method.md, "Presliding friction (Dahl)").
+class DahlFriction final : public HeldFriction {
+public:
+    DahlFriction(const robot::PreslidingModel& model, const Eigen::VectorXd& parameters) : first_(model.first_presliding_column()) {
+        for (int j = 0; j < model.joint_count(); ++j) {
+            dahl_.emplace_back(model.settings().displacement[static_cast<std::size_t>(j)]);
+            level_.push_back(parameters[first_ + j]);
+        }
+    }
+    void step(const Eigen::VectorXd& before, const Eigen::VectorXd& after, Eigen::VectorXd& torque) override {
+        for (std::size_t j = 0; j < dahl_.size(); ++j) {
+            const auto je = static_cast<Eigen::Index>(j);
+            torque[je] = level_[j] * dahl_[j].step(after[je] - before[je]);
+        }
+    }
+
+private:
+    int first_;
+    std::vector<robot::DahlState> dahl_;
+    std::vector<double> level_;
+};
 
 std::size_t steps_per_output(const SimulationSettings& s) {
     const double ratio = s.control_rate * s.substeps / s.output_rate;
@@ -78,6 +106,9 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     sample.tau_measured.resize(n);
     sample.q_ref.resize(n);
     sample.qd_ref.resize(n);
+    const auto* augmented = dynamic_cast<const AugmentedModel*>(&model);
+    const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(augmented ? &augmented->nominal() : &model);
+    std::unique_ptr<DahlFriction> dahl = presliding ? std::make_unique<DahlFriction>(*presliding, parameters) : nullptr;
     // True parameters no rigid body can have (a negative inertia) leave no dynamics to integrate.
     run_closed_loop(
         dynamics, q0, Eigen::VectorXd::Zero(n), gains, loop, [&](double t, ReferenceSample& ref) { trajectory.evaluate(t, ref); },
@@ -97,7 +128,8 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
                 sample.qd_ref[j] = s.reference->qd[js];
             }
             sink(sample);
-        });
+        },
+        dahl.get());
 }
 
 MeasuredLog simulate_log(const robot::RobotModel& model, const Eigen::VectorXd& parameters, const std::vector<robot::JointDescription>& joints,
