@@ -9,6 +9,7 @@ packages=(
   libcli11-dev libfmt-dev libyaml-cpp-dev libfast-float-dev nlohmann-json3-dev libfftw3-dev gnuplot-nox  # host-tools/
   liburdfdom-dev liborocos-kdl-dev                # host-tools/ URDF loading; tests: independent RNEA (KDL)
   clang libclang-rt-14-dev                        # sanitizer build and libFuzzer targets (scripts/sanitize-test.sh, fuzz/)
+  libnlopt-cxx-dev                                # host-tools/: jacobid excite (SLSQP)
   libgtest-dev libgmock-dev libbenchmark-dev valgrind python3-scipy python3-numpy python3-can  # tests, benchmarks, references
 )
 missing=()

@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
     jacobid::cli::add_sim_can_command(app);
     jacobid::cli::add_diagnose_command(app);
     jacobid::cli::add_montecarlo_command(app);
+#if JACOBID_WITH_NLOPT
+    jacobid::cli::add_excite_command(app);
+#endif
 
     try {
         app.parse(argc, argv);

@@ -16,6 +16,8 @@
 #include "sim/augmented_model.hpp"
 #include "sim/effect_spec.hpp"
 #include "sim/simulator.hpp"
+#include "sim/tabulated_trajectory.hpp"
+#include "io/csv_table.hpp"
 
 namespace jacobid::cli {
 namespace {
@@ -28,6 +30,8 @@ struct SimulateOptions : SimulationOptions {
     std::string states;
     std::vector<std::string> effects;  // --effect tokens
     std::string effects_file;
+    std::string trajectory;          // --trajectory: a given reference instead of the random moves
+    bool duration_given = false;     // --duration on the command line (else a --trajectory's length)
     bool quiet = false;
 };
 
@@ -82,7 +86,16 @@ void run(SimulateOptions o) {
 
     sim::MeasurementSettings ms = measurement_settings(o, n);
     apply_controller(robot, o);
+    std::shared_ptr<const sim::TabulatedTrajectory> reference;
+    if (!o.trajectory.empty()) {
+        reference = std::make_shared<const sim::TabulatedTrajectory>(io::read_csv(o.trajectory), n);
+        if (!o.duration_given) o.settings.duration = reference->length();
+    }
     o.settings = simulation_settings(o);
+    if (reference) {
+        o.settings.reference = [reference](double t, sim::ReferenceSample& out) { reference->evaluate(t, out); };
+        o.settings.reference_start = reference->start();
+    }
 
     // Hidden effects: the truth is the nominal model plus the effects' columns with the injected
     // coefficients; a torque delay acts in the measurement instead.
@@ -174,7 +187,8 @@ void run(SimulateOptions o) {
                            {"control_rate", o.settings.control_rate}, {"integration_rate", o.settings.control_rate * o.settings.substeps},
                            {"omega_dyn", o.settings.omega_dyn},     {"damping", o.settings.damping},
                            {"seed", o.settings.seed},               {"move_duration", o.move_duration},
-                           {"dwell", o.settings.moves.max_dwell}};
+                           {"dwell", o.settings.moves.max_dwell},
+                           {"trajectory", o.trajectory.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.trajectory)}};
     truth["measurement"] = {{"encoder_counts_per_rev", ms.encoder_counts_per_rev}, {"torque_noise", ms.torque_noise},
                             {"ripple_amplitude", ms.ripple_amplitude},           {"ripple_periods_per_rev", ms.ripple_periods_per_rev},
                             {"position_noise", ms.position_noise},
@@ -208,8 +222,14 @@ void add_simulate_command(CLI::App& app) {
                     "angles in degrees; see docs/diagnose.md)")
         ->take_all();
     cmd->add_option("--effects", o->effects_file, "YAML file of effects to inject: effects: [{name: cogging, joint: 2, amplitude: 0.2, order: 6}, ...]");
+    cmd->add_option("--trajectory", o->trajectory,
+                    "follow this reference instead of random moves: CSV t,q1..,qd1..,qdd1.. (e.g. from jacobid excite), repeated after its "
+                    "last row; --duration defaults to its length");
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
-    cmd->callback([o] { run(*o); });
+    cmd->callback([o, cmd] {
+        o->duration_given = cmd->count("--duration") > 0;
+        run(*o);
+    });
 }
 
 }  // namespace jacobid::cli

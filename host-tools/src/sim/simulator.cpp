@@ -78,8 +78,11 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     validate(settings);
     const int n = model.joint_count();
     robot::ForwardDynamics dynamics(model, parameters);
+    if (settings.reference && static_cast<int>(settings.reference_start.size()) != n) {
+        throw InputError(fmt::format("--trajectory: starts with {} joints, the robot has {}", settings.reference_start.size(), n));
+    }
 
-    const Eigen::VectorXd q0 = start_configuration(joints);
+    const Eigen::VectorXd q0 = settings.reference ? Eigen::Map<const Eigen::VectorXd>(settings.reference_start.data(), n).eval() : start_configuration(joints);
     const std::vector<double> start(q0.data(), q0.data() + n);
     std::vector<double> lower, upper;
     for (const auto& joint : joints) {
@@ -111,7 +114,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     std::unique_ptr<DahlFriction> dahl = presliding ? std::make_unique<DahlFriction>(*presliding, parameters) : nullptr;
     // True parameters no rigid body can have (a negative inertia) leave no dynamics to integrate.
     run_closed_loop(
-        dynamics, q0, Eigen::VectorXd::Zero(n), gains, loop, [&](double t, ReferenceSample& ref) { trajectory.evaluate(t, ref); },
+        dynamics, q0, Eigen::VectorXd::Zero(n), gains, loop, [&](double t, ReferenceSample& ref) { settings.reference ? settings.reference(t, ref) : trajectory.evaluate(t, ref); },
         "simulate: the robot's parameters give an inertia matrix that is not positive definite (a negative mass or inertia?)",
         [&](const ClosedLoopSample& s) {
             sample.t = s.t;

@@ -36,6 +36,10 @@ struct SimulationSettings {
     std::uint64_t seed = 1;      // trajectory seed (the measurement model has its own)
     // Explicit PD gains per joint (the robot description's controller); empty: from omega_dyn and damping.
     Eigen::VectorXd kp, kd;
+    // A given reference (simulate --trajectory) instead of the random moves, and where it starts (the robot
+    // starts there at rest); empty: the random moves.
+    std::function<void(double t, ReferenceSample& out)> reference;
+    std::vector<double> reference_start;
 };
 
 // One logged sample: truth and measurement.

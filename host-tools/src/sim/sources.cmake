@@ -2,6 +2,7 @@
 # Closed-loop simulation (included by host-tools/CMakeLists.txt).
 target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/quintic_trajectory.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tabulated_trajectory.cpp
   ${CMAKE_CURRENT_LIST_DIR}/measurement.cpp
   ${CMAKE_CURRENT_LIST_DIR}/closed_loop.cpp
   ${CMAKE_CURRENT_LIST_DIR}/simulator.cpp

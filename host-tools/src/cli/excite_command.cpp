@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: MIT
+// jacobid excite: an optimized excitation trajectory for identification (docs/excite.md): finite Fourier
+// series per joint, at rest at a pose at both ends of every period, the column-scaled base regressor's
+// condition number (or log-determinant) optimized within the joints' limits; CSV at the control rate, JSON,
+// optional PNG.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/command.hpp"
+#include "cli/output_file.hpp"
+#include "excite/excitation_design.hpp"
+#include "plot/gnuplot.hpp"
+#include "robot/robot_description.hpp"
+
+namespace jacobid::cli {
+namespace {
+
+struct ExciteOptions {
+    std::string robot;
+    double duration = 20.0;
+    int harmonics = 5;
+    double base_frequency = 0.1;
+    std::string criterion = "cond";
+    std::string output = "-";
+    std::string json;
+    std::string plot;
+    std::vector<double> pose, velocity_limit, acceleration_limit, torque_limit;
+    double rate = 1000.0;
+    int samples = 0;
+    int starts = 4;
+    double time_limit = 60.0;
+    std::uint64_t seed = 1;
+    bool quiet = false;
+};
+
+// One value for every joint, or one per joint; `what` names the option in errors.
+std::vector<double> per_joint(const std::vector<double>& given, int joints, double fallback, const char* what) {
+    if (given.empty()) return std::vector<double>(static_cast<std::size_t>(joints), fallback);
+    if (given.size() == 1) return std::vector<double>(static_cast<std::size_t>(joints), given.front());
+    if (static_cast<int>(given.size()) != joints) {
+        throw InputError(fmt::format("{}: {} values for a robot with {} joints (give one value or one per joint)", what, given.size(), joints));
+    }
+    return given;
+}
+
+std::vector<excite::JointLimits> joint_limits(const robot::RobotDescription& robot, const Eigen::VectorXd& pose, const ExciteOptions& o) {
+    const int n = static_cast<int>(robot.joints.size());
+    const auto v = per_joint(o.velocity_limit, n, std::numeric_limits<double>::infinity(), "--velocity-limit");
+    const auto a = per_joint(o.acceleration_limit, n, std::numeric_limits<double>::infinity(), "--acceleration-limit");
+    const auto t = per_joint(o.torque_limit, n, std::numeric_limits<double>::infinity(), "--torque-limit");
+    std::vector<excite::JointLimits> limits(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+        const auto& jd = robot.joints[static_cast<std::size_t>(j)];
+        auto& l = limits[static_cast<std::size_t>(j)];
+        l.lower = jd.lower_limit, l.upper = jd.upper_limit;
+        l.velocity = v[static_cast<std::size_t>(j)], l.acceleration = a[static_cast<std::size_t>(j)], l.torque = t[static_cast<std::size_t>(j)];
+        if (!(pose[j] > l.lower && pose[j] < l.upper)) {
+            throw InputError(fmt::format("--pose: joint {} at {} rad is not strictly inside its limits [{}, {}] (robot description)", j + 1, pose[j], l.lower,
+                                         l.upper));
+        }
+        for (const auto& [value, name] : {std::pair{l.velocity, "--velocity-limit"}, {l.acceleration, "--acceleration-limit"}, {l.torque, "--torque-limit"}}) {
+            if (!(value > 0.0)) throw InputError(fmt::format("{}: joint {} limit {}: expected > 0", name, j + 1, value));
+        }
+    }
+    return limits;
+}
+
+void check(const ExciteOptions& o) {
+    if (!(o.base_frequency > 0.0) || !std::isfinite(o.base_frequency)) throw InputError(fmt::format("--base-frequency {}: expected > 0 Hz", o.base_frequency));
+    if (o.harmonics < 1 || o.harmonics > 50) throw InputError(fmt::format("--harmonics {}: expected 1 .. 50", o.harmonics));
+    const double period = 1.0 / o.base_frequency, periods = o.duration / period;
+    if (!(o.duration > 0.0) || std::abs(periods - std::round(periods)) > 1e-9 * periods || std::round(periods) < 1.0) {
+        throw InputError(fmt::format("--duration {}: expected a whole number of periods of 1 / --base-frequency = {} s", o.duration, period));
+    }
+    if (!(o.rate > 0.0) || std::abs(period * o.rate - std::round(period * o.rate)) > 1e-6) {
+        throw InputError(fmt::format("--rate {}: expected a rate with a whole number of samples per period ({} s)", o.rate, period));
+    }
+    if (o.starts < 1) throw InputError(fmt::format("--starts {}: expected >= 1", o.starts));
+    if (!(o.time_limit > 0.0)) throw InputError(fmt::format("--time-limit {}: expected > 0 s", o.time_limit));
+    if (o.samples < 0) throw InputError(fmt::format("--samples {}: expected >= 0 (0: automatic)", o.samples));
+}
+
+struct Sampled {
+    std::vector<double> t;
+    std::vector<std::vector<double>> q, qd, qdd, tau;  // per joint
+};
+
+Sampled sample(const excite::FourierTrajectory& trajectory, const robot::RobotModel& model, const Eigen::VectorXd& x, double duration, double rate) {
+    const int n = trajectory.joints();
+    Sampled s;
+    s.q.resize(static_cast<std::size_t>(n)), s.qd.resize(static_cast<std::size_t>(n)), s.qdd.resize(static_cast<std::size_t>(n)),
+        s.tau.resize(static_cast<std::size_t>(n));
+    const auto count = static_cast<std::size_t>(std::llround(duration * rate));
+    Eigen::VectorXd q(n), qd(n), qdd(n);
+    Eigen::MatrixXd Y(n, model.parameter_count());
+    for (std::size_t i = 0; i <= count; ++i) {
+        const double t = static_cast<double>(i) / rate;
+        trajectory.evaluate(t, q, qd, qdd);
+        model.regressor(q.data(), qd.data(), qdd.data(), Y);
+        const Eigen::VectorXd tau = Y * x;
+        s.t.push_back(t);
+        for (int j = 0; j < n; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            s.q[k].push_back(q[j]), s.qd[k].push_back(qd[j]), s.qdd[k].push_back(qdd[j]), s.tau[k].push_back(tau[j]);
+        }
+    }
+    return s;
+}
+
+std::string csv(const Sampled& s) {
+    const std::size_t n = s.q.size();
+    std::string out = "t";
+    for (const char* kind : {"q", "qd", "qdd"}) {
+        for (std::size_t j = 0; j < n; ++j) out += fmt::format(",{}{}", kind, j + 1);
+    }
+    out += "\n";
+    for (std::size_t i = 0; i < s.t.size(); ++i) {
+        out += fmt::format("{:.6f}", s.t[i]);
+        for (const auto* v : {&s.q, &s.qd, &s.qdd}) {
+            for (std::size_t j = 0; j < n; ++j) out += fmt::format(",{:.17g}", (*v)[j][i]);
+        }
+        out += "\n";
+    }
+    return out;
+}
+
+void plot(const std::string& path, const Sampled& s) {
+    std::vector<plot::Panel> panels;
+    const char* titles[3] = {"position (rad)", "velocity (rad/s)", "motor torque of the model (N.m)"};
+    const std::vector<std::vector<double>>* values[3] = {&s.q, &s.qd, &s.tau};
+    for (int p = 0; p < 3; ++p) {
+        plot::Panel panel{titles[p], "t (s)", titles[p], false, false, {}, ""};
+        for (std::size_t j = 0; j < s.q.size(); ++j) panel.series.push_back({fmt::format("joint {}", j + 1), s.t, (*values[p])[j], "lines"});
+        panels.push_back(std::move(panel));
+    }
+    plot::render_png(path, panels);
+}
+
+void run(const ExciteOptions& o) {
+    check(o);
+    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    const auto model = robot::make_robot_model(robot);
+    const int n = model->joint_count();
+    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
+    Eigen::VectorXd pose(n);
+    const auto given_pose = per_joint(o.pose, n, std::numeric_limits<double>::quiet_NaN(), "--pose");
+    for (int j = 0; j < n; ++j) {
+        const auto& jd = robot.joints[static_cast<std::size_t>(j)];
+        pose[j] = std::isnan(given_pose[static_cast<std::size_t>(j)]) ? 0.5 * (jd.lower_limit + jd.upper_limit) : given_pose[static_cast<std::size_t>(j)];
+    }
+    const std::vector<excite::JointLimits> limits = joint_limits(robot, pose, o);
+    excite::ProblemSettings ps;
+    ps.criterion = o.criterion == "cond" ? excite::Criterion::Cond : excite::Criterion::LogDet;
+    ps.samples = o.samples;
+    excite::ExcitationProblem problem(*model, x, excite::FourierBasis(1.0 / o.base_frequency, o.harmonics, o.base_frequency), pose, limits, ps);
+    if (!o.quiet) {
+        fmt::print(stderr, "excite: {} joints x {} harmonics = {} coefficients, {} base parameters, {} samples per {} s period; {} starts, {} s limit\n", n,
+                   o.harmonics, problem.variables(), model->parameter_count(), problem.samples(), 1.0 / o.base_frequency, o.starts, o.time_limit);
+    }
+    excite::DesignSettings ds;
+    ds.starts = o.starts;
+    ds.time_limit = o.time_limit;
+    ds.seed = o.seed;
+    ds.control_rate = o.rate;
+    if (!o.quiet) ds.progress = [](const std::string& line) { fmt::print(stderr, "excite: {}\n", line); };
+    const excite::Design d = excite::design_excitation(problem, *model, x, limits, ds);
+    const excite::FourierTrajectory trajectory = problem.trajectory(d.coefficients);
+    const Sampled s = sample(trajectory, *model, x, o.duration, o.rate);
+    write_output(o.output, csv(s));
+    if (!o.json.empty()) {
+        nlohmann::json j;
+        j["criterion"] = o.criterion;
+        j["criterion_value"] = d.criterion;
+        j["cond"] = d.cond;
+        j["duration"] = o.duration;
+        j["period"] = 1.0 / o.base_frequency;
+        j["base_frequency"] = o.base_frequency;
+        j["harmonics"] = o.harmonics;
+        j["rate"] = o.rate;
+        j["pose"] = std::vector<double>(pose.data(), pose.data() + n);
+        j["parameters"] = model->parameter_names();
+        j["evaluations"] = d.evaluations;
+        j["starts"] = d.start_criteria;
+        j["tightening_rounds"] = d.rounds;
+        j["seconds"] = d.seconds;
+        nlohmann::json joints = nlohmann::json::array();
+        for (int k = 0; k < n; ++k) {
+            std::vector<double> a, b;
+            for (int l = 0; l < o.harmonics; ++l) {
+                a.push_back(trajectory.coefficients(k, 2 * l));
+                b.push_back(trajectory.coefficients(k, 2 * l + 1));
+            }
+            joints.push_back({{"a", a},
+                              {"b", b},
+                              {"max_position", d.check.peak(k, 0)},
+                              {"min_position", d.check.peak(k, 1)},
+                              {"peak_velocity", d.check.peak(k, 2)},
+                              {"peak_acceleration", d.check.peak(k, 3)},
+                              {"peak_torque", d.check.peak(k, 4)},
+                              {"limit_use", {{"upper_position", d.check.ratio(k, 0)},
+                                             {"lower_position", d.check.ratio(k, 1)},
+                                             {"velocity", d.check.ratio(k, 2)},
+                                             {"acceleration", d.check.ratio(k, 3)},
+                                             {"torque", d.check.ratio(k, 4)}}}});
+        }
+        j["joints"] = joints;
+        write_output(o.json, j.dump(2) + "\n");
+    }
+    if (!o.plot.empty()) plot(o.plot, s);
+    if (!o.quiet) {
+        fmt::print(stderr, "excite: {} {:.6g}, cond {:.4g} in {:.1f} s ({} evaluations); largest limit use {:.3f} (joint {} {})\n",
+                   o.criterion == "cond" ? "log cond" : "-log det", d.criterion,
+                   d.cond, d.seconds, d.evaluations, d.check.worst, d.check.worst_joint + 1, excite::to_string(d.check.worst_kind));
+    }
+}
+
+}  // namespace
+
+void add_excite_command(CLI::App& app) {
+    auto o = std::make_shared<ExciteOptions>();
+    CLI::App* cmd = app.add_subcommand("excite",
+                                       "design an excitation trajectory: finite Fourier series per joint, at rest at a pose at both ends of every period, "
+                                       "optimized for the column-scaled base regressor's condition number within the joints' limits");
+    cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters for the torque")->required();
+    cmd->add_option("--duration", o->duration, "s: a whole number of periods (period = 1 / --base-frequency), played back to back")->capture_default_str();
+    cmd->add_option("--harmonics", o->harmonics, "harmonics per joint (2 coefficients each)")->capture_default_str();
+    cmd->add_option("--base-frequency", o->base_frequency, "Hz: the fundamental; one period lasts 1 / f")->capture_default_str();
+    cmd->add_option("--criterion", o->criterion, "cond (log of the condition number) or logdet (-log det W^T W), both of the column-scaled base regressor")
+        ->check(CLI::IsMember({"cond", "logdet"}))
+        ->capture_default_str();
+    cmd->add_option("--output,-o", o->output, "trajectory CSV at --rate: t, q1.., qd1.., qdd1.. ('-': standard output)")->capture_default_str();
+    cmd->add_option("--json", o->json, "JSON: coefficients, criterion, cond, peak position/velocity/acceleration/torque and limit use per joint");
+    cmd->add_option("--plot", o->plot, "PNG: positions, velocities and the model's torques over the whole duration");
+    cmd->add_option("--pose", o->pose, "rad: the rest pose at both ends of each period, one value or one per joint (default: the middle of each joint's limits)")
+        ->delimiter(',');
+    cmd->add_option("--velocity-limit", o->velocity_limit, "rad/s: one value or one per joint (default: none)")->delimiter(',');
+    cmd->add_option("--acceleration-limit", o->acceleration_limit, "rad/s^2: one value or one per joint (default: none)")->delimiter(',');
+    cmd->add_option("--torque-limit", o->torque_limit, "N.m, on the model's torque (description's parameters): one value or one per joint (default: none)")
+        ->delimiter(',');
+    cmd->add_option("--rate", o->rate, "Hz: control rate of the CSV; every sample is checked against the limits")->capture_default_str();
+    cmd->add_option("--samples", o->samples, "samples per period seen by the optimizer (0: 20 per period of the highest harmonic, at least 100)")
+        ->capture_default_str();
+    cmd->add_option("--starts", o->starts, "random starts of the optimizer (the best feasible one is kept)")->capture_default_str();
+    cmd->add_option("--time-limit", o->time_limit, "s for all starts together")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "seed of the random starts")->capture_default_str();
+    cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace jacobid::cli

@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: MIT
+#include "excite/excitation_design.hpp"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <nlopt.hpp>
+#include <random>
+
+#include "core/errors.hpp"
+
+namespace jacobid::excite {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kStartShare = 0.8;  // of the time limit, for the random starts
+constexpr int kMaxRounds = 4;        // tightening rounds after the control-rate check
+// The optimizer sees the limits with this margin: a peak between its samples (20 per period of the highest
+// harmonic: at most 1 - cos(pi / 20) = 1.2 % above the samples' for a pure harmonic) then rarely needs a
+// tightening round.
+constexpr double kMargin = 0.985;
+
+struct Callbacks {
+    ExcitationProblem* problem;
+    int evaluations = 0;
+};
+
+double objective(const std::vector<double>& x, std::vector<double>& grad, void* data) {
+    auto* cb = static_cast<Callbacks*>(data);
+    ++cb->evaluations;
+    const Eigen::Map<const Eigen::VectorXd> c(x.data(), static_cast<Eigen::Index>(x.size()));
+    if (grad.empty()) return cb->problem->criterion(c, nullptr);
+    Eigen::VectorXd g;
+    const double f = cb->problem->criterion(c, &g);
+    Eigen::Map<Eigen::VectorXd>(grad.data(), static_cast<Eigen::Index>(grad.size())) = g;
+    return f;
+}
+
+void constraints(unsigned m, double* result, unsigned n, const double* x, double* grad, void* data) {
+    auto* cb = static_cast<Callbacks*>(data);
+    const Eigen::Map<const Eigen::VectorXd> c(x, n);
+    Eigen::MatrixXd J;
+    const Eigen::VectorXd g = cb->problem->constraint_values(c, grad ? &J : nullptr);
+    Eigen::Map<Eigen::VectorXd>(result, m) = g;
+    // NLopt wants grad[i * n + j] = d c_i / d x_j: row-major.
+    if (grad) Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(grad, m, n) = J;
+}
+
+// A random start inside the kinematic limits: normal coefficients, scaled so that the largest kinematic
+// constraint (linear in c) sits at half its room.
+Eigen::VectorXd random_start(ExcitationProblem& problem, std::mt19937_64& rng) {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    Eigen::VectorXd c(problem.variables());
+    for (Eigen::Index i = 0; i < c.size(); ++i) c[i] = normal(rng) / (1.0 + static_cast<double>(i % problem.basis().size() / 2));
+    // g + 1 = value / room is linear in c for the kinematic kinds: scale to 0.5 of the worst.
+    const Eigen::VectorXd g = problem.constraint_values(c, nullptr);
+    double worst = 0.0;
+    for (Eigen::Index r = 0; r < g.size(); ++r) {
+        if (r % kLimitKinds != static_cast<int>(LimitKind::Torque) && g[r] > -1.0) worst = std::max(worst, g[r] + 1.0);
+    }
+    return worst > 0.0 ? Eigen::VectorXd(c * (0.5 / worst)) : c;
+}
+
+struct LocalResult {
+    Eigen::VectorXd c;
+    double f = std::numeric_limits<double>::infinity();
+    double violation = std::numeric_limits<double>::infinity();
+};
+
+LocalResult local_run(ExcitationProblem& problem, Eigen::VectorXd start, double seconds, int max_evaluations, int& evaluations) {
+    const auto n = static_cast<unsigned>(problem.variables());
+    nlopt::opt opt(nlopt::LD_SLSQP, n);
+    Callbacks cb{&problem};
+    opt.set_min_objective(objective, &cb);
+    opt.add_inequality_mconstraint(constraints, &cb, std::vector<double>(static_cast<std::size_t>(problem.constraints()), 1e-6));
+    opt.set_ftol_rel(1e-7);
+    opt.set_xtol_rel(1e-7);
+    opt.set_maxeval(max_evaluations);
+    opt.set_maxtime(std::max(seconds, 0.5));
+    std::vector<double> x(start.data(), start.data() + start.size());
+    double f = 0.0;
+    try {
+        opt.optimize(x, f);
+    } catch (const nlopt::roundoff_limited&) {
+        // SLSQP stopped at rounding: x is its last iterate, as good as it gets.
+    } catch (const nlopt::forced_stop&) {
+    } catch (const std::runtime_error&) {
+        // "nlopt failure" (e.g. an infeasible linearization): the last iterate is still judged below.
+    }
+    evaluations += cb.evaluations;
+    LocalResult r;
+    r.c = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+    r.f = problem.criterion(r.c, nullptr);
+    r.violation = problem.constraint_values(r.c, nullptr).maxCoeff();
+    return r;
+}
+
+}  // namespace
+
+Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& model, const Eigen::VectorXd& parameters,
+                         const std::vector<JointLimits>& limits, const DesignSettings& settings) {
+    const auto start_time = Clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start_time).count(); };
+    auto say = [&](const std::string& line) {
+        if (settings.progress) settings.progress(line);
+    };
+    std::mt19937_64 rng(settings.seed);
+    Design d;
+    std::vector<JointLimits> tightened = limits;
+    for (std::size_t j = 0; j < tightened.size(); ++j) {
+        JointLimits& l = tightened[j];
+        const double pose = problem.pose()[static_cast<Eigen::Index>(j)];
+        l.upper = pose + (l.upper - pose) * kMargin;
+        l.lower = pose - (pose - l.lower) * kMargin;
+        l.velocity *= kMargin, l.acceleration *= kMargin, l.torque *= kMargin;
+    }
+    problem.set_limits(tightened);
+    LocalResult best;
+    for (int s = 0; s < settings.starts; ++s) {
+        // The starts share 80 % of the time; the rest is kept for the tightening rounds.
+        const double remaining = kStartShare * settings.time_limit - elapsed();
+        if (remaining <= 0.0 && s > 0) break;
+        const double budget = remaining / (settings.starts - s) * (s + 1 == settings.starts ? 1.0 : 0.9);
+        const LocalResult r = local_run(problem, random_start(problem, rng), budget, settings.max_evaluations, d.evaluations);
+        ++d.starts_run;
+        const bool feasible = r.violation <= 1e-4;
+        d.start_criteria.push_back(feasible ? r.f : std::numeric_limits<double>::quiet_NaN());
+        say(fmt::format("start {}/{}: {} {:.4g}, cond {:.4g}, largest constraint {:+.2e}{} ({:.1f} s)", s + 1, settings.starts,
+                        problem.criterion_kind() == Criterion::Cond ? "log cond" : "-log det", r.f, problem.condition_number(r.c), r.violation, feasible ? "" : " (infeasible)",
+                        elapsed()));
+        if (feasible && r.f < best.f) best = r;
+    }
+    if (!std::isfinite(best.f)) {
+        throw InputError(fmt::format("excite: no start met the limits ({} starts; the pose's gravity torque or the limits may leave no room)", d.starts_run));
+    }
+    // Every control sample: a limit missed between the optimizer's samples tightens that limit by the
+    // overshoot (plus 1 %) and re-optimizes from the best point.
+    for (;;) {
+        d.check = check_limits(model, parameters, problem.trajectory(best.c), limits, settings.control_rate);
+        if (d.check.worst <= 1.0 || d.rounds >= kMaxRounds) break;
+        ++d.rounds;
+        say(fmt::format("round {}: joint {} {} at {:.4g} of its limit between the optimizer's samples; tightened, re-optimizing", d.rounds,
+                        d.check.worst_joint + 1, to_string(d.check.worst_kind), d.check.worst));
+        for (std::size_t j = 0; j < tightened.size(); ++j) {
+            JointLimits& l = tightened[j];
+            const double pose = problem.pose()[static_cast<Eigen::Index>(j)];
+            auto shrink = [&](int kind) { return 1.0 / (1.01 * std::max(1.0, d.check.ratio(static_cast<Eigen::Index>(j), kind))); };
+            l.upper = pose + (l.upper - pose) * shrink(0);
+            l.lower = pose - (pose - l.lower) * shrink(1);
+            l.velocity *= shrink(2);
+            l.acceleration *= shrink(3);
+            l.torque *= shrink(4);
+        }
+        problem.set_limits(tightened);
+        const double left = std::max(2.0, (settings.time_limit - elapsed()) / (kMaxRounds - d.rounds + 1));
+        const LocalResult r = local_run(problem, best.c, left, settings.max_evaluations, d.evaluations);
+        if (r.violation <= 1e-4) best = r;
+    }
+    if (d.check.worst > 1.0) {
+        throw InputError(fmt::format("excite: joint {} {} reaches {:.4g} of its limit at t = {:.4g} s between the optimizer's samples (use more --samples)",
+                                     d.check.worst_joint + 1, to_string(d.check.worst_kind), d.check.worst,
+                                     static_cast<double>(d.check.worst_sample) / settings.control_rate));
+    }
+    d.coefficients = best.c;
+    d.criterion = best.f;
+    d.cond = problem.condition_number(best.c);
+    d.seconds = elapsed();
+    return d;
+}
+
+}  // namespace jacobid::excite

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// `jacobid excite`'s optimizer (docs/excite.md): several starts of NLopt's SLSQP (sequential quadratic
+// programming with the exact gradients of excitation_problem.hpp) on the aggregated limits, the best
+// feasible result kept, then every control sample checked; a limit missed between the optimizer's samples
+// is tightened by the overshoot and the best result re-optimized (at most a few rounds).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "excite/excitation_problem.hpp"
+
+namespace jacobid::excite {
+
+struct DesignSettings {
+    int starts = 4;             // random starts
+    double time_limit = 60.0;   // s, all starts and rounds together
+    std::uint64_t seed = 1;
+    double control_rate = 1000.0;  // Hz: the rate at which every sample is checked
+    int max_evaluations = 3000;    // per local run
+    std::function<void(const std::string&)> progress;  // one line per start and round; null: silent
+};
+
+struct Design {
+    Eigen::VectorXd coefficients;  // flattened, joint 0's first
+    double criterion = 0.0;
+    double cond = 0.0;
+    LimitCheck check;
+    int evaluations = 0;
+    int starts_run = 0;
+    int rounds = 0;  // tightening rounds after the first check
+    double seconds = 0.0;
+    std::vector<double> start_criteria;  // the final criterion of each start (NaN: infeasible)
+};
+
+// InputError when no start meets the limits (e.g. the pose's gravity torque already above a torque limit).
+Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& model, const Eigen::VectorXd& parameters,
+                         const std::vector<JointLimits>& limits, const DesignSettings& settings);
+
+}  // namespace jacobid::excite

@@ -1,0 +1,267 @@
+// SPDX-License-Identifier: MIT
+#include "excite/excitation_problem.hpp"
+
+#include <Eigen/SVD>
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace jacobid::excite {
+namespace {
+
+constexpr double kStep = 1e-6;  // central-difference step in q (rad) and qd (rad/s)
+
+}  // namespace
+
+const char* to_string(Criterion c) { return c == Criterion::Cond ? "cond" : "logdet"; }
+
+const char* to_string(LimitKind k) {
+    switch (k) {
+        case LimitKind::Upper: return "upper position";
+        case LimitKind::Lower: return "lower position";
+        case LimitKind::Velocity: return "velocity";
+        case LimitKind::Acceleration: return "acceleration";
+        case LimitKind::Torque: return "torque";
+    }
+    return "?";
+}
+
+ExcitationProblem::ExcitationProblem(const robot::RobotModel& model, Eigen::VectorXd parameters, FourierBasis basis, Eigen::VectorXd pose,
+                                     std::vector<JointLimits> limits, ProblemSettings settings)
+    : model_(model), x_(std::move(parameters)), basis_(std::move(basis)), pose_(std::move(pose)), limits_(std::move(limits)), settings_(settings) {
+    joints_ = model.joint_count();
+    columns_ = model.parameter_count();
+    if (x_.size() != columns_ || pose_.size() != joints_ || static_cast<int>(limits_.size()) != joints_) {
+        throw std::invalid_argument("ExcitationProblem: parameters, pose or limits do not match the model");
+    }
+    const double highest = basis_.harmonics() * basis_.base_frequency();
+    samples_ = settings_.samples > 0 ? settings_.samples : std::max(100, static_cast<int>(std::ceil(20.0 * highest * basis_.period())));
+    psi_.resize(basis_.size(), samples_), dpsi_.resize(basis_.size(), samples_), ddpsi_.resize(basis_.size(), samples_);
+    for (int i = 0; i < samples_; ++i) {
+        basis_.evaluate(basis_.period() * i / samples_, psi_.col(i), dpsi_.col(i), ddpsi_.col(i));
+    }
+    W_.resize(static_cast<Eigen::Index>(samples_) * joints_, columns_);
+    dY_.assign(static_cast<std::size_t>(samples_), Eigen::MatrixXd(joints_, 3 * joints_ * columns_));
+}
+
+void ExcitationProblem::set_limits(std::vector<JointLimits> limits) {
+    if (static_cast<int>(limits.size()) != joints_) throw std::invalid_argument("ExcitationProblem::set_limits: one limit per joint");
+    limits_ = std::move(limits);
+}
+
+double ExcitationProblem::limit(int joint, LimitKind kind) const {
+    const JointLimits& l = limits_[static_cast<std::size_t>(joint)];
+    switch (kind) {
+        case LimitKind::Upper: return l.upper - pose_[joint];
+        case LimitKind::Lower: return pose_[joint] - l.lower;
+        case LimitKind::Velocity: return l.velocity;
+        case LimitKind::Acceleration: return l.acceleration;
+        case LimitKind::Torque: return l.torque;
+    }
+    return 0.0;
+}
+
+FourierTrajectory ExcitationProblem::trajectory(const Eigen::VectorXd& c) const {
+    return {basis_, pose_, Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(c.data(), joints_, basis_.size())};
+}
+
+void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
+    if (prepared_for_.size() == c.size() && prepared_for_ == c) return;
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> C(c.data(), joints_, basis_.size());
+    q_ = (C * psi_).colwise() + pose_;
+    qd_ = C * dpsi_;
+    qdd_ = C * ddpsi_;
+    tau_.resize(joints_, samples_);
+    Eigen::MatrixXd Y(joints_, columns_), plus(joints_, columns_), minus(joints_, columns_);
+    Eigen::VectorXd q(joints_), qd(joints_), qdd(joints_);
+    for (int i = 0; i < samples_; ++i) {
+        q = q_.col(i), qd = qd_.col(i), qdd = qdd_.col(i);
+        model_.regressor(q.data(), qd.data(), qdd.data(), Y);
+        W_.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_) = Y;
+        tau_.col(i) = Y * x_;
+        Eigen::MatrixXd& d = dY_[static_cast<std::size_t>(i)];
+        for (int j = 0; j < joints_; ++j) {
+            const double hq = kStep * std::max(1.0, std::abs(q[j]));
+            q[j] += hq;
+            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
+            q[j] -= 2.0 * hq;
+            model_.regressor(q.data(), qd.data(), qdd.data(), minus);
+            q[j] += hq;
+            d.middleCols(static_cast<Eigen::Index>(j) * columns_, columns_) = (plus - minus) / (2.0 * hq);
+            const double hv = kStep * std::max(1.0, std::abs(qd[j]));
+            qd[j] += hv;
+            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
+            qd[j] -= 2.0 * hv;
+            model_.regressor(q.data(), qd.data(), qdd.data(), minus);
+            qd[j] += hv;
+            d.middleCols(static_cast<Eigen::Index>(joints_ + j) * columns_, columns_) = (plus - minus) / (2.0 * hv);
+            qdd[j] += 1.0;  // Y is linear in qdd: the difference is the exact derivative
+            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
+            qdd[j] -= 1.0;
+            d.middleCols(static_cast<Eigen::Index>(2 * joints_ + j) * columns_, columns_) = plus - Y;
+        }
+    }
+    prepared_for_ = c;
+}
+
+double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient) {
+    prepare(c);
+    // W_s = W S, S = diag(1 / ||w_k||).
+    const Eigen::VectorXd norms = W_.colwise().norm().transpose();
+    const Eigen::VectorXd s = norms.cwiseMax(1e-300).cwiseInverse();
+    const Eigen::MatrixXd Ws = W_ * s.asDiagonal();
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Ws, gradient ? Eigen::ComputeThinU | Eigen::ComputeThinV : 0);
+    const Eigen::VectorXd& sigma = svd.singularValues();
+    const Eigen::Index p = sigma.size();
+    double value = 0.0;
+    Eigen::MatrixXd G;  // dF/dW_s
+    if (settings_.criterion == Criterion::Cond) {
+        value = std::log(sigma[0]) - std::log(sigma[p - 1]);
+        if (gradient) {
+            G = svd.matrixU().col(0) * svd.matrixV().col(0).transpose() / sigma[0] -
+                svd.matrixU().col(p - 1) * svd.matrixV().col(p - 1).transpose() / sigma[p - 1];
+        }
+    } else {
+        value = -2.0 * sigma.array().log().sum();
+        if (gradient) G = -2.0 * svd.matrixU() * sigma.cwiseInverse().asDiagonal() * svd.matrixV().transpose();
+    }
+    if (!std::isfinite(value)) value = 1e30;  // a rank-deficient W: the worst, not a NaN for the optimizer
+    if (!gradient) return value;
+    // dF/dW: W_s's columns are w_k s_k with s_k = 1 / ||w_k||, d s_k / d w_k = -w_k / ||w_k||^3.
+    Eigen::MatrixXd GW(W_.rows(), columns_);
+    for (Eigen::Index k = 0; k < columns_; ++k) {
+        GW.col(k) = G.col(k) * s[k] - (G.col(k).dot(W_.col(k)) * s[k] * s[k] * s[k]) * W_.col(k);
+    }
+    if (!GW.allFinite()) GW.setZero();
+    gradient->setZero(variables());
+    const int m = basis_.size();
+    for (int i = 0; i < samples_; ++i) {
+        const auto Gi = GW.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_);
+        const Eigen::MatrixXd& d = dY_[static_cast<std::size_t>(i)];
+        for (int j = 0; j < joints_; ++j) {
+            const double gq = Gi.cwiseProduct(d.middleCols(static_cast<Eigen::Index>(j) * columns_, columns_)).sum();
+            const double gv = Gi.cwiseProduct(d.middleCols(static_cast<Eigen::Index>(joints_ + j) * columns_, columns_)).sum();
+            const double ga = Gi.cwiseProduct(d.middleCols(static_cast<Eigen::Index>(2 * joints_ + j) * columns_, columns_)).sum();
+            gradient->segment(static_cast<Eigen::Index>(j) * m, m) += gq * psi_.col(i) + gv * dpsi_.col(i) + ga * ddpsi_.col(i);
+        }
+    }
+    return value;
+}
+
+double ExcitationProblem::condition_number(const Eigen::VectorXd& c) {
+    prepare(c);
+    const Eigen::VectorXd s = W_.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse();
+    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(W_ * s.asDiagonal()).singularValues();
+    return sigma[0] / sigma[sigma.size() - 1];
+}
+
+Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, Eigen::MatrixXd* jacobian) {
+    prepare(c);
+    const int m = basis_.size();
+    Eigen::VectorXd g(constraints());
+    if (jacobian) jacobian->setZero(constraints(), variables());
+    // One KS aggregate over (sign, sample) of sign * value / limit - 1, with d value / dc per sample.
+    std::vector<double> terms;
+    std::vector<Eigen::VectorXd> slopes;  // per term: d term / d c over all variables (only needed with the Jacobian)
+    for (int j = 0; j < joints_; ++j) {
+        for (int kind = 0; kind < kLimitKinds; ++kind) {
+            const auto k = static_cast<LimitKind>(kind);
+            const int row = j * kLimitKinds + kind;
+            const double room = limit(j, k);
+            if (!std::isfinite(room)) {
+                g[row] = -1.0;
+                continue;
+            }
+            terms.clear();
+            slopes.clear();
+            for (int i = 0; i < samples_; ++i) {
+                double value = 0.0;
+                Eigen::VectorXd slope;
+                if (jacobian) slope.setZero(variables());
+                switch (k) {
+                    case LimitKind::Upper:
+                    case LimitKind::Lower: {
+                        const double sign = k == LimitKind::Upper ? 1.0 : -1.0;
+                        value = sign * (q_(j, i) - pose_[j]);
+                        if (jacobian) slope.segment(static_cast<Eigen::Index>(j) * m, m) = sign * psi_.col(i);
+                        break;
+                    }
+                    case LimitKind::Velocity:
+                        value = qd_(j, i);
+                        if (jacobian) slope.segment(static_cast<Eigen::Index>(j) * m, m) = dpsi_.col(i);
+                        break;
+                    case LimitKind::Acceleration:
+                        value = qdd_(j, i);
+                        if (jacobian) slope.segment(static_cast<Eigen::Index>(j) * m, m) = ddpsi_.col(i);
+                        break;
+                    case LimitKind::Torque: {
+                        value = tau_(j, i);
+                        if (jacobian) {
+                            const Eigen::MatrixXd& d = dY_[static_cast<std::size_t>(i)];
+                            for (int a = 0; a < joints_; ++a) {
+                                const double tq = d.row(j).segment(static_cast<Eigen::Index>(a) * columns_, columns_).dot(x_);
+                                const double tv = d.row(j).segment(static_cast<Eigen::Index>(joints_ + a) * columns_, columns_).dot(x_);
+                                const double ta = d.row(j).segment(static_cast<Eigen::Index>(2 * joints_ + a) * columns_, columns_).dot(x_);
+                                slope.segment(static_cast<Eigen::Index>(a) * m, m) = tq * psi_.col(i) + tv * dpsi_.col(i) + ta * ddpsi_.col(i);
+                            }
+                        }
+                        break;
+                    }
+                }
+                const bool two_sided = k != LimitKind::Upper && k != LimitKind::Lower;
+                for (const double sign : {1.0, -1.0}) {
+                    if (sign < 0.0 && !two_sided) break;
+                    terms.push_back(sign * value / room - 1.0);
+                    if (jacobian) slopes.push_back(sign * slope / room);
+                }
+            }
+            const double top = *std::max_element(terms.begin(), terms.end());
+            double sum = 0.0;
+            for (const double t : terms) sum += std::exp(settings_.ks_rho * (t - top));
+            g[row] = top + std::log(sum) / settings_.ks_rho;
+            if (jacobian) {
+                for (std::size_t t = 0; t < terms.size(); ++t) {
+                    jacobian->row(row) += std::exp(settings_.ks_rho * (terms[t] - top)) / sum * slopes[t].transpose();
+                }
+            }
+        }
+    }
+    return g;
+}
+
+LimitCheck check_limits(const robot::RobotModel& model, const Eigen::VectorXd& parameters, const FourierTrajectory& trajectory,
+                        const std::vector<JointLimits>& limits, double rate) {
+    const int n = trajectory.joints();
+    const auto count = static_cast<std::size_t>(std::llround(trajectory.basis.period() * rate));
+    LimitCheck r;
+    r.ratio.setZero(n, kLimitKinds);
+    r.peak.setZero(n, kLimitKinds);
+    r.peak.col(0) = trajectory.pose;
+    r.peak.col(1) = trajectory.pose;
+    Eigen::VectorXd q(n), qd(n), qdd(n);
+    Eigen::MatrixXd Y(n, model.parameter_count());
+    for (std::size_t i = 0; i <= count; ++i) {
+        trajectory.evaluate(static_cast<double>(i) / rate, q, qd, qdd);
+        model.regressor(q.data(), qd.data(), qdd.data(), Y);
+        const Eigen::VectorXd tau = Y * parameters;
+        for (int j = 0; j < n; ++j) {
+            const JointLimits& l = limits[static_cast<std::size_t>(j)];
+            const double pose = trajectory.pose[j];
+            r.peak(j, 0) = std::max(r.peak(j, 0), q[j]);
+            r.peak(j, 1) = std::min(r.peak(j, 1), q[j]);
+            r.peak(j, 2) = std::max(r.peak(j, 2), std::abs(qd[j]));
+            r.peak(j, 3) = std::max(r.peak(j, 3), std::abs(qdd[j]));
+            r.peak(j, 4) = std::max(r.peak(j, 4), std::abs(tau[j]));
+            const double ratios[kLimitKinds] = {(q[j] - pose) / (l.upper - pose), (pose - q[j]) / (pose - l.lower), std::abs(qd[j]) / l.velocity,
+                                                std::abs(qdd[j]) / l.acceleration, std::abs(tau[j]) / l.torque};
+            for (int k = 0; k < kLimitKinds; ++k) {
+                if (ratios[k] > r.ratio(j, k)) r.ratio(j, k) = ratios[k];
+                if (ratios[k] > r.worst) r.worst = ratios[k], r.worst_joint = j, r.worst_kind = static_cast<LimitKind>(k), r.worst_sample = i;
+            }
+        }
+    }
+    return r;
+}
+
+}  // namespace jacobid::excite

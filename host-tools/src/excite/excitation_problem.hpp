@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The optimization problem of `jacobid excite` (docs/excite.md): the coefficients c of a Fourier
+// trajectory (fourier_trajectory.hpp) that minimise a criterion of the column-scaled base regressor
+// W(c) stacked over the samples of one period, subject to the joints' limits.
+//
+//  - Criterion: log cond(W_s) (`cond`) or -log det(W_s^T W_s) (`logdet`), W_s = W S, S scaling every column to
+//    unit norm (so that parameters of different units weigh alike). Both are functions of the singular
+//    values of W_s; their gradients are exact in W_s (d sigma_i = u_i^T dW_s v_i, the scaling differentiated
+//    too), chained to c through dW/dc = dY/dq psi + dY/dqd psi' + dY/dqdd psi''. The regressor's partial
+//    derivatives are exact in qdd (Y is linear in qdd: a difference of two evaluations) and central
+//    differences in q and qd (step 1e-6 rad, rad/s: relative error ~1e-9, far below what changes the
+//    optimizer's path; the finite-difference gradients of cond that fail are those of cond itself in c, where
+//    a crossing of the smallest singular values makes the difference quotient meaningless).
+//  - Constraints, per joint and kind (upper and lower position, |velocity|, |acceleration|, |torque|): the
+//    normalized values g = value / limit - 1 over the samples, aggregated by the Kreisselmeier-Steinhauser
+//    function KS(g) = max g + log(sum exp(rho (g - max g))) / rho >= max g (smooth, conservative); the
+//    torque is Y(q, qd, qdd) x with x the description's parameters (the model's torque). The limits are also
+//    checked at every control sample afterwards (check_limits).
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "excite/fourier_trajectory.hpp"
+#include "robot/robot_model.hpp"
+
+namespace jacobid::excite {
+
+enum class Criterion { Cond, LogDet };
+const char* to_string(Criterion c);
+
+struct JointLimits {
+    double lower = -std::numeric_limits<double>::infinity(), upper = std::numeric_limits<double>::infinity();  // rad
+    double velocity = std::numeric_limits<double>::infinity();      // rad/s
+    double acceleration = std::numeric_limits<double>::infinity();  // rad/s^2
+    double torque = std::numeric_limits<double>::infinity();        // N.m
+};
+
+enum class LimitKind { Upper, Lower, Velocity, Acceleration, Torque };
+const char* to_string(LimitKind k);
+constexpr int kLimitKinds = 5;
+
+struct ProblemSettings {
+    Criterion criterion = Criterion::Cond;
+    int samples = 0;       // per period for the criterion and constraints; 0: 20 per period of the highest harmonic (>= 100)
+    double ks_rho = 200.0; // sharpness of the KS aggregate (dimensionless g): over-estimate <= log(2 N) / rho
+};
+
+class ExcitationProblem {
+public:
+    // model: the identification model (its columns are W's); parameters: its values (for the torque);
+    // limits: one per joint. std::invalid_argument for sizes that do not match.
+    ExcitationProblem(const robot::RobotModel& model, Eigen::VectorXd parameters, FourierBasis basis, Eigen::VectorXd pose,
+                      std::vector<JointLimits> limits, ProblemSettings settings);
+
+    int variables() const { return joints_ * basis_.size(); }
+    int constraints() const { return joints_ * kLimitKinds; }
+    int samples() const { return samples_; }
+    const FourierBasis& basis() const { return basis_; }
+    const Eigen::VectorXd& pose() const { return pose_; }
+    Criterion criterion_kind() const { return settings_.criterion; }
+
+    // c: joints x 2L coefficients, row-major flattened (joint 0's first). The criterion, its gradient when
+    // `gradient` is not null.
+    double criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient);
+    // The constraint values (<= 0 when met; constraint index j * kLimitKinds + kind), their Jacobian
+    // (constraints x variables) when `jacobian` is not null. A kind whose limit is infinite gives -1.
+    Eigen::VectorXd constraint_values(const Eigen::VectorXd& c, Eigen::MatrixXd* jacobian);
+    // cond(W_s) at c (whatever the criterion).
+    double condition_number(const Eigen::VectorXd& c);
+
+    FourierTrajectory trajectory(const Eigen::VectorXd& c) const;
+    // New limits for the constraints (the optimizer's tightening rounds); same joint count.
+    void set_limits(std::vector<JointLimits> limits);
+
+private:
+    void prepare(const Eigen::VectorXd& c);  // per-sample regressors and derivatives at c (cached)
+    double limit(int joint, LimitKind kind) const;
+
+    const robot::RobotModel& model_;
+    Eigen::VectorXd x_;
+    FourierBasis basis_;
+    Eigen::VectorXd pose_;
+    std::vector<JointLimits> limits_;
+    ProblemSettings settings_;
+    int joints_ = 0, columns_ = 0, samples_ = 0;
+    // At every sample: basis values (size() x samples), q/qd/qdd (joints x samples), torque.
+    Eigen::MatrixXd psi_, dpsi_, ddpsi_;
+    Eigen::MatrixXd q_, qd_, qdd_, tau_;
+    Eigen::MatrixXd W_;                 // (samples * joints) x columns
+    std::vector<Eigen::MatrixXd> dY_;   // per sample, 3 * joints blocks (joints x columns): d/dq_j, d/dqd_j, d/dqdd_j
+    Eigen::VectorXd prepared_for_;
+};
+
+// Every control sample of one period (rate in Hz): peak |value| / limit per joint and kind, and the worst.
+struct LimitCheck {
+    Eigen::MatrixXd ratio;    // joints x kLimitKinds: peak value / limit (position: excursion past the pose toward the bound / room)
+    Eigen::MatrixXd peak;     // joints x kLimitKinds: peak value (rad, rad/s, rad/s^2, N.m; position kinds: max q, min q)
+    double worst = 0.0;       // largest ratio
+    int worst_joint = 0;
+    LimitKind worst_kind = LimitKind::Upper;
+    std::size_t worst_sample = 0;
+};
+LimitCheck check_limits(const robot::RobotModel& model, const Eigen::VectorXd& parameters, const FourierTrajectory& trajectory,
+                        const std::vector<JointLimits>& limits, double rate);
+
+}  // namespace jacobid::excite

@@ -1,0 +1,14 @@
+# SPDX-License-Identifier: MIT
+# Excitation trajectories (jacobid excite; included by host-tools/CMakeLists.txt when NLopt is found): an
+# internal library, not installed (so that jacobid::host's users do not need NLopt), linked by the command
+# line and the tests.
+add_library(jacobid_excite STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/fourier_trajectory.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/excitation_problem.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/excitation_design.cpp
+)
+target_link_libraries(jacobid_excite PUBLIC jacobid_host PRIVATE NLopt::nlopt_cxx)
+jacobid_set_warnings(jacobid_excite)
+target_sources(jacobid PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/excite_command.cpp)
+target_link_libraries(jacobid PRIVATE jacobid_excite)
+target_compile_definitions(jacobid PRIVATE JACOBID_WITH_NLOPT=1)
