@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: MIT
+#include "identify/model_export.hpp"
+
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "robot/urdf_export.hpp"
+
+namespace jacobid::identify {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// What a URDF cannot carry: rotor inertias and friction offsets (inertials and <dynamics> carry the rest).
+bool beyond_urdf(const std::string& standard_name) { return starts_with(standard_name, "IA") || starts_with(standard_name, "FOFF"); }
+
+void check_path(const char* option, const std::string& path) {
+    if (path == "-") throw InputError(fmt::format("{} -: expected a file path (standard output carries the report)", option));
+    const fs::path parent = fs::absolute(path).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(parent, ec)) throw InputError(fmt::format("{} {}: directory '{}' does not exist", option, path, parent.string()));
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(fmt::format("{}: cannot open URDF", path));
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    return buffer.str();
+}
+
+std::vector<double> joint_alphas(const robot::RobotDescription& description, const MethodResult& result) {
+    if (result.coulomb_smoothing) return result.coulomb_smoothing->alphas();
+    std::vector<double> alphas;
+    for (const auto& sign : robot::joint_coulomb_signs(description)) alphas.push_back(sign.alpha);
+    return alphas;
+}
+
+// Per joint, the comment beside its <dynamics>: the identified values a URDF has no place for.
+std::vector<std::string> joint_notes(const robot::RobotDescription& description, const std::vector<std::string>& names, const Eigen::VectorXd& s,
+                                     const std::vector<double>& alphas) {
+    std::vector<std::string> notes;
+    for (std::size_t j = 0; j < description.joints.size(); ++j) {
+        std::string note = "jacobid, not in URDF:";
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            if (names[i] == fmt::format("IA{}", j + 1)) {
+                note += fmt::format(" IA{} = {:.17g} kg.m^2 (rotor inertia on the joint axis: MuJoCo's joint armature);", j + 1, s[static_cast<Eigen::Index>(i)]);
+            }
+            if (names[i] == fmt::format("FOFF{}", j + 1)) note += fmt::format(" FOFF{} = {:.17g} N.m (constant torque offset);", j + 1, s[static_cast<Eigen::Index>(i)]);
+        }
+        if (description.coulomb.model == robot::CoulombModel::Sign) {
+            note += " Coulomb friction = friction * sign(qd)";
+        } else {
+            note += fmt::format(" Coulomb friction = friction * 2/pi atan({:.17g} qd)", alphas[j]);
+        }
+        notes.push_back(note);
+    }
+    return notes;
+}
+
+}  // namespace
+
+void check_model_export(const ModelExportPaths& paths, const robot::RobotDescription& description) {
+    if (!paths.any()) return;
+    const char* option = paths.urdf.empty() ? "--export-robot" : "--export-urdf";
+    if (description.model != "mdh" && description.model != "urdf") {
+        throw InputError(fmt::format("{}: model {} has no standard (per-link) parameters to export; describe the robot with model mdh or urdf",
+                                     option, description.model));
+    }
+    if (!paths.urdf.empty() && description.model != "urdf") {
+        throw InputError(fmt::format("--export-urdf {}: model {} has no URDF to carry the identified values (a URDF needs the links' geometry); "
+                                     "use --export-robot, or describe the robot with model urdf",
+                                     paths.urdf, description.model));
+    }
+    if (!paths.urdf.empty()) check_path("--export-urdf", paths.urdf);
+    if (!paths.robot.empty()) check_path("--export-robot", paths.robot);
+    if (!paths.urdf.empty() && fs::absolute(paths.urdf).lexically_normal() == fs::absolute(paths.robot).lexically_normal()) {
+        throw InputError(fmt::format("--export-urdf and --export-robot: both name {}; give two files", paths.urdf));
+    }
+}
+
+robot::RobotDescription identified_description(const robot::RobotDescription& description, const std::vector<std::string>& names,
+                                               const Eigen::VectorXd& standard, const std::vector<double>& alphas, const std::string& urdf_path) {
+    robot::RobotDescription d = description;
+    d.parameters.clear();
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        if (urdf_path.empty() || beyond_urdf(names[i])) d.parameters.emplace_back(names[i], standard[static_cast<Eigen::Index>(i)]);
+    }
+    if (!urdf_path.empty()) d.urdf = urdf_path;
+    // The model identified with, not a new choice on the next log.
+    d.coulomb_alpha = alphas;
+    d.coulomb_alpha_auto = false;
+    return d;
+}
+
+ExportedModel export_model(const ModelExportPaths& paths, const robot::RobotDescription& description, const MethodResult& result,
+                           const std::string& log_source) {
+    if (!result.physical) throw InputError("--export-urdf / --export-robot: the fit has no standard parameters (it needs --physical or --semi-physical)");
+    const PhysicalReport& physical = *result.physical;
+    const std::vector<std::string>& names = physical.standard_names;
+    const Eigen::VectorXd& s = physical.fit.standard;
+    const std::vector<double> alphas = joint_alphas(description, result);
+    const char* constraint = to_string(physical.fit.constraint);
+    const char* method = to_string(result.info.method);
+    const std::string header = fmt::format(
+        "jacobid identify --{} ({} method) on {}: standard parameters that reproduce the identified base parameters, nearest the "
+        "description's values (prior weight {}) where the log leaves freedom",
+        constraint, method, log_source, physical.prior_weight);
+
+    ExportedModel out;
+    out.summary = {{"method", method}, {"constraint", constraint}};
+    if (!paths.urdf.empty()) {
+        robot::UrdfExport values{names, s, header + "; inertials and <dynamics damping friction> are the identified ones",
+                                 joint_notes(description, names, s, alphas)};
+        out.urdf = robot::export_urdf(read_text(description.urdf), description.urdf, values);
+        out.summary["urdf"] = paths.urdf;
+    }
+    if (!paths.robot.empty()) {
+        std::string urdf_reference;
+        if (!paths.urdf.empty()) {
+            // Relative to the description file, as load_robot_description resolves it: the pair can be moved together.
+            const fs::path urdf = fs::absolute(paths.urdf).lexically_normal();
+            const fs::path relative = urdf.lexically_relative(fs::absolute(paths.robot).lexically_normal().parent_path());
+            urdf_reference = relative.empty() ? urdf.string() : relative.string();
+        }
+        out.robot = "# " + header + "\n" + robot::to_yaml(identified_description(description, names, s, alphas, urdf_reference));
+        out.summary["robot"] = paths.robot;
+    }
+    nlohmann::json beyond = nlohmann::json::object();
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        if (beyond_urdf(names[i])) beyond[names[i]] = s[static_cast<Eigen::Index>(i)];
+    }
+    out.summary["not_in_urdf"] = beyond;
+    return out;
+}
+
+std::string describe_export(const nlohmann::json& summary) {
+    std::string files;
+    for (const char* key : {"urdf", "robot"}) {
+        if (summary.contains(key)) files += fmt::format("{}{}", files.empty() ? "" : ", ", summary[key].get<std::string>());
+    }
+    return fmt::format("exported the {} method's --{} standard parameters: {}\n", summary["method"].get<std::string>(),
+                       summary["constraint"].get<std::string>(), files);
+}
+
+}  // namespace jacobid::identify
