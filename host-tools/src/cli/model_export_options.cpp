@@ -42,6 +42,7 @@ nlohmann::json write_model_export(const identify::ModelExportPaths& paths, const
     const identify::ExportedModel exported = identify::export_model(paths, description, result, log_source);
     write_file("--export-urdf", paths.urdf, exported.urdf);
     write_file("--export-robot", paths.robot, exported.robot);
+    for (const auto& w : exported.warnings) fmt::print(stderr, "jacobid identify: warning: --export-urdf {}: {}\n", paths.urdf, w);
     return exported.summary;
 }
 

@@ -109,17 +109,20 @@ ExportedModel export_model(const ModelExportPaths& paths, const robot::RobotDesc
     const char* constraint = to_string(physical.fit.constraint);
     const char* method = to_string(result.info.method);
     const std::string header = fmt::format(
-        "jacobid identify --{} ({} method) on {}: standard parameters that reproduce the identified base parameters, nearest the "
-        "description's values (prior weight {}) where the log leaves freedom",
+        "jacobid identify, {} fit of the {} method on {}: standard parameters that reproduce the identified base parameters, nearest "
+        "the description's values (prior weight {}) where the log leaves freedom",
         constraint, method, log_source, physical.prior_weight);
 
     ExportedModel out;
     out.summary = {{"method", method}, {"constraint", constraint}};
     if (!paths.urdf.empty()) {
-        robot::UrdfExport values{names, s, header + "; inertials and <dynamics damping friction> are the identified ones",
-                                 joint_notes(description, names, s, alphas)};
+        const robot::UrdfExport values{names, s, header + "; inertials and <dynamics damping friction> are the identified ones",
+                                       joint_notes(description, names, s, alphas)};
         out.urdf = robot::export_urdf(read_text(description.urdf), description.urdf, values);
         out.summary["urdf"] = paths.urdf;
+        std::vector<std::string> joint_names;
+        for (const auto& joint : description.joints) joint_names.push_back(joint.name);
+        out.warnings = robot::impossible_inertias(values, joint_names);
     }
     if (!paths.robot.empty()) {
         std::string urdf_reference;
@@ -137,6 +140,7 @@ ExportedModel export_model(const ModelExportPaths& paths, const robot::RobotDesc
         if (beyond_urdf(names[i])) beyond[names[i]] = s[static_cast<Eigen::Index>(i)];
     }
     out.summary["not_in_urdf"] = beyond;
+    out.summary["warnings"] = out.warnings;
     return out;
 }
 

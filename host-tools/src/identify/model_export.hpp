@@ -31,7 +31,9 @@ void check_model_export(const ModelExportPaths& paths, const robot::RobotDescrip
 struct ExportedModel {
     std::string urdf;   // the URDF text (empty when not asked for)
     std::string robot;  // the description's YAML text (empty when not asked for)
-    nlohmann::json summary;  // JSON "export": {method, constraint, urdf, robot, not_in_urdf}
+    // --export-urdf of a --semi-physical fit: bodies no mass distribution has (robot::impossible_inertias).
+    std::vector<std::string> warnings;
+    nlohmann::json summary;  // JSON "export": {method, constraint, urdf, robot, not_in_urdf, warnings}
 };
 
 // The files' texts from `result` (which must hold the physical fit) of `description`; log_source names the log

@@ -4,6 +4,8 @@
 #include <fmt/core.h>
 #include <tinyxml.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <map>
 
 #include "core/errors.hpp"
@@ -110,6 +112,19 @@ CentralInertial central_inertial(const std::array<double, 10>& p) {
     body.com = h / body.mass;
     body.inertia -= (h.squaredNorm() * Eigen::Matrix3d::Identity() - h * h.transpose()) / body.mass;
     return body;
+}
+
+std::vector<std::string> impossible_inertias(const UrdfExport& e, const std::vector<std::string>& joint_names) {
+    const Values values(e, "export");
+    std::vector<std::string> lines;
+    for (std::size_t j = 0; j < joint_names.size(); ++j) {
+        const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(central_inertial(values.body(j)).inertia).eigenvalues();  // ascending
+        if (m[0] >= 0.0 && m[0] + m[1] >= m[2] * (1.0 - 1e-9)) continue;
+        lines.push_back(fmt::format("the body of joint {} ('{}') has principal moments {:.6g}, {:.6g}, {:.6g} kg.m^2 about its centre of mass: no "
+                                    "mass distribution has them ({}); simulators may refuse it (MuJoCo does)",
+                                    j + 1, joint_names[j], m[0], m[1], m[2], m[0] < 0.0 ? "a negative moment" : "the two smaller sum to less than the largest"));
+    }
+    return lines;
 }
 
 std::string export_urdf(const std::string& xml, const std::string& source, const UrdfExport& e) {

@@ -28,6 +28,12 @@ struct CentralInertial {
 // A zero mass gives com 0 and the inertia as given (a massless body has no first moment to move it by).
 CentralInertial central_inertial(const std::array<double, 10>& standard);
 
+// Bodies whose central inertia no mass distribution has (principal moments breaking a + b >= c, a possible
+// outcome of --semi-physical): one line each, naming the body by its joint. Simulators check this (MuJoCo
+// refuses such a body), so the export says it rather than let a simulator fail later.
+struct UrdfExport;
+std::vector<std::string> impossible_inertias(const UrdfExport& values, const std::vector<std::string>& joint_names);
+
 struct UrdfExport {
     std::vector<std::string> names;  // standard parameter names (XX1 ... M1, IA1, FV1, FC1, FOFF1, XX2, ...)
     Eigen::VectorXd values;          // same order

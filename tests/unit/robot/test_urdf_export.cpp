@@ -204,3 +204,34 @@ TEST(UrdfExport, CentralInertialOfAnOffsetRotatedBox) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(UrdfExport, BodiesNoMassDistributionHasAreNamed) {
+    // Central moments (0.01, 0.01, 0.05): 0.01 + 0.01 < 0.05, possible only under --semi-physical. A box
+    // (0.02, 0.03, 0.04) is possible. Both offset from the frame origin, so the check must move them to the centre.
+    const auto standard = [](const Eigen::Vector3d& central, int j) {
+        const double m = 2.0;
+        const Eigen::Vector3d c(0.1, 0.05, -0.2);
+        const Eigen::Matrix3d I = Eigen::Matrix3d(central.asDiagonal()) + m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+        const std::string n = std::to_string(j);
+        return std::vector<std::pair<std::string, double>>{{"XX" + n, I(0, 0)}, {"XY" + n, I(0, 1)}, {"XZ" + n, I(0, 2)}, {"YY" + n, I(1, 1)},
+                                                            {"YZ" + n, I(1, 2)}, {"ZZ" + n, I(2, 2)}, {"MX" + n, m * c.x()}, {"MY" + n, m * c.y()},
+                                                            {"MZ" + n, m * c.z()}, {"M" + n, m}};
+    };
+    robot::UrdfExport e;
+    e.values.resize(20);
+    int k = 0;
+    for (const auto& list : {standard({0.02, 0.03, 0.04}, 1), standard({0.01, 0.01, 0.05}, 2)}) {
+        for (const auto& [name, v] : list) {
+            e.names.push_back(name);
+            e.values[k++] = v;
+        }
+    }
+    const std::vector<std::string> lines = robot::impossible_inertias(e, {"a", "b"});
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(lines[0].find("joint 2 ('b')"), std::string::npos) << lines[0];
+    EXPECT_NE(lines[0].find("0.01, 0.01, 0.05"), std::string::npos) << lines[0];
+}
+
+}  // namespace
