@@ -80,7 +80,7 @@ void check_model_export(const ModelExportPaths& paths, const robot::RobotDescrip
     }
     if (!paths.urdf.empty()) check_path("--export-urdf", paths.urdf);
     if (!paths.robot.empty()) check_path("--export-robot", paths.robot);
-    if (!paths.urdf.empty() && fs::absolute(paths.urdf).lexically_normal() == fs::absolute(paths.robot).lexically_normal()) {
+    if (!paths.urdf.empty() && !paths.robot.empty() && fs::absolute(paths.urdf).lexically_normal() == fs::absolute(paths.robot).lexically_normal()) {
         throw InputError(fmt::format("--export-urdf and --export-robot: both name {}; give two files", paths.urdf));
     }
 }

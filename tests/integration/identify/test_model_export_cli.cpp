@@ -107,6 +107,19 @@ TEST(ModelExportCli, SimulatedUrdfArmExportsAUrdfThatKdlAgreesWith) {
     expect_description_round_trips(yaml, identified_base(jacobi));
     const double worst = kdl_disagreement(urdf, yaml, jacobi, Eigen::Vector4d(2.5, 2.0, 3.0, 0.1));
     EXPECT_LT(worst, 1e-9);
+    // The URDF alone, from a --semi-physical fit (kept, not replaced by the implied --physical).
+    const fs::path semi = dir / "out" / "semi.urdf";
+    const nlohmann::json s = identify_json("--robot " + robot + " --in " + log + " --semi-physical --export-urdf " + semi.string());
+    ASSERT_FALSE(s.is_null());
+    EXPECT_EQ(s["export"]["constraint"], "semi-physical");
+    EXPECT_TRUE(s["export"]["warnings"].is_array());
+    EXPECT_FALSE(s["export"].contains("robot"));
+    EXPECT_TRUE(fs::exists(semi));
+    // The same paths twice are refused.
+    const auto twice = run_command(kJacobid + " identify --quiet --robot " + robot + " --in " + log + " --export-urdf " + semi.string() +
+                                   " --export-robot " + semi.string());
+    EXPECT_EQ(twice.exit_code, 2);
+    EXPECT_NE(twice.err.find("both name"), std::string::npos) << twice.err;
 }
 
 TEST(ModelExportCli, MdhArmExportsItsDescriptionAndImpliesPhysical) {
