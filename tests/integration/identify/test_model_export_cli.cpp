@@ -115,6 +115,12 @@ TEST(ModelExportCli, SimulatedUrdfArmExportsAUrdfThatKdlAgreesWith) {
     EXPECT_TRUE(s["export"]["warnings"].is_array());
     EXPECT_FALSE(s["export"].contains("robot"));
     EXPECT_TRUE(fs::exists(semi));
+    // The description alone of a urdf model: the original URDF, every standard value in `parameters`.
+    const fs::path alone = dir / "out" / "alone.yaml";
+    const nlohmann::json a = identify_json("--robot " + robot + " --in " + log + " --export-robot " + alone.string());
+    ASSERT_FALSE(a.is_null());
+    EXPECT_NE(read_file(alone).find("export_arm.urdf"), std::string::npos);
+    expect_description_round_trips(alone, identified_base(a["methods"]["jacobi"]));
     // The same paths twice are refused.
     const auto twice = run_command(kJacobid + " identify --quiet --robot " + robot + " --in " + log + " --export-urdf " + semi.string() +
                                    " --export-robot " + semi.string());
