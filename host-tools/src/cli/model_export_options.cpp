@@ -29,12 +29,14 @@ void add_model_export_options(CLI::App* command, identify::ModelExportPaths& pat
                         std::string("write the robot's URDF (model urdf only) with the identified inertials (mass, centre of mass, inertia about it; "
                                     "links fixed to a moving link merged into it) and <dynamics damping=FV friction=FC>, everything else "
                                     "kept; rotor inertia, friction offset and Coulomb smoothing in a comment per joint.") +
-                            implies);
+                            implies)
+        ->type_name("FILE");
     command->add_option("--export-robot", paths.robot,
                         std::string("write a robot description (YAML, model mdh or urdf) that loads as the identified model: standard "
                                     "values in parameters (with --export-urdf: that URDF and only what it cannot carry), each joint's "
                                     "Coulomb smoothing fixed.") +
-                            implies);
+                            implies)
+        ->type_name("FILE");
 }
 
 nlohmann::json write_model_export(const identify::ModelExportPaths& paths, const robot::RobotDescription& description,

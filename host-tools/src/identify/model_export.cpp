@@ -20,8 +20,14 @@ bool starts_with(const std::string& s, const char* prefix) { return s.rfind(pref
 // What a URDF cannot carry: rotor inertias and friction offsets (inertials and <dynamics> carry the rest).
 bool beyond_urdf(const std::string& standard_name) { return starts_with(standard_name, "IA") || starts_with(standard_name, "FOFF"); }
 
-void check_path(const char* option, const std::string& path) {
+bool same_file(const std::string& a, const std::string& b) {
+    return !a.empty() && !b.empty() && fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
+}
+
+// `source`: the file it must not overwrite (the description's own, which holds the prior).
+void check_path(const char* option, const std::string& path, const std::string& source) {
     if (path == "-") throw InputError(fmt::format("{} -: expected a file path (standard output carries the report)", option));
+    if (same_file(path, source)) throw InputError(fmt::format("{} {}: is the description's own file (the prior); write the identified one beside it", option, path));
     const fs::path parent = fs::absolute(path).parent_path();
     std::error_code ec;
     if (!fs::is_directory(parent, ec)) throw InputError(fmt::format("{} {}: directory '{}' does not exist", option, path, parent.string()));
@@ -78,9 +84,9 @@ void check_model_export(const ModelExportPaths& paths, const robot::RobotDescrip
                                      "use --export-robot, or describe the robot with model urdf",
                                      paths.urdf, description.model));
     }
-    if (!paths.urdf.empty()) check_path("--export-urdf", paths.urdf);
-    if (!paths.robot.empty()) check_path("--export-robot", paths.robot);
-    if (!paths.urdf.empty() && !paths.robot.empty() && fs::absolute(paths.urdf).lexically_normal() == fs::absolute(paths.robot).lexically_normal()) {
+    if (!paths.urdf.empty()) check_path("--export-urdf", paths.urdf, description.urdf);
+    if (!paths.robot.empty()) check_path("--export-robot", paths.robot, description.source);
+    if (!paths.urdf.empty() && !paths.robot.empty() && same_file(paths.urdf, paths.robot)) {
         throw InputError(fmt::format("--export-urdf and --export-robot: both name {}; give two files", paths.urdf));
     }
 }

@@ -25,7 +25,8 @@ struct ModelExportPaths {
 };
 
 // Before identifying: InputError for a model without standard parameters (planar2r), --export-urdf with a
-// description that is not a URDF model, '-' or a path whose directory does not exist.
+// description that is not a URDF model, '-', a path whose directory does not exist, or the description's own
+// file (YAML or URDF: the prior would be lost).
 void check_model_export(const ModelExportPaths& paths, const robot::RobotDescription& description);
 
 struct ExportedModel {

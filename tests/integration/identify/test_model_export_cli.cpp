@@ -121,6 +121,14 @@ TEST(ModelExportCli, SimulatedUrdfArmExportsAUrdfThatKdlAgreesWith) {
     ASSERT_FALSE(a.is_null());
     EXPECT_NE(read_file(alone).find("export_arm.urdf"), std::string::npos);
     expect_description_round_trips(alone, identified_base(a["methods"]["jacobi"]));
+    // The description's own files hold the prior: never overwritten.
+    const auto own = run_command(kJacobid + " identify --quiet --robot " + robot + " --in " + log + " --export-urdf " + kSource +
+                                 "/tests/data/export_arm.urdf");
+    EXPECT_EQ(own.exit_code, 2);
+    EXPECT_NE(own.err.find("is the description's own file"), std::string::npos) << own.err;
+    const auto own_yaml = run_command(kJacobid + " identify --quiet --robot " + robot + " --in " + log + " --export-robot " + robot);
+    EXPECT_EQ(own_yaml.exit_code, 2);
+    EXPECT_NE(own_yaml.err.find("is the description's own file"), std::string::npos) << own_yaml.err;
     // The same paths twice are refused.
     const auto twice = run_command(kJacobid + " identify --quiet --robot " + robot + " --in " + log + " --export-urdf " + semi.string() +
                                    " --export-robot " + semi.string());
