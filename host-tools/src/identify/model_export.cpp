@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -15,10 +16,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+// The kind of a standard parameter name: "XX3" -> "XX", "FOFF1" -> "FOFF".
+std::string kind_of(const std::string& standard_name) { return standard_name.substr(0, standard_name.find_first_of("0123456789")); }
 
-// What a URDF cannot carry: rotor inertias and friction offsets (inertials and <dynamics> carry the rest).
-bool beyond_urdf(const std::string& standard_name) { return starts_with(standard_name, "IA") || starts_with(standard_name, "FOFF"); }
+// What a URDF cannot carry: rotor inertias, friction offsets, Dahl presliding levels (FDj), whatever comes
+// next; inertials carry XX..M and <dynamics> FV, FC.
+bool beyond_urdf(const std::string& standard_name) {
+    static const std::set<std::string> carried{"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M", "FV", "FC"};
+    return carried.count(kind_of(standard_name)) == 0;
+}
+
+// What the joint comment says of a value the URDF cannot carry.
+std::string meaning(const std::string& kind) {
+    if (kind == "IA") return "kg.m^2, rotor inertia on the joint axis: MuJoCo's joint armature";
+    if (kind == "FOFF") return "N.m, constant torque offset";
+    if (kind == "FD") return "N.m, Dahl presliding friction level (jacobid friction presliding: dahl)";
+    return "see docs/identify.md";
+}
 
 bool same_file(const std::string& a, const std::string& b) {
     return !a.empty() && !b.empty() && fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
@@ -55,10 +69,9 @@ std::vector<std::string> joint_notes(const robot::RobotDescription& description,
     for (std::size_t j = 0; j < description.joints.size(); ++j) {
         std::string note = "jacobid, not in URDF:";
         for (std::size_t i = 0; i < names.size(); ++i) {
-            if (names[i] == fmt::format("IA{}", j + 1)) {
-                note += fmt::format(" IA{} = {:.17g} kg.m^2 (rotor inertia on the joint axis: MuJoCo's joint armature);", j + 1, s[static_cast<Eigen::Index>(i)]);
-            }
-            if (names[i] == fmt::format("FOFF{}", j + 1)) note += fmt::format(" FOFF{} = {:.17g} N.m (constant torque offset);", j + 1, s[static_cast<Eigen::Index>(i)]);
+            const std::string kind = kind_of(names[i]);
+            if (!beyond_urdf(names[i]) || names[i] != kind + std::to_string(j + 1)) continue;
+            note += fmt::format(" {} = {:.17g} ({});", names[i], s[static_cast<Eigen::Index>(i)], meaning(kind));
         }
         if (description.coulomb.model == robot::CoulombModel::Sign) {
             note += " Coulomb friction = friction * sign(qd)";
@@ -92,7 +105,8 @@ void check_model_export(const ModelExportPaths& paths, const robot::RobotDescrip
 }
 
 robot::RobotDescription identified_description(const robot::RobotDescription& description, const std::vector<std::string>& names,
-                                               const Eigen::VectorXd& standard, const std::vector<double>& alphas, const std::string& urdf_path) {
+                                               const Eigen::VectorXd& standard, const std::vector<double>& alphas, const std::string& urdf_path,
+                                               const std::vector<double>& presliding_displacements) {
     robot::RobotDescription d = description;
     d.parameters.clear();
     for (std::size_t i = 0; i < names.size(); ++i) {
@@ -102,6 +116,10 @@ robot::RobotDescription identified_description(const robot::RobotDescription& de
     // The model identified with, not a new choice on the next log.
     d.coulomb_alpha = alphas;
     d.coulomb_alpha_auto = false;
+    if (!presliding_displacements.empty()) {
+        d.presliding_displacements = presliding_displacements;
+        d.presliding_displacement_auto = false;
+    }
     return d;
 }
 
@@ -138,7 +156,8 @@ ExportedModel export_model(const ModelExportPaths& paths, const robot::RobotDesc
             const fs::path relative = urdf.lexically_relative(fs::absolute(paths.robot).lexically_normal().parent_path());
             urdf_reference = relative.empty() ? urdf.string() : relative.string();
         }
-        out.robot = "# " + header + "\n" + robot::to_yaml(identified_description(description, names, s, alphas, urdf_reference));
+        const std::vector<double> displacements = result.presliding_displacement ? result.presliding_displacement->displacement : std::vector<double>{};
+        out.robot = "# " + header + "\n" + robot::to_yaml(identified_description(description, names, s, alphas, urdf_reference, displacements));
         out.summary["robot"] = paths.robot;
     }
     nlohmann::json beyond = nlohmann::json::object();

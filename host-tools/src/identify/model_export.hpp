@@ -4,11 +4,12 @@
 // The physically consistent standard parameters (physical_identification.hpp) reproduce the identified base
 // parameters exactly (base = K s); they are written
 //   - into the robot's URDF (robot/urdf_export.hpp): inertials and <dynamics damping friction>, with what
-//     URDF cannot carry (rotor inertia IAj, friction offset FOFFj, the Coulomb smoothing) in a comment per joint;
+//     URDF cannot carry (rotor inertia IAj, friction offset FOFFj, presliding level FDj, the Coulomb smoothing) in a
+//     comment per joint;
 //   - as a robot description (the YAML load_robot_description reads) that gives the identified model when
 //     loaded: every standard value in `parameters` (for a urdf model whose URDF is exported too, the file
 //     points to it and `parameters` keeps only what the URDF cannot carry), each joint's Coulomb smoothing
-//     fixed at the value identified with.
+//     (and Dahl presliding displacement) fixed at the value identified with.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -43,10 +44,12 @@ ExportedModel export_model(const ModelExportPaths& paths, const robot::RobotDesc
                            const std::string& log_source);
 
 // The description that gives the identified model: `standard` (names, values) as its parameters, `alphas` per
-// joint as its fixed Coulomb smoothing; with `urdf_path` (a urdf model's exported URDF, as the description
-// file will name it) only the parameters a URDF cannot carry (IAj, FOFFj) stay in `parameters`.
+// joint as its fixed Coulomb smoothing (and, when given, presliding_displacements as its fixed Dahl x_p); with
+// `urdf_path` (a urdf model's exported URDF, as the description file will name it) only the parameters a URDF
+// cannot carry (IAj, FOFFj, FDj) stay in `parameters`.
 robot::RobotDescription identified_description(const robot::RobotDescription& description, const std::vector<std::string>& names,
-                                               const Eigen::VectorXd& standard, const std::vector<double>& alphas, const std::string& urdf_path);
+                                               const Eigen::VectorXd& standard, const std::vector<double>& alphas, const std::string& urdf_path,
+                                               const std::vector<double>& presliding_displacements = {});
 
 // One line for the text report.
 std::string describe_export(const nlohmann::json& summary);

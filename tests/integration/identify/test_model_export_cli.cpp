@@ -136,6 +136,35 @@ TEST(ModelExportCli, SimulatedUrdfArmExportsAUrdfThatKdlAgreesWith) {
     EXPECT_NE(twice.err.find("both name"), std::string::npos) << twice.err;
 }
 
+TEST(ModelExportCli, PreslidingLevelsAndDisplacementsGoToTheDescription) {
+    const fs::path dir = test::scratch_directory() / "export_dahl";
+    fs::create_directories(dir);
+    const std::string robot = (dir / "arm.yaml").string();
+    std::ofstream(robot) << "model: urdf\nurdf: " << kSource << "/tests/data/export_arm.urdf\n"
+                         << "friction: {coulomb: smooth, alpha: 100, presliding: dahl}\n"
+                         << "parameters: {FV1: 0.3, FC1: 0.8, FV3: 0.2, FC3: 0.5, FD1: 0.3, FD2: 0.2, FD3: 0.1, FD4: 0.5}\n";
+    const std::string log = (dir / "log.csv").string();
+    ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + robot + " --duration 8 --seed 3 --noise-seed 4 --torque-noise 0.2 -o " + log).exit_code, 0);
+    const fs::path urdf = dir / "arm_identified.urdf", yaml = dir / "arm_identified.yaml";
+    const nlohmann::json j = identify_json("--robot " + robot + " --in " + log + " --export-urdf " + urdf.string() + " --export-robot " + yaml.string());
+    ASSERT_FALSE(j.is_null());
+    EXPECT_TRUE(j["export"]["not_in_urdf"].contains("FD1")) << j["export"].dump();
+    EXPECT_NE(read_file(urdf).find("FD4 = "), std::string::npos) << "the joint comment names the presliding level";
+    const robot::RobotDescription loaded = robot::load_robot_description(yaml.string());
+    EXPECT_TRUE(loaded.presliding);
+    EXPECT_FALSE(loaded.presliding_displacement_auto);
+    const nlohmann::json& jacobi = j["methods"]["jacobi"];
+    ASSERT_EQ(loaded.presliding_displacements.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) {
+        EXPECT_DOUBLE_EQ(loaded.presliding_displacements[k], jacobi["presliding_displacement"]["joints"][k]["displacement"].get<double>());
+    }
+    // The levels and the rigid body: the loaded description's values are the identified ones.
+    const auto model = robot::make_robot_model(loaded);
+    const Eigen::VectorXd reloaded = robot::true_parameters(loaded, *model), x = identified_base(jacobi);
+    ASSERT_EQ(reloaded.size(), x.size());
+    EXPECT_LT((reloaded - x).norm(), 1e-9 * x.norm()) << "reloaded\n" << reloaded.transpose() << "\nidentified\n" << x.transpose();
+}
+
 TEST(ModelExportCli, MdhArmExportsItsDescriptionAndImpliesPhysical) {
     const fs::path dir = test::scratch_directory() / "export_mdh";
     fs::create_directories(dir);
