@@ -85,15 +85,23 @@ double kdl_disagreement(const fs::path& urdf, const fs::path& yaml, const nlohma
     return test::worst_relative_difference(kdl, serial, x, loaded.gravity, terms, limits);
 }
 
+// The test arm (tests/data/export_arm.urdf) described with `extra` (friction, parameters) in DIR/arm.yaml, and
+// an 8 s simulated log of it in DIR/log.csv.
+struct SimulatedArm {
+    std::string robot, log;
+};
+SimulatedArm simulated_arm(const fs::path& dir, const std::string& extra) {
+    fs::create_directories(dir);
+    SimulatedArm arm{(dir / "arm.yaml").string(), (dir / "log.csv").string()};
+    std::ofstream(arm.robot) << "model: urdf\nurdf: " << kSource << "/tests/data/export_arm.urdf\n" << extra;
+    EXPECT_EQ(run_command(kJacobid + " simulate --quiet --robot " + arm.robot + " --duration 8 --seed 3 --noise-seed 4 --torque-noise 0.2 -o " + arm.log).exit_code, 0);
+    return arm;
+}
+
 TEST(ModelExportCli, SimulatedUrdfArmExportsAUrdfThatKdlAgreesWith) {
     const fs::path dir = test::scratch_directory() / "export_arm";
-    fs::create_directories(dir);
-    const std::string robot = (dir / "arm.yaml").string();
-    std::ofstream(robot) << "model: urdf\nurdf: " << kSource << "/tests/data/export_arm.urdf\n"
-                         << "friction: {coulomb: smooth, alpha: auto, offset: true}\nrotor_inertia: true\n"
-                         << "parameters: {IA1: 0.05, IA2: 0.04, IA3: 0.02, IA4: 0.5, FV1: 0.3, FC1: 0.8, FV3: 0.2, FC3: 0.5, FOFF2: 0.3}\n";
-    const std::string log = (dir / "log.csv").string();
-    ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + robot + " --duration 8 --seed 3 --noise-seed 4 --torque-noise 0.2 -o " + log).exit_code, 0);
+    const auto [robot, log] = simulated_arm(dir, "friction: {coulomb: smooth, alpha: auto, offset: true}\nrotor_inertia: true\n"
+                                                 "parameters: {IA1: 0.05, IA2: 0.04, IA3: 0.02, IA4: 0.5, FV1: 0.3, FC1: 0.8, FV3: 0.2, FC3: 0.5, FOFF2: 0.3}\n");
     const fs::path urdf = dir / "out" / "arm.urdf", yaml = dir / "out" / "arm.yaml";
     fs::create_directories(dir / "out");
     const nlohmann::json j = identify_json("--robot " + robot + " --in " + log + " --method both --export-urdf " + urdf.string() + " --export-robot " + yaml.string());
@@ -138,13 +146,8 @@ TEST(ModelExportCli, SimulatedUrdfArmExportsAUrdfThatKdlAgreesWith) {
 
 TEST(ModelExportCli, PreslidingLevelsAndDisplacementsGoToTheDescription) {
     const fs::path dir = test::scratch_directory() / "export_dahl";
-    fs::create_directories(dir);
-    const std::string robot = (dir / "arm.yaml").string();
-    std::ofstream(robot) << "model: urdf\nurdf: " << kSource << "/tests/data/export_arm.urdf\n"
-                         << "friction: {coulomb: smooth, alpha: 100, presliding: dahl}\n"
-                         << "parameters: {FV1: 0.3, FC1: 0.8, FV3: 0.2, FC3: 0.5, FD1: 0.3, FD2: 0.2, FD3: 0.1, FD4: 0.5}\n";
-    const std::string log = (dir / "log.csv").string();
-    ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + robot + " --duration 8 --seed 3 --noise-seed 4 --torque-noise 0.2 -o " + log).exit_code, 0);
+    const auto [robot, log] = simulated_arm(dir, "friction: {coulomb: smooth, alpha: 100, presliding: dahl}\n"
+                                                 "parameters: {FV1: 0.3, FC1: 0.8, FV3: 0.2, FC3: 0.5, FD1: 0.3, FD2: 0.2, FD3: 0.1, FD4: 0.5}\n");
     const fs::path urdf = dir / "arm_identified.urdf", yaml = dir / "arm_identified.yaml";
     const nlohmann::json j = identify_json("--robot " + robot + " --in " + log + " --export-urdf " + urdf.string() + " --export-robot " + yaml.string());
     ASSERT_FALSE(j.is_null());
