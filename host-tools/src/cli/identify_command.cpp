@@ -16,6 +16,7 @@
 #include "cli/command.hpp"
 #include "cli/fit_options.hpp"
 #include "cli/log_format_options.hpp"
+#include "cli/model_export_options.hpp"
 #include "cli/output_file.hpp"
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/identify_run.hpp"
@@ -64,6 +65,7 @@ struct IdentifyOptions : FitOptions {
     bool physical = false;       // --physical
     bool semi_physical = false;  // --semi-physical
     double prior_weight = identify::PhysicalSettings{}.prior_weight;
+    identify::ModelExportPaths model_export;  // --export-urdf, --export-robot
 };
 
 // --physical / --semi-physical as solver settings; nullopt for neither. InputError for both, or a bad weight.
@@ -192,6 +194,9 @@ void run(IdentifyOptions o) {
         return;
     }
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
+    // Refused before the (long) identification; exporting needs standard parameters: --physical unless --semi-physical.
+    identify::check_model_export(o.model_export, robot);
+    o.physical = o.physical || (o.model_export.any() && !o.semi_physical);
     const std::optional<identify::PhysicalSettings> physical = physical_settings(o);
     const auto parse_start = Clock::now();
     const LogSegments input = read_log(o.in, robot, o);
@@ -268,6 +273,8 @@ void run(IdentifyOptions o) {
     }
     for (const auto& w : ctx.warnings) fmt::print(stderr, "jacobid identify: warning: {}\n", w);
 
+    std::optional<nlohmann::json> exported;
+    if (o.model_export.any()) exported = write_model_export(o.model_export, robot, results.front(), o.in);
     std::string text;
     if (o.format == "json") {
         nlohmann::json j;
@@ -278,9 +285,10 @@ void run(IdentifyOptions o) {
         j["log"] = o.in;
         j["model"] = model->model_name();
         j["parse_seconds"] = parse_seconds;
+        if (exported) j["export"] = *exported;
         text = j.dump(2) + "\n";
     } else {
-        text = identify::format_table(results, ctx);
+        text = identify::format_table(results, ctx) + (exported ? identify::describe_export(*exported) : "");
     }
     write_output(o.output, text);
     if (!o.report.empty()) identify::write_report(o.report, results, ctx);
@@ -333,6 +341,7 @@ void add_identify_command(CLI::App& app) {
                     "weight of the description's standard values in --physical: w sum ((s - prior) / unit)^2 beside the data's chi^2 "
                     "(units 0.01 kg.m^2, 0.1 kg.m, 1 kg, 1 N.m); it decides only what the log does not excite")
         ->capture_default_str();
+    add_model_export_options(cmd, o->model_export);
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] {
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;

@@ -9,6 +9,7 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/base_parameters.cpp
   ${CMAKE_CURRENT_LIST_DIR}/serial_robot_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/urdf_chain.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/urdf_export.cpp
   ${CMAKE_CURRENT_LIST_DIR}/base_parameter_report.cpp
   ${CMAKE_CURRENT_LIST_DIR}/presliding_model.cpp
 )
@@ -19,5 +20,10 @@ target_include_directories(jacobid_host SYSTEM PRIVATE ${urdfdom_INCLUDE_DIRS})
 # the emulated board). Installed: the imported target, so that the exported jacobid::host names it and
 # jacobidConfig.cmake finds it with find_dependency(urdfdom); urdf_parser lives in urdfdom_model.
 target_link_libraries(jacobid_host PRIVATE "$<BUILD_INTERFACE:${urdfdom_LIBRARIES}>" "$<INSTALL_INTERFACE:urdfdom::urdfdom_model>")
+# urdf_export edits URDF with TinyXML, the XML library urdfdom reads it with (find_library: sysroot-aware).
+find_library(JACOBID_TINYXML_LIBRARY tinyxml REQUIRED)
+find_path(JACOBID_TINYXML_INCLUDE_DIR tinyxml.h REQUIRED)
+target_include_directories(jacobid_host SYSTEM PRIVATE ${JACOBID_TINYXML_INCLUDE_DIR})
+target_link_libraries(jacobid_host PRIVATE "$<BUILD_INTERFACE:${JACOBID_TINYXML_LIBRARY}>" "$<INSTALL_INTERFACE:tinyxml>")
 # Robot descriptions are read with the YAML idiom shared with the firmware (yaml/).
 target_link_libraries(jacobid_host PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)

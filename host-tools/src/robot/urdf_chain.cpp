@@ -75,6 +75,7 @@ private:
             if (!std::isfinite(v)) throw InputError(fmt::format("{}: element <link name='{}'>: <inertial> must be finite numbers", source_, link.name));
         }
         for (std::size_t k = 0; k < p.size(); ++k) inertials_[static_cast<std::size_t>(body)][k] += p[k];
+        if (link.name != chain_.body_links[static_cast<std::size_t>(body)]) chain_.merged_links[static_cast<std::size_t>(body)].push_back(link.name);
     }
 
     // `link` belongs to the moving body `body` (-1: base); `body_to_link` maps link coordinates to body coordinates.
@@ -121,6 +122,8 @@ private:
             chain_.joints.push_back(c);
             chain_.names.push_back(joint.name);
             chain_.limits.emplace_back(lower, upper);
+            chain_.body_links.push_back(child->name);
+            chain_.merged_links.emplace_back();
             inertials_.push_back({});
             if (joint.dynamics && (!std::isfinite(joint.dynamics->damping) || !std::isfinite(joint.dynamics->friction))) {
                 throw InputError(fmt::format("{}: <dynamics damping friction> must be finite numbers", element(joint)));

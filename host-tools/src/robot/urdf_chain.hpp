@@ -20,6 +20,10 @@ struct UrdfChain {
     std::vector<std::string> names;   // URDF joint names
     std::vector<std::pair<double, double>> limits;  // [lower, upper]; continuous joints: [-pi, pi]
     std::vector<std::pair<std::string, double>> standard_parameters;  // XX1 ... M_n, FVj, FCj from the file
+    // Per moving joint: its child link (whose frame is the body frame of the standard parameters), and the
+    // links fixed to that body whose <inertial> was merged into the body's standard parameters.
+    std::vector<std::string> body_links;
+    std::vector<std::vector<std::string>> merged_links;
 };
 
 // xml: the URDF text; source names it in error messages (the file path, or e.g. "<fuzz>").
