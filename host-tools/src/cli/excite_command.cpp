@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
@@ -35,6 +36,7 @@ struct ExciteOptions {
     double rate = 1000.0;
     int samples = 0;
     int starts = 4;
+    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     double time_limit = 60.0;
     std::uint64_t seed = 1;
     bool quiet = false;
@@ -82,6 +84,7 @@ void check(const ExciteOptions& o) {
     if (!(o.rate > 0.0) || std::abs(period * o.rate - std::round(period * o.rate)) > 1e-6) {
         throw InputError(fmt::format("--rate {}: expected a rate with a whole number of samples per period ({} s)", o.rate, period));
     }
+    if (o.threads < 1) throw InputError(fmt::format("--threads {}: expected >= 1", o.threads));
     if (o.starts < 1) throw InputError(fmt::format("--starts {}: expected >= 1", o.starts));
     if (!(o.time_limit > 0.0)) throw InputError(fmt::format("--time-limit {}: expected > 0 s", o.time_limit));
     if (o.samples < 0) throw InputError(fmt::format("--samples {}: expected >= 0 (0: automatic)", o.samples));
@@ -166,6 +169,7 @@ void run(const ExciteOptions& o) {
     }
     excite::DesignSettings ds;
     ds.starts = o.starts;
+    ds.threads = o.threads;
     ds.time_limit = o.time_limit;
     ds.seed = o.seed;
     ds.control_rate = o.rate;
@@ -249,6 +253,7 @@ void add_excite_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--starts", o->starts, "random starts of the optimizer (the best feasible one is kept)")->capture_default_str();
     cmd->add_option("--time-limit", o->time_limit, "s for all starts together")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "starts optimized side by side (default: the machine's cores)")->capture_default_str();
     cmd->add_option("--seed", o->seed, "seed of the random starts")->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o] { run(*o); });

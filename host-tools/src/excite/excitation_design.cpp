@@ -8,6 +8,9 @@
 #include <limits>
 #include <nlopt.hpp>
 #include <random>
+#include <atomic>
+#include <mutex>
+#include <thread>
 
 #include "core/errors.hpp"
 
@@ -21,6 +24,7 @@ constexpr int kMaxRounds = 4;        // tightening rounds after the control-rate
 // harmonic: at most 1 - cos(pi / 20) = 1.2 % above the samples' for a pure harmonic) then rarely needs a
 // tightening round.
 constexpr double kMargin = 0.985;
+constexpr double kFeasible = 1e-4;  // largest aggregated constraint of a result that counts as meeting the limits
 
 struct Callbacks {
     ExcitationProblem* problem;
@@ -106,7 +110,6 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
     auto say = [&](const std::string& line) {
         if (settings.progress) settings.progress(line);
     };
-    std::mt19937_64 rng(settings.seed);
     Design d;
     std::vector<JointLimits> tightened = limits;
     for (std::size_t j = 0; j < tightened.size(); ++j) {
@@ -117,21 +120,48 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
         l.velocity *= kMargin, l.acceleration *= kMargin, l.torque *= kMargin;
     }
     problem.set_limits(tightened);
+    // The starts on `threads` workers, each with its own copy of the problem (its caches are per instance; the
+    // model's regressor is const). Start s draws from seed + s, so the result does not depend on the threads.
+    const int workers = std::max(1, std::min(settings.threads, settings.starts));
+    const int rounds_of_starts = (settings.starts + workers - 1) / workers;
+    std::vector<LocalResult> results(static_cast<std::size_t>(settings.starts));
+    std::vector<int> evaluations(static_cast<std::size_t>(workers), 0);
+    std::vector<bool> ran(static_cast<std::size_t>(settings.starts), false);
+    std::atomic<int> next{0};
+    std::mutex report;
+    auto worker = [&](int w) {
+        ExcitationProblem local = problem;
+        for (int s = next++; s < settings.starts; s = next++) {
+            // The starts share 80 % of the time; the rest is kept for the tightening rounds.
+            const double remaining = kStartShare * settings.time_limit - elapsed();
+            if (remaining <= 0.0 && s >= workers) break;
+            const int left_here = rounds_of_starts - s / workers;
+            const double budget = remaining / std::max(1, left_here);
+            std::mt19937_64 rng(settings.seed + static_cast<std::uint64_t>(s));
+            LocalResult r = local_run(local, random_start(local, rng), budget, settings.max_evaluations, evaluations[static_cast<std::size_t>(w)]);
+            const double cond = local.condition_number(r.c);
+            const std::lock_guard<std::mutex> lock(report);
+            say(fmt::format("start {}/{}: {} {:.4g}, cond {:.4g}, largest constraint {:+.2e}{} ({:.1f} s)", s + 1, settings.starts,
+                            problem.criterion_kind() == Criterion::Cond ? "log cond" : "-log det", r.f, cond, r.violation,
+                            r.violation <= kFeasible ? "" : " (infeasible)", elapsed()));
+            results[static_cast<std::size_t>(s)] = std::move(r);
+            ran[static_cast<std::size_t>(s)] = true;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int w = 1; w < workers; ++w) pool.emplace_back(worker, w);
+    worker(0);
+    for (auto& t : pool) t.join();
     LocalResult best;
     for (int s = 0; s < settings.starts; ++s) {
-        // The starts share 80 % of the time; the rest is kept for the tightening rounds.
-        const double remaining = kStartShare * settings.time_limit - elapsed();
-        if (remaining <= 0.0 && s > 0) break;
-        const double budget = remaining / (settings.starts - s) * (s + 1 == settings.starts ? 1.0 : 0.9);
-        const LocalResult r = local_run(problem, random_start(problem, rng), budget, settings.max_evaluations, d.evaluations);
+        if (!ran[static_cast<std::size_t>(s)]) continue;
+        const LocalResult& r = results[static_cast<std::size_t>(s)];
         ++d.starts_run;
-        const bool feasible = r.violation <= 1e-4;
+        const bool feasible = r.violation <= kFeasible;
         d.start_criteria.push_back(feasible ? r.f : std::numeric_limits<double>::quiet_NaN());
-        say(fmt::format("start {}/{}: {} {:.4g}, cond {:.4g}, largest constraint {:+.2e}{} ({:.1f} s)", s + 1, settings.starts,
-                        problem.criterion_kind() == Criterion::Cond ? "log cond" : "-log det", r.f, problem.condition_number(r.c), r.violation, feasible ? "" : " (infeasible)",
-                        elapsed()));
         if (feasible && r.f < best.f) best = r;
     }
+    for (const int e : evaluations) d.evaluations += e;
     if (!std::isfinite(best.f)) {
         throw InputError(fmt::format("excite: no start met the limits ({} starts; the pose's gravity torque or the limits may leave no room)", d.starts_run));
     }
@@ -156,7 +186,7 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
         problem.set_limits(tightened);
         const double left = std::max(2.0, (settings.time_limit - elapsed()) / (kMaxRounds - d.rounds + 1));
         const LocalResult r = local_run(problem, best.c, left, settings.max_evaluations, d.evaluations);
-        if (r.violation <= 1e-4) best = r;
+        if (r.violation <= kFeasible) best = r;
     }
     if (d.check.worst > 1.0) {
         throw InputError(fmt::format("excite: joint {} {} reaches {:.4g} of its limit at t = {:.4g} s between the optimizer's samples (use more --samples)",

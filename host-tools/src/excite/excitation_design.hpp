@@ -15,6 +15,7 @@ namespace jacobid::excite {
 
 struct DesignSettings {
     int starts = 4;             // random starts
+    int threads = 2;            // starts optimized side by side (each on its own copy of the problem)
     double time_limit = 60.0;   // s, all starts and rounds together
     std::uint64_t seed = 1;
     double control_rate = 1000.0;  // Hz: the rate at which every sample is checked
