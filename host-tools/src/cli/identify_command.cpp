@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/drive_gains_options.hpp"
 #include "cli/fit_options.hpp"
 #include "cli/log_format_options.hpp"
 #include "cli/output_file.hpp"
@@ -64,6 +65,7 @@ struct IdentifyOptions : FitOptions {
     bool physical = false;       // --physical
     bool semi_physical = false;  // --semi-physical
     double prior_weight = identify::PhysicalSettings{}.prior_weight;
+    DriveGainOptions drive_gains;  // --drive-gains --loaded --payload-mass ...
 };
 
 // --physical / --semi-physical as solver settings; nullopt for neither. InputError for both, or a bad weight.
@@ -192,6 +194,10 @@ void run(IdentifyOptions o) {
         return;
     }
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
+    if (o.drive_gains.enabled) {
+        write_output(o.output, run_drive_gains(robot, *model, o.drive_gains, o, o.method, {o.in, o.format, o.time_column, o.time_tolerance, o.quiet, &o.log_format}));
+        return;
+    }
     const std::optional<identify::PhysicalSettings> physical = physical_settings(o);
     const auto parse_start = Clock::now();
     const LogSegments input = read_log(o.in, robot, o);
@@ -333,6 +339,7 @@ void add_identify_command(CLI::App& app) {
                     "weight of the description's standard values in --physical: w sum ((s - prior) / unit)^2 beside the data's chi^2 "
                     "(units 0.01 kg.m^2, 0.1 kg.m, 1 kg, 1 N.m); it decides only what the log does not excite")
         ->capture_default_str();
+    add_drive_gain_options(cmd, o->drive_gains);
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] {
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;
