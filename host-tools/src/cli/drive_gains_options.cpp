@@ -35,6 +35,9 @@ std::string run_drive_gains(const robot::RobotDescription& robot, const robot::R
                             const std::string& method, const DriveGainInputs& in) {
     if (o.loaded.empty()) throw InputError("--drive-gains needs --loaded LOG: the run with the payload");
     if (method == "both") throw InputError("--drive-gains with --method both: give one method");
+    for (const auto& [option, given] : in.other_options) {
+        if (given) throw InputError(fmt::format("--drive-gains with {}: not supported (write the gains into a log format, then identify with {})", option, option));
+    }
     identify::PayloadKnowledge payload;
     payload.mass = o.payload_mass;
     if (!o.payload_com.empty()) payload.com = Eigen::Vector3d(o.payload_com[0], o.payload_com[1], o.payload_com[2]);

@@ -3,6 +3,7 @@
 // identify --drive-gains --loaded LOG --payload-mass KG [--payload-com x,y,z] [--payload-inertia ...]: the
 // options and the run (identify/drive_gains.hpp), kept out of identify_command.cpp.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/fit_options.hpp"
@@ -32,10 +33,12 @@ struct DriveGainInputs {
     double time_tolerance = 0.0;
     bool quiet = false;
     const LogFormatOptions* log_format = nullptr;
+    // identify's options that --drive-gains does not use, and whether each was given (refused then).
+    std::vector<std::pair<std::string, bool>> other_options;
 };
 
 // The text table or JSON of identify --drive-gains. InputError for a missing --loaded, a bad payload option, logs
-// of different joint counts, --method both.
+// of different joint counts, --method both, another identify option it does not use (--validate ...).
 std::string run_drive_gains(const robot::RobotDescription& robot, const robot::RobotModel& model, const DriveGainOptions& o, const FitOptions& fit,
                             const std::string& method, const DriveGainInputs& inputs);
 

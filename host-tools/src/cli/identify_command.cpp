@@ -195,7 +195,12 @@ void run(IdentifyOptions o) {
     }
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
     if (o.drive_gains.enabled) {
-        write_output(o.output, run_drive_gains(robot, *model, o.drive_gains, o, o.method, {o.in, o.format, o.time_column, o.time_tolerance, o.quiet, &o.log_format}));
+        const std::vector<std::pair<std::string, bool>> given = {{"--validate", !o.validate.empty()}, {"--report", !o.report.empty()},
+                                                                 {"--truth", !o.truth.empty()},       {"--essential", o.essential_flag},
+                                                                 {"--physical", o.physical || o.semi_physical}, {"--can-config", !o.can_config.empty()},
+                                                                 {"--velocity", !o.velocity.empty()}};
+        write_output(o.output, run_drive_gains(robot, *model, o.drive_gains, o, o.method,
+                                               {o.in, o.format, o.time_column, o.time_tolerance, o.quiet, &o.log_format, given}));
         return;
     }
     const std::optional<identify::PhysicalSettings> physical = physical_settings(o);

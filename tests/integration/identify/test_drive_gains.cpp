@@ -119,6 +119,17 @@ TEST(DriveGains, SimulatedPairGivesTheGainsBack) {
         EXPECT_LT(std::abs(g["constrained"].get<double>() - kGains[j]), band);
     }
     EXPECT_TRUE(d["estimators"]["constrained"]["converged"].get<bool>());
+    // The same pair with the whole payload given (centre of mass and inertia moved to the link frame by the
+    // parallel axes): nothing of it is left to identify, and the gains are the same.
+    const auto known = run_command(kJacobid + " identify --quiet --format json --robot " + kRobot + " --drive-gains --in " + p.unloaded +
+                                   " --loaded " + p.loaded + " --payload-mass 2 --payload-com 0.02,-0.01,0.06 --payload-inertia 4e-3,0,0,5e-3,0,3e-3");
+    ASSERT_EQ(known.exit_code, 0) << known.err;
+    const nlohmann::json k = nlohmann::json::parse(known.out)["drive_gains"];
+    EXPECT_TRUE(k["payload_unknown"].empty()) << k["payload_unknown"].dump();
+    for (std::size_t j = 0; j < kGains.size(); ++j) {
+        const nlohmann::json& g = k["joints"][j];
+        EXPECT_LT(std::abs(g["gain"].get<double>() - kGains[j]), 4.0 * g["std"].get<double>() + kBias * kGains[j]) << "joint " << j + 1 << ": " << g.dump();
+    }
     // The payload's centre of mass, seen through its first moments (identified, not given).
     const nlohmann::json& payload = d["estimators"][d["estimator"].get<std::string>()]["payload"];
     EXPECT_NEAR(payload["MZL"].get<double>() / kMass, 0.06, 0.01) << payload.dump();
@@ -141,6 +152,9 @@ TEST(DriveGains, BadInputIsRefusedWithOneLine) {
     const auto inertia = run_command(base + " --loaded " + log + " --payload-mass 1 --payload-inertia 1,0,0,1,0,1");
     EXPECT_NE(inertia.exit_code, 0);
     EXPECT_NE(inertia.err.find("--payload-inertia needs --payload-com"), std::string::npos) << inertia.err;
+    const auto validate = run_command(base + " --loaded " + log + " --payload-mass 1 --validate " + log);
+    EXPECT_NE(validate.exit_code, 0);
+    EXPECT_NE(validate.err.find("--drive-gains with --validate: not supported"), std::string::npos) << validate.err;
     // A log of another robot (two joints) as the loaded run: its missing columns are named.
     ASSERT_EQ(run_command(kJacobid + " simulate --quiet --duration 2 -o " + planar).exit_code, 0);
     const auto other = run_command(base + " --loaded " + planar + " --payload-mass 1");
@@ -215,7 +229,9 @@ TEST(DriveGains, SharedUr10ePairValidatesAtLeastAsWellAsTheSourceGains) {
         EXPECT_GT(g["std"].get<double>(), 0.0);
         // Joint 1 (vertical axis) is told by the payload's inertia alone and comes out far from every published
         // value (docs/real-data.md); joints 2-6 within the 30 % a datasheet gives.
-        if (j > 0) EXPECT_NEAR(ours.back(), source[j], 0.3 * source[j]);
+        if (j > 0) {
+            EXPECT_NEAR(ours.back(), source[j], 0.3 * source[j]);
+        }
     }
     EXPECT_EQ(d["gains_line"].get<std::string>().rfind("gains: [", 0), 0u);
     const double with_ours = mean_moving_nrmse(robot, dir, "ours", ours), with_source = mean_moving_nrmse(robot, dir, "source", source);
