@@ -33,8 +33,9 @@ constexpr double kMass = 2.0;
 // gains are checked to 4 std plus 0.4 %.
 constexpr double kBias = 0.004;
 
-// Every column whose header starts with "tau" divided by its joint's gain: the log then holds currents.
-void to_currents(const std::string& path) {
+// Every column whose header starts with "tau" multiplied by its joint's factor (1 / gain: the log then holds
+// currents).
+void scale_torques(const std::string& path, const std::vector<double>& factors) {
     std::ifstream in(path);
     std::string header, line;
     std::getline(in, header);
@@ -52,7 +53,7 @@ void to_currents(const std::string& path) {
         std::string cell;
         for (std::size_t c = 0; std::getline(row, cell, ','); ++c) {
             const double v = std::stod(cell);
-            out << (c ? "," : "") << (joint[c] >= 0 ? v / kGains[static_cast<std::size_t>(joint[c])] : v);
+            out << (c ? "," : "") << (joint[c] >= 0 ? v * factors[static_cast<std::size_t>(joint[c])] : v);
         }
         out << '\n';
     }
@@ -95,8 +96,10 @@ Pair simulated_pair(const std::string& name) {
     const std::string common = " simulate --quiet --duration 30 --seed 3 --torque-noise 0.3";
     EXPECT_EQ(run_command(kJacobid + common + " --noise-seed 4 --robot " + kRobot + " -o " + p.unloaded).exit_code, 0);
     EXPECT_EQ(run_command(kJacobid + common + " --noise-seed 5 --robot " + loaded_robot(dir) + " -o " + p.loaded).exit_code, 0);
-    to_currents(p.unloaded);
-    to_currents(p.loaded);
+    std::vector<double> currents;
+    for (double g : kGains) currents.push_back(1.0 / g);
+    scale_torques(p.unloaded, currents);
+    scale_torques(p.loaded, currents);
     return p;
 }
 
@@ -155,6 +158,13 @@ TEST(DriveGains, BadInputIsRefusedWithOneLine) {
     const auto validate = run_command(base + " --loaded " + log + " --payload-mass 1 --validate " + log);
     EXPECT_NE(validate.exit_code, 0);
     EXPECT_NE(validate.err.find("--drive-gains with --validate: not supported"), std::string::npos) << validate.err;
+    // A joint whose effort column is zero has a zero gain column: the rank test names it.
+    const std::string zero = (dir / "zero6.csv").string();
+    fs::copy_file(log, zero);
+    scale_torques(zero, {1, 1, 1, 1, 1, 0});
+    const auto rank = run_command(kJacobid + " identify --quiet --robot " + kRobot + " --drive-gains --in " + zero + " --loaded " + zero + " --payload-mass 1");
+    EXPECT_NE(rank.exit_code, 0);
+    EXPECT_NE(rank.err.find("the gain of joint 6 is not identifiable"), std::string::npos) << rank.err;
     // A log of another robot (two joints) as the loaded run: its missing columns are named.
     ASSERT_EQ(run_command(kJacobid + " simulate --quiet --duration 2 -o " + planar).exit_code, 0);
     const auto other = run_command(base + " --loaded " + planar + " --payload-mass 1");
