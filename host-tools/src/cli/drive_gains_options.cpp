@@ -47,7 +47,13 @@ std::string run_drive_gains(const robot::RobotDescription& robot, const robot::R
     const identify::Method m = method == "butterworth" ? identify::Method::Butterworth : identify::Method::Jacobi;
     const io::LogColumnNames names = robot_column_names(robot, in.time_column);
     const io::CsvTable unloaded_table = read_log_table(in.in, *in.log_format, names, in.quiet);
-    const io::CsvTable loaded_table = read_log_table(o.loaded, *in.log_format, names, in.quiet);
+    const io::CsvTable loaded_table = [&] {
+        try {
+            return read_log_table(o.loaded, *in.log_format, names, in.quiet);
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("--loaded {}", e.what()));
+        }
+    }();
     const identify::LogColumns unloaded = identify::log_columns(unloaded_table, robot, in.time_column, in.time_tolerance);
     const identify::LogColumns loaded = identify::log_columns(loaded_table, robot, in.time_column, in.time_tolerance);
     identify::IdentifySettings settings = identify_settings(fit, m);
