@@ -72,7 +72,22 @@ private:
     Eigen::VectorXd row_;
 };
 
-Eigen::VectorXd column_values(const LsSolution& s, int first, int count) { return s.x.segment(first, count); }
+// How much of each joint's loaded torque the payload makes, ||W_j K_L phi|| / ||g_j y_j|| with phi the known
+// and the identified payload parameters (norms through the loaded log's factors over [theta; phi_u; g | rhs]:
+// R^T R = A^T A); a joint the payload hardly loads has a gain that only the other joints' equations tell.
+std::vector<double> payload_shares(const JointFactors& loaded, const LsSolution& s, int c, int p, const Eigen::VectorXd& gains) {
+    const auto joints = static_cast<int>(gains.size());
+    Eigen::VectorXd effect = Eigen::VectorXd::Zero(c + p + joints + 1);
+    effect.segment(c, p) = s.x.segment(c, p).unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+    effect[c + p + joints] = -1.0;
+    std::vector<double> shares;
+    for (int j = 0; j < joints; ++j) {
+        const Eigen::MatrixXd& f = loaded.r[static_cast<std::size_t>(j)];
+        const double torque = std::abs(gains[j]) * f.col(c + p + j).norm();
+        shares.push_back(torque > 0.0 ? (f * effect).norm() / torque : 0.0);
+    }
+    return shares;
+}
 
 }  // namespace
 
@@ -196,21 +211,11 @@ DriveGainResult identify_drive_gains(const robot::RobotDescription& description,
     out.prior_gains.assign(static_cast<std::size_t>(joints), 1.0);
     out.factors = std::move(factors);
     out.least_squares.estimator = r.solution.weighted ? "wls" : "ols";
-    out.least_squares.gains = column_values(r.solution, c + p, joints);
+    out.least_squares.gains = r.solution.x.segment(c + p, joints);
     out.least_squares.std_dev = r.solution.std_dev.segment(c + p, joints);
     out.least_squares.payload = out.payload.known;
     for (int k = 0; k < p; ++k) out.least_squares.payload[out.payload.unknown[static_cast<std::size_t>(k)]] = r.solution.x[c + k];
-    // How much of each joint's loaded torque the payload makes, ||W_j K_L phi|| / ||g_j y_j|| with phi the known
-    // and the identified payload parameters (norms through the loaded log's factor: R^T R = A^T A); a joint
-    // the payload hardly loads has a gain that only the other joints' equations tell.
-    Eigen::VectorXd payload_effect = Eigen::VectorXd::Zero(c + p + joints + 1);
-    payload_effect.segment(c, p) = r.solution.x.segment(c, p).unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
-    payload_effect[c + p + joints] = -1.0;
-    for (int j = 0; j < joints; ++j) {
-        const Eigen::MatrixXd& f = loaded_factors.r[static_cast<std::size_t>(j)];
-        const double torque = std::abs(out.least_squares.gains[j]) * f.col(c + p + j).norm();
-        out.payload_share.push_back(torque > 0.0 ? (f * payload_effect).norm() / torque : 0.0);
-    }
+    out.payload_share = payload_shares(loaded_factors, r.solution, c, p, out.least_squares.gains);
     out.tls = drive_gains_tls(out);
     try {
         out.constrained = drive_gains_constrained(out, *serial, description);
