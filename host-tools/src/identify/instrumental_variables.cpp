@@ -60,8 +60,9 @@ LsSolution iv_solution(const RowCollector& measured, const RowCollector& instrum
     LsSolution s = current;
     s.x.setConstant(std::numeric_limits<double>::quiet_NaN());
     for (Eigen::Index a = 0; a < p; ++a) s.x[active[static_cast<std::size_t>(a)]] = x[a];
-    // Residuals of the measured rows at X_iv.
-    double weighted = 0.0, y2 = 0.0;
+    // Residuals of the measured rows at X_iv: sigma from the weighted rows (the problem solved), the norms
+    // reported unweighted, as least_squares reports them (comparable between estimators).
+    double weighted = 0.0, e2 = 0.0, y2 = 0.0;
     std::vector<double> joint_sq(static_cast<std::size_t>(joints), 0.0);
     for (std::size_t r = 0; r < measured.w.size(); ++r) {
         for (Eigen::Index j = 0; j < joints; ++j) {
@@ -69,7 +70,8 @@ LsSolution iv_solution(const RowCollector& measured, const RowCollector& instrum
             for (Eigen::Index a = 0; a < p; ++a) fit += measured.w[r](j, active[static_cast<std::size_t>(a)]) * x[a];
             const double e = measured.y[r][j] - fit;
             weighted += s2[j] * e * e;
-            y2 += s2[j] * measured.y[r][j] * measured.y[r][j];
+            e2 += e * e;
+            y2 += measured.y[r][j] * measured.y[r][j];
             joint_sq[static_cast<std::size_t>(j)] += e * e;
         }
     }
@@ -84,7 +86,7 @@ LsSolution iv_solution(const RowCollector& measured, const RowCollector& instrum
         s.std_dev[c] = std::sqrt(std::max(0.0, cov(a, a)));
         s.rel_std_percent[c] = 100.0 * s.std_dev[c] / std::abs(x[a]);
     }
-    s.residual_norm = std::sqrt(weighted);
+    s.residual_norm = std::sqrt(e2);
     s.y_norm = std::sqrt(y2);
     s.relative_error_norm = s.y_norm > 0.0 ? s.residual_norm / s.y_norm : 0.0;
     s.sigma_rho = std::sqrt(sigma2);

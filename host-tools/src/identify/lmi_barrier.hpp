@@ -5,7 +5,8 @@
 // by the log-barrier method (Boyd and Vandenberghe, Convex Optimization, ch. 11): Newton's method with a
 // feasibility-keeping backtracking line search on t (x^T Q x - 2 c^T x) - sum_i log det F_i(x), t raised 20-fold
 // per round. For a convex problem the result is the global minimum, certified to within the duality gap
-// (sum of the blocks' sizes) / t. The blocks are small (4x4 pseudo-inertias, 1x1 bounds), so every Newton
+// (sum of the blocks' sizes + the Newton decrement) / t, a bound that holds only at a (nearly) centred point:
+// a round that stalls away from its centre ends the solve, unconverged. The blocks are small (4x4 pseudo-inertias, 1x1 bounds), so every Newton
 // step is a dense solve over x.
 #include <Eigen/Core>
 #include <vector>
@@ -31,9 +32,9 @@ struct BarrierSettings {
 struct BarrierResult {
     Eigen::VectorXd x;
     double objective = 0.0;  // x^T Q x - 2 c^T x
-    double gap = 0.0;        // duality-gap bound of x: sum of block sizes / t
+    double gap = 0.0;        // duality-gap bound of x: (sum of block sizes + Newton decrement) / t
     int newton_steps = 0;
-    bool converged = false;  // the gap reached BarrierSettings::gap
+    bool converged = false;  // the gap reached BarrierSettings::gap at a centred point
 };
 
 // x0 must be strictly feasible (every block positive definite); std::invalid_argument otherwise.

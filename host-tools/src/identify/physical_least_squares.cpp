@@ -11,6 +11,13 @@
 #include <stdexcept>
 
 namespace jacobid::identify {
+namespace {
+
+// Smallest anchor weight (in the prior's units): negligible beside any chi^2, enough to fix the directions
+// nothing else decides.
+constexpr double kAnchorWeight = 1e-9;
+
+}  // namespace
 
 double prior_unit(const std::string& name) {
     std::size_t digits = name.size();
@@ -29,34 +36,42 @@ PhysicalFit solve_physical(const Eigen::MatrixXd& factor, double sigma2, const E
         throw std::invalid_argument("solve_physical: sizes of the factor, regrouping, names, solution or prior do not match");
     }
     const PhysicalParametrization map(names, settings.constraint);
-    // A parameter without a prior value (NaN) has no prior term.
-    Eigen::VectorXd prior = settings.prior.size() == n ? settings.prior : Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
-    Eigen::VectorXd prior2(n);  // w / u_i^2
-    for (Eigen::Index i = 0; i < n; ++i) {
-        const double u = prior_unit(names[static_cast<std::size_t>(i)]);
-        prior2[i] = std::isfinite(prior[i]) ? settings.prior_weight / (u * u) : 0.0;
-        if (!std::isfinite(prior[i])) prior[i] = 0.0;
-    }
-    // The cost as s^T Q s - 2 c^T s + const: A = R K / sigma, Q = A^T A + diag(w / u^2), c = A^T z + diag(w / u^2) p.
     const double inv_sigma = 1.0 / std::sqrt(sigma2);
     const Eigen::MatrixXd A = inv_sigma * factor.topLeftCorner(c + 1, c) * regrouping;
     const Eigen::VectorXd z = inv_sigma * factor.col(c);
-    Eigen::MatrixXd Q = A.transpose() * A;
-    Q.diagonal() += prior2;
-    const Eigen::VectorXd linear = A.transpose() * z + prior2.cwiseProduct(prior);
     auto data_cost = [&](const Eigen::VectorXd& s) { return (A * s - z).squaredNorm(); };
+    const Eigen::VectorXd given = settings.prior.size() == n ? settings.prior : Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN());
+    Eigen::VectorXd start_prior = given;  // the prior, 0 where none is given
+    for (Eigen::Index i = 0; i < n; ++i) {
+        if (!std::isfinite(start_prior[i])) start_prior[i] = 0.0;
+    }
 
     // The unconstrained solution as standard parameters: the prior moved by the minimum-norm correction
     // that reproduces every identified base value (the others keep the prior's).
-    Eigen::VectorXd target = regrouping * prior;
+    Eigen::VectorXd target = regrouping * start_prior;
     for (Eigen::Index b = 0; b < c; ++b) {
         if (std::isfinite(unconstrained[b])) target[b] = unconstrained[b];
     }
-    const Eigen::VectorXd correction = regrouping.completeOrthogonalDecomposition().solve(target - regrouping * prior);
+    const Eigen::VectorXd correction = regrouping.completeOrthogonalDecomposition().solve(target - regrouping * start_prior);
     PhysicalFit fit;
     fit.constraint = settings.constraint;
-    fit.projected_standard = map.standard(map.variables(prior + correction));
-    fit.unconstrained_data_cost = data_cost(prior + correction);
+    fit.projected_standard = map.standard(map.variables(start_prior + correction));
+    fit.unconstrained_data_cost = data_cost(start_prior + correction);
+
+    // The anchor of every standard parameter: its prior value, weight w / u_i^2; without a prior, the
+    // projected unconstrained solution with the negligible weight kAnchorWeight / u_i^2 (also the floor of
+    // w), so that a direction neither the log nor a prior decides stays where the data left it instead of
+    // drifting outwards with the barrier, while every direction the log excites is left to the data.
+    Eigen::VectorXd anchor(n), anchor2(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const double u = prior_unit(names[static_cast<std::size_t>(i)]);
+        anchor[i] = std::isfinite(given[i]) ? given[i] : fit.projected_standard[i];
+        anchor2[i] = (std::isfinite(given[i]) ? std::max(settings.prior_weight, kAnchorWeight) : kAnchorWeight) / (u * u);
+    }
+    // The cost as s^T Q s - 2 c^T s + const: A = R K / sigma, Q = A^T A + diag(w / u^2), c = A^T z + diag(w / u^2) p.
+    Eigen::MatrixXd Q = A.transpose() * A;
+    Q.diagonal() += anchor2;
+    const Eigen::VectorXd linear = A.transpose() * z + anchor2.cwiseProduct(anchor);
 
     // Interior point from the projected solution (strictly feasible: eigenvalues raised to 1e-6 of the largest).
     BarrierSettings barrier;
@@ -65,7 +80,7 @@ PhysicalFit solve_physical(const Eigen::MatrixXd& factor, double sigma2, const E
     fit.standard = solved.x;
     fit.base = regrouping * fit.standard;
     fit.data_cost = data_cost(fit.standard);
-    fit.prior_cost = (fit.standard - prior).cwiseAbs2().dot(prior2);
+    fit.prior_cost = (fit.standard - anchor).cwiseAbs2().dot(anchor2);
     fit.iterations = solved.newton_steps;
     fit.converged = solved.converged;
     fit.duality_gap = solved.gap;

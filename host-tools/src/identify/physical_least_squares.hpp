@@ -48,6 +48,9 @@ struct PhysicalReport {
     double seconds = 0.0;  // solve time
     std::vector<std::string> standard_names;
     Eigen::VectorXd unconstrained_x;  // the least-squares base values it replaced (NaN where not identified)
+    // Base parameters the log did not identify (removed as unexcited, or by --essential): their consistent
+    // values come from the prior alone.
+    std::vector<std::string> not_identified;
 };
 
 // The kind's unit u_i in the prior term: 0.01 kg.m^2 (inertias, rotor inertias), 0.1 kg.m (first moments),

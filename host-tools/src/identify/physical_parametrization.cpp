@@ -77,7 +77,7 @@ PhysicalParametrization::PhysicalParametrization(const std::vector<std::string>&
             c += 10;
             continue;
         }
-        if (kind == "IA" || kind == "FV" || kind == "FC") {
+        if (kind == "IA" || kind == "FV" || kind == "FC" || kind == "FD") {
             nonnegative_.push_back(c);
             nonnegative_variable_.push_back(variable_count_++);
         } else {
@@ -127,8 +127,11 @@ Eigen::VectorXd PhysicalParametrization::variables(const Eigen::VectorXd& s, dou
             for (int i = 0; i < 4; ++i) x[i] = std::log(U(i, i));
             x[4] = U(0, 1), x[5] = U(0, 2), x[6] = U(0, 3), x[7] = U(1, 2), x[8] = U(1, 3), x[9] = U(2, 3);
         } else {
-            const double m = std::max(ten[9], floor);
-            const Eigen::Vector3d c = Eigen::Vector3d(ten[6], ten[7], ten[8]) / m;
+            // A mass at or below the floor says nothing about where the centre of mass is (h / m would put it
+            // arbitrarily far away): the start keeps the floor mass at the origin.
+            const bool massive = ten[9] > floor;
+            const double m = massive ? ten[9] : floor;
+            const Eigen::Vector3d c = massive ? Eigen::Vector3d(Eigen::Vector3d(ten[6], ten[7], ten[8]) / m) : Eigen::Vector3d::Zero();
             const Eigen::Matrix3d Ic = raised<3>(Eigen::Matrix3d(inertia_matrix(ten) - m * point_inertia(c)), margin, floor);
             const Eigen::Matrix3d L = Eigen::LLT<Eigen::Matrix3d>(Ic).matrixL();
             x[0] = std::log(m), x[1] = c[0], x[2] = c[1], x[3] = c[2];

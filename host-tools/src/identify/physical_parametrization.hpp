@@ -10,7 +10,7 @@
 //  - Semi (identify --semi-physical): m = exp(a), the centre of mass c free, the inertia about it
 //    I_c = L L^T (lower triangular, positive diagonal): positive mass and a positive definite I_c, without
 //    the triangle inequalities.
-// Rotor inertias (IA), viscous (FV) and Coulomb (FC) coefficients are exp(b) >= 0; offsets (FOFF) and kinds
+// Rotor inertias (IA), viscous (FV), Coulomb (FC) and Dahl presliding (FD) coefficients are exp(b) >= 0; offsets (FOFF) and kinds
 // this file does not know are free. The log-Cholesky form (Rucker and Wensing 2022) gives the nearest
 // possible point of any standard vector (the interior point's start) and random bodies for tests; the
 // constraints themselves go to the solver as linear matrix inequalities (constraint_blocks).
@@ -53,7 +53,7 @@ public:
     // per link J(s) (Full) or [[I, S(h)^T], [S(h), m 1]] (Semi: by the Schur complement, m > 0 and
     // I_c = I - S(h)^T S(h) / m positive definite), and a 1x1 block per non-negative column.
     std::vector<LmiBlock> constraint_blocks() const;
-    // Standard columns that must be non-negative (IA, FV, FC).
+    // Standard columns that must be non-negative (IA, FV, FC, FD).
     const std::vector<int>& nonnegative_columns() const { return nonnegative_; }
 
 private:

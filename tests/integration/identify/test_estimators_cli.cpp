@@ -76,6 +76,14 @@ TEST(EstimatorsCli, IvAndDidimRemoveTheBiasThatPositionNoiseGivesLeastSquares) {
         ASSERT_EQ(changes.size(), (*fit)["iterations"].get<std::size_t>());
         EXPECT_LT(changes.back(), 1e-4);
     }
+    // Both norms unweighted over the same rows: their ratio is the ratio of the per-joint residual RMS
+    // summed in quadrature (a weighted IV norm, 1/sigma_j^2 per joint, would not be).
+    auto quadrature = [](const json& fit) {
+        double sum = 0.0;
+        for (const auto& rms : fit["residual_rms"]) sum += rms.get<double>() * rms.get<double>();
+        return std::sqrt(sum);
+    };
+    EXPECT_NEAR(iv["relative_error_norm"].get<double>() / ols["relative_error_norm"].get<double>(), quadrature(iv) / quadrature(ols), 1e-3);
     EXPECT_EQ(iv["estimator"], "iv");
     EXPECT_EQ(iv["std_method"], "iv-sandwich");
     EXPECT_EQ(didim["estimator"], "didim");

@@ -76,6 +76,36 @@ TEST(PhysicalIdentify, ShortLogOfA6AxisArmBeatsTheProjectedLeastSquares) {
     EXPECT_LT(d_physical, d_projected) << "physical " << d_physical << ", projected least squares " << d_projected;
 }
 
+// Presliding columns (friction presliding: dahl) are their own standard parameters: --physical keeps them,
+// with FDj >= 0 like the other friction coefficients, beside the consistent rigid body.
+TEST(PhysicalIdentify, DahlPreslidingCoefficientsAreKeptNonNegative) {
+    const fs::path dir = jacobid::test::scratch_directory() / "physical_dahl";
+    fs::create_directories(dir);
+    jacobid::robot::RobotDescription truth = jacobid::robot::load_robot_description(kRobot);
+    const std::string plain = jacobid::robot::to_yaml(truth);
+    const std::string friction = "friction:\n  coulomb: smooth\n  alpha: 100\n";
+    ASSERT_NE(plain.find(friction), std::string::npos) << "ur5_like.yaml's friction block changed: " << plain;
+    std::string dahl = plain;
+    dahl.replace(dahl.find(friction), friction.size(), friction + "  presliding: dahl\n  presliding_displacement: 5e-4\n");
+    const std::string truth_file = (dir / "truth.yaml").string();
+    std::ofstream(truth_file) << dahl << "  FD1: 1.0\n  FD2: 2.0\n  FD3: 1.0\n  FD4: 0.3\n  FD5: 0.3\n  FD6: 0.2\n";
+    const std::string log = (dir / "dahl.csv").string();
+    const auto sim = run_command(kJacobid + " simulate --quiet --robot " + truth_file + " --duration 6 --seed 3 --noise-seed 4 --torque-noise 0.5 -o " + log);
+    ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    const nlohmann::json physical = identify_json("--robot " + truth_file + " --in " + log + " --physical");
+    ASSERT_FALSE(physical.is_null());
+    EXPECT_TRUE(physical["physical"]["converged"].get<bool>());
+    EXPECT_EQ(physical["plausibility_violations"].size(), 0u) << physical["plausibility_violations"].dump();
+    const double truth_fd[6] = {1.0, 2.0, 1.0, 0.3, 0.3, 0.2};
+    for (int j = 1; j <= 6; ++j) {
+        const std::string name = "FD" + std::to_string(j);
+        ASSERT_TRUE(physical["physical"]["standard"].contains(name)) << name;
+        const double fd = physical["physical"]["standard"][name].get<double>();
+        EXPECT_GE(fd, 0.0) << name;
+        EXPECT_NEAR(fd, truth_fd[j - 1], 0.3 * truth_fd[j - 1] + 0.05) << name;
+    }
+}
+
 TEST(PhysicalIdentify, OptionsAreCheckedAndAPlanarModelIsRefused) {
     const auto both = run_command(kJacobid + " identify --quiet --robot " + kRobot + " --in x.csv --physical --semi-physical");
     EXPECT_NE(both.exit_code, 0);

@@ -8,8 +8,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+#include <limits>
 #include <random>
 
+#include "identify/lmi_barrier.hpp"
 #include "identify/physical_least_squares.hpp"
 #include "identify/physical_parametrization.hpp"
 
@@ -193,6 +195,83 @@ TEST(PhysicalLeastSquares, TheProjectedUnconstrainedSolutionIsFeasibleButWorse) 
     const PhysicalParametrization map(kLinkNames, PhysicalConstraint::Full);
     EXPECT_GE(map.link_relative_min_eigenvalue(fit.projected_standard, 0), 0.0);
     EXPECT_LE(fit.data_cost, data_cost(pr, fit.projected_standard));
+}
+
+// Directions that neither the log nor a prior decides (an mdh description without values, a link the log
+// does not move) must stay where the data left them: a barrier without an anchor pushes them to infinity.
+TEST(PhysicalLeastSquares, UnexcitedDirectionsWithoutAPriorStayAtTheProjectedSolution) {
+    std::mt19937 rng(23);
+    Eigen::VectorXd truth(14);
+    truth.head<10>() = random_body(rng);
+    truth.tail<4>() << 0.05, 0.8, 1.2, 0.3;
+    Problem full = make_problem(truth, 29);
+    // The log sees only the first moments, the mass and the friction (8 base columns = those standard ones).
+    const std::vector<int> seen = {6, 7, 8, 9, 10, 11, 12, 13};
+    Problem pr;
+    pr.regrouping = Eigen::MatrixXd::Zero(8, 14);
+    for (int b = 0; b < 8; ++b) pr.regrouping(b, seen[static_cast<std::size_t>(b)]) = 1.0;
+    // The factor of those columns' problem: rows of the full data restricted to them.
+    std::mt19937 rows_rng(31);
+    std::normal_distribution<double> n(0.0, 1.0);
+    Eigen::MatrixXd W(300, 9);
+    for (int r = 0; r < 300; ++r) {
+        for (int b = 0; b < 8; ++b) W(r, b) = n(rows_rng);
+        W(r, 8) = 0.0;
+        for (int b = 0; b < 8; ++b) W(r, 8) += W(r, b) * truth[seen[static_cast<std::size_t>(b)]];
+        W(r, 8) += 1e-3 * n(rows_rng);
+    }
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(W);
+    pr.factor = qr.matrixQR().topRows(9).triangularView<Eigen::Upper>();
+    pr.unconstrained = W.leftCols(8).colPivHouseholderQr().solve(W.col(8));
+    for (const double weight : {0.0, 1e-3}) {
+        PhysicalSettings settings;  // no prior at all
+        settings.prior_weight = weight;
+        const PhysicalFit fit = solve_physical(pr.factor, 1.0, pr.regrouping, kLinkNames, pr.unconstrained, settings);
+        EXPECT_TRUE(fit.converged) << "weight " << weight;
+        ASSERT_TRUE(fit.standard.allFinite());
+        // The inertia the log does not see stays of the size the data's mass and first moments need, not
+        // pushed outwards by the barrier.
+        const double scale = fit.projected_standard.head<6>().cwiseAbs().maxCoeff();
+        EXPECT_LT(fit.standard.head<6>().cwiseAbs().maxCoeff(), 3.0 * scale) << "weight " << weight;
+        // Every direction the log sees keeps its least-squares value when no prior competes with it.
+        if (weight == 0.0) EXPECT_LT((fit.base - pr.unconstrained).cwiseAbs().maxCoeff(), 1e-4);
+    }
+}
+
+// --semi-physical from a fit with a negative mass and large first moments: the start must not put the
+// centre of mass at h / (tiny mass), and the solve must end converged on a possible body.
+TEST(PhysicalLeastSquares, SemiPhysicalFromANegativeMassStartsAndConverges) {
+    std::mt19937 rng(37);
+    Eigen::VectorXd truth(14);
+    truth.head<10>() = random_body(rng);
+    truth[6] = 2.0, truth[7] = -1.5, truth[8] = 0.7, truth[9] = -0.5;  // h large, m < 0
+    truth.tail<4>() << 0.01, 0.2, 0.1, 0.0;
+    const Problem pr = make_problem(truth, 41);
+    PhysicalSettings settings;
+    settings.constraint = PhysicalConstraint::Semi;
+    const PhysicalFit fit = solve_physical(pr.factor, 1.0, pr.regrouping, kLinkNames, pr.unconstrained, settings);
+    EXPECT_TRUE(fit.converged);
+    EXPECT_LT(fit.projected_standard.head<6>().cwiseAbs().maxCoeff(), 1e3) << "the start's inertia blew up";
+    EXPECT_GT(fit.standard[9], 0.0);
+    EXPECT_GT(inertia_eigenvalues_about_com(fit.standard)[0], 0.0);
+    expect_optimal(pr, fit, PhysicalConstraint::Semi, 43);
+}
+
+// A Newton system that cannot be solved (here a NaN in the objective) leaves the point uncentred: the
+// duality-gap certificate does not hold there, so the solve must not say it converged.
+TEST(LmiBarrier, AStalledRoundIsNotReportedConverged) {
+    Eigen::MatrixXd Q = Eigen::MatrixXd::Identity(2, 2);
+    Q(0, 1) = Q(1, 0) = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::VectorXd c = Eigen::VectorXd::Ones(2);
+    std::vector<LmiBlock> blocks = {{1, {{0, Eigen::MatrixXd::Ones(1, 1)}}}, {1, {{1, Eigen::MatrixXd::Ones(1, 1)}}}};
+    const BarrierResult r = minimise_with_lmis(Q, c, blocks, Eigen::VectorXd::Constant(2, 0.5));
+    EXPECT_FALSE(r.converged);
+    // The same problem without the NaN: x = c (the minimum of x^T x - 2 c^T x, inside x > 0).
+    Q(0, 1) = Q(1, 0) = 0.0;
+    const BarrierResult ok = minimise_with_lmis(Q, c, blocks, Eigen::VectorXd::Constant(2, 0.5));
+    EXPECT_TRUE(ok.converged);
+    EXPECT_NEAR(ok.x[0], 1.0, 1e-5);
+    EXPECT_NEAR(ok.x[1], 1.0, 1e-5);
 }
 
 TEST(PhysicalLeastSquares, MismatchedSizesAreRefused) {
