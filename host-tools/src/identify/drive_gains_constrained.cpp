@@ -79,14 +79,15 @@ DriveGainEstimate drive_gains_constrained(const DriveGainResult& result, const r
             lin[i] += w * given[i] / (u * u);
         }
     }
-    double stiff = 1.0;
-    for (int i = 0; i < size; ++i) stiff = std::max(stiff, q(i, i));
-    stiff *= 10.0;
+    // A known parameter is coupled to the rest only through the payload's block (the data term holds it as a
+    // constant), so a pin of 1e6 per unit^2 leaves it off by about 1e-6 unit / (t x its barrier slope) at the
+    // end: nothing, without the ill-conditioning of a pin scaled to the data term.
+    constexpr double stiff = 1e6;
     for (int k = 0; k < 10; ++k) {
         const int i = phi0 + k;
         const bool unknown = std::find(result.payload.unknown.begin(), result.payload.unknown.end(), k) != result.payload.unknown.end();
         const double u = prior_unit(model.standard_names()[static_cast<std::size_t>(last[static_cast<std::size_t>(k)])]);
-        const double weight = unknown ? w / (u * u) : stiff;
+        const double weight = (unknown ? w : stiff) / (u * u);
         q(i, i) += weight;
         lin[i] += unknown ? 0.0 : weight * result.payload.known[k];
     }
@@ -100,7 +101,13 @@ DriveGainEstimate drive_gains_constrained(const DriveGainResult& result, const r
     x0.segment<10>(phi0) = payload_start(result.payload);
     const Eigen::VectorXd& g_ls = result.least_squares.gains;
     x0.tail(n) = g_ls.cwiseMax(1e-3 * g_ls.cwiseAbs().maxCoeff());
-    const BarrierResult solved = minimise_with_lmis(q, lin, blocks, x0);
+    const Eigen::VectorXd ls_x = ls.x.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+    const double chi2_ls = (factor.leftCols(c + p + n) * ls_x - z).squaredNorm() / sigma2;
+    // The gap relative to the chi^2 (thousands of equations): 1e-6 of it changes no reported digit, while an
+    // absolute 1e-6 asks the Newton steps for more digits than the stiff pinned directions leave them.
+    BarrierSettings barrier;
+    barrier.gap = std::max(barrier.gap, 1e-6 * chi2_ls);
+    const BarrierResult solved = minimise_with_lmis(q, lin, blocks, x0, barrier);
 
     DriveGainEstimate out;
     out.estimator = "constrained";
@@ -110,8 +117,6 @@ DriveGainEstimate drive_gains_constrained(const DriveGainResult& result, const r
     out.converged = solved.converged;
     // chi^2 of the data term against the least squares' (the constant z^T z / sigma2 cancels in the difference).
     const auto chi2 = [&](const Eigen::VectorXd& x) { return x.dot(data_q * x) - 2.0 * data_lin.dot(x) + z.squaredNorm() / sigma2; };
-    const Eigen::VectorXd ls_x = ls.x.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
-    const double chi2_ls = (factor.leftCols(c + p + n) * ls_x - z).squaredNorm() / sigma2;
     out.note = fmt::format("chi^2 {:.6g} against {:.6g} unconstrained ({:+.3g} %), {} Newton steps, duality gap {:.2g}{}", chi2(solved.x), chi2_ls,
                            100.0 * (chi2(solved.x) - chi2_ls) / chi2_ls, solved.newton_steps, solved.gap, solved.converged ? "" : " (NOT converged)");
     return out;
