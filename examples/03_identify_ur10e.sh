@@ -7,26 +7,8 @@
 #
 #   bash examples/03_identify_ur10e.sh [BUILD_DIR or jacobid executable] [OUTPUT_DIR] [REALDATA_DIR]
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-arg=${1:-build}
-if [ -d "$arg" ]; then jacobid="$arg/host-tools/jacobid"; else jacobid="$arg"; fi
-[ -x "$jacobid" ] || { echo "03_identify_ur10e.sh: no jacobid executable at '$jacobid'" >&2; exit 2; }
-out=${2:-out/03_identify_ur10e}
-data=${3:-$here/../../shared/realdata}
-[ -d "$data/ur10e" ] || { echo "03_identify_ur10e.sh: no UR10e logs in '$data/ur10e' (give REALDATA_DIR)" >&2; exit 2; }
-data=$(cd "$data" && pwd)
-mkdir -p "$out"
-
-# The manufacturer-like URDF of the source repository for the geometry and the prior; viscous + smoothed
-# Coulomb friction (its smoothing chosen per joint from the data: alpha auto) with an offset and a rotor
-# inertia per joint, as that repository's model has.
-cat > "$out/ur10e.yaml" <<YAML
-model: urdf
-urdf: $data/ur10e/ur10e.urdf
-gravity: [0, 0, -9.81]
-friction: {coulomb: smooth, alpha: auto, offset: true}
-rotor_inertia: true
-YAML
+name=03_identify_ur10e.sh default_out=out/03_identify_ur10e
+source "$(cd "$(dirname "$0")" && pwd)/ur10e_setup.sh"
 format="$here/formats/ur10e.yaml"   # columns, currents x drive gains (docs/log-format.md)
 train="$data/ur10e/identification/ur-20_02_19_14harm50sec.csv"
 

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/drive_gains_options.hpp"
 #include "cli/fit_options.hpp"
 #include "cli/log_format_options.hpp"
 #include "cli/model_export_options.hpp"
@@ -66,6 +67,7 @@ struct IdentifyOptions : FitOptions {
     bool semi_physical = false;  // --semi-physical
     double prior_weight = identify::PhysicalSettings{}.prior_weight;
     identify::ModelExportPaths model_export;  // --export-urdf, --export-robot
+    DriveGainOptions drive_gains;  // --drive-gains --loaded --payload-mass ...
 };
 
 // --physical / --semi-physical as solver settings; nullopt for neither. InputError for both, or a bad weight.
@@ -194,6 +196,16 @@ void run(IdentifyOptions o) {
         return;
     }
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
+    if (o.drive_gains.enabled) {
+        const std::vector<std::pair<std::string, bool>> given = {{"--validate", !o.validate.empty()}, {"--report", !o.report.empty()},
+                                                                 {"--truth", !o.truth.empty()},       {"--essential", o.essential_flag},
+                                                                 {"--physical", o.physical || o.semi_physical}, {"--can-config", !o.can_config.empty()},
+                                                                 {"--velocity", !o.velocity.empty()},
+                                                                 {"--export-urdf / --export-robot", o.model_export.any()}};
+        write_output(o.output, run_drive_gains(robot, *model, o.drive_gains, o, o.method,
+                                               {o.in, o.format, o.time_column, o.time_tolerance, o.quiet, &o.log_format, given}));
+        return;
+    }
     // Refused before the (long) identification; exporting needs standard parameters: --physical unless --semi-physical.
     identify::check_model_export(o.model_export, robot);
     o.physical = o.physical || (o.model_export.any() && !o.semi_physical);
@@ -342,6 +354,7 @@ void add_identify_command(CLI::App& app) {
                     "(units 0.01 kg.m^2, 0.1 kg.m, 1 kg, 1 N.m); it decides only what the log does not excite")
         ->capture_default_str();
     add_model_export_options(cmd, o->model_export);
+    add_drive_gain_options(cmd, o->drive_gains);
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] {
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;

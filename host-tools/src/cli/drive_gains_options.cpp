@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+#include "cli/drive_gains_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include "cli/command.hpp"
+#include "identify/drive_gains.hpp"
+#include "identify/drive_gains_report.hpp"
+#include "identify/log_columns.hpp"
+#include "io/log_format.hpp"
+
+namespace jacobid::cli {
+
+void add_drive_gain_options(CLI::App* cmd, DriveGainOptions& o) {
+    cmd->add_flag("--drive-gains", o.enabled,
+                  "identify the drive gains (current to torque) with the dynamic parameters from --in (no payload) and --loaded (the same "
+                  "robot with a payload of known --payload-mass on the last link): least squares with std, total least squares and the "
+                  "physically constrained estimate, and the `gains:` line of a log-format file");
+    cmd->add_option("--loaded", o.loaded, "with --drive-gains: the log with the payload (same format and robot as --in)");
+    cmd->add_option("--payload-mass", o.payload_mass, "with --drive-gains: the payload's mass (kg, > 0); it fixes the gains' scale");
+    cmd->add_option("--payload-com", o.payload_com,
+                    "with --drive-gains: the payload's centre of mass x,y,z (m) in the last link's frame (URDF: the last moving joint's "
+                    "frame); identified when not given")
+        ->delimiter(',')
+        ->expected(3);
+    cmd->add_option("--payload-inertia", o.payload_inertia,
+                    "with --drive-gains and --payload-com: the payload's inertia about its centre of mass, XX,XY,XZ,YY,YZ,ZZ (kg.m^2) in the "
+                    "last link's axes; identified when not given")
+        ->delimiter(',')
+        ->expected(6);
+}
+
+std::string run_drive_gains(const robot::RobotDescription& robot, const robot::RobotModel& model, const DriveGainOptions& o, const FitOptions& fit,
+                            const std::string& method, const DriveGainInputs& in) {
+    if (o.loaded.empty()) throw InputError("--drive-gains needs --loaded LOG: the run with the payload");
+    if (method == "both") throw InputError("--drive-gains with --method both: give one method");
+    for (const auto& [option, given] : in.other_options) {
+        if (given) throw InputError(fmt::format("--drive-gains with {}: not supported (write the gains into a log format, then identify with {})", option, option));
+    }
+    identify::PayloadKnowledge payload;
+    payload.mass = o.payload_mass;
+    if (!o.payload_com.empty()) payload.com = Eigen::Vector3d(o.payload_com[0], o.payload_com[1], o.payload_com[2]);
+    if (!o.payload_inertia.empty()) payload.inertia = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(o.payload_inertia.data());
+    identify::payload_parameters(payload);  // the options' errors before the logs are read
+
+    const identify::Method m = method == "butterworth" ? identify::Method::Butterworth : identify::Method::Jacobi;
+    const io::LogColumnNames names = robot_column_names(robot, in.time_column);
+    const io::CsvTable unloaded_table = read_log_table(in.in, *in.log_format, names, in.quiet);
+    const io::CsvTable loaded_table = [&] {
+        try {
+            return read_log_table(o.loaded, *in.log_format, names, in.quiet);
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("--loaded {}", e.what()));
+        }
+    }();
+    const identify::LogColumns unloaded = identify::log_columns(unloaded_table, robot, in.time_column, in.time_tolerance);
+    const identify::LogColumns loaded = identify::log_columns(loaded_table, robot, in.time_column, in.time_tolerance);
+    identify::IdentifySettings settings = identify_settings(fit, m);
+    settings.pipeline.method = m;
+    if (identify::is_iterated(settings.estimator.estimator)) throw InputError("--drive-gains with --estimator iv|didim: use wls or ols");
+
+    identify::DriveGainResult result = identify::identify_drive_gains(robot, model, unloaded, loaded, settings, payload);
+    if (!in.log_format->file.empty()) {
+        const io::LogFormat format = io::load_log_format(in.log_format->file);
+        if (format.gains.size() == result.prior_gains.size()) result.prior_gains = format.gains;
+    }
+    identify::ReportContext ctx;
+    ctx.log_source = in.in;
+    ctx.model_name = model.model_name();
+    for (const auto& j : robot.joints) ctx.joint_names.push_back(j.name);
+    return in.format == "json" ? identify::drive_gains_json(result, ctx).dump(2) + "\n" : identify::drive_gains_text(result, ctx);
+}
+
+}  // namespace jacobid::cli
