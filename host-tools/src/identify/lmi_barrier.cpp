@@ -75,14 +75,21 @@ BarrierResult minimise_with_lmis(const Eigen::MatrixXd& Q, const Eigen::VectorXd
                 break;
             }
             if (decrement <= 1e-10) break;
-            const double phi = t * objective(x) + barrier(blocks, x);
+            // The change of t f + barrier along the step, with the objective's change computed as a difference
+            // (d^T Q (2 x + d) - 2 c^T d), not as f(x + d) - f(x): late rounds have t f ~ 1e10 and more, where the
+            // subtraction would lose the very decrease the line search looks for (and stall the round).
+            const double barrier_here = barrier(blocks, x);
+            const Eigen::VectorXd anchor = 2.0 * x;
+            auto change = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& trial) {
+                return t * (d.dot(Q * (anchor + d)) - 2.0 * c.dot(d)) + (barrier(blocks, trial) - barrier_here);
+            };
             double alpha = 1.0;
             Eigen::VectorXd trial = x + step;
-            double phi_trial = t * objective(trial) + barrier(blocks, trial);
-            while (!(phi_trial <= phi - 0.25 * alpha * decrement) && alpha > 1e-12) {
+            double delta = change(step, trial);
+            while (!(delta <= -0.25 * alpha * decrement) && alpha > 1e-12) {
                 alpha *= 0.5;
                 trial = x + alpha * step;
-                phi_trial = t * objective(trial) + barrier(blocks, trial);
+                delta = change(alpha * step, trial);
             }
             if (alpha <= 1e-12) break;  // no progress to rounding
             x = trial;
