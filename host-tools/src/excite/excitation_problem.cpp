@@ -12,6 +12,9 @@ namespace {
 
 constexpr double kStep = 1e-6;  // central-difference step in q (rad) and qd (rad/s)
 
+// 1 / ||w_k|| per column of W (the scaling of both criteria and of cond).
+Eigen::VectorXd column_scales(const Eigen::MatrixXd& W) { return W.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse(); }
+
 }  // namespace
 
 const char* to_string(Criterion c) { return c == Criterion::Cond ? "cond" : "logdet"; }
@@ -81,21 +84,19 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
         W_.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_) = Y;
         tau_.col(i) = Y * x_;
         Eigen::MatrixXd& d = dY_[static_cast<std::size_t>(i)];
+        // Central difference of the regressor in one coordinate of q or qd, into derivative block `block`.
+        auto central = [&](Eigen::VectorXd& v, int j, int block) {
+            const double h = kStep * std::max(1.0, std::abs(v[j]));
+            v[j] += h;
+            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
+            v[j] -= 2.0 * h;
+            model_.regressor(q.data(), qd.data(), qdd.data(), minus);
+            v[j] += h;
+            d.middleCols(static_cast<Eigen::Index>(block) * columns_, columns_) = (plus - minus) / (2.0 * h);
+        };
         for (int j = 0; j < joints_; ++j) {
-            const double hq = kStep * std::max(1.0, std::abs(q[j]));
-            q[j] += hq;
-            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
-            q[j] -= 2.0 * hq;
-            model_.regressor(q.data(), qd.data(), qdd.data(), minus);
-            q[j] += hq;
-            d.middleCols(static_cast<Eigen::Index>(j) * columns_, columns_) = (plus - minus) / (2.0 * hq);
-            const double hv = kStep * std::max(1.0, std::abs(qd[j]));
-            qd[j] += hv;
-            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
-            qd[j] -= 2.0 * hv;
-            model_.regressor(q.data(), qd.data(), qdd.data(), minus);
-            qd[j] += hv;
-            d.middleCols(static_cast<Eigen::Index>(joints_ + j) * columns_, columns_) = (plus - minus) / (2.0 * hv);
+            central(q, j, j);
+            central(qd, j, joints_ + j);
             qdd[j] += 1.0;  // Y is linear in qdd: the difference is the exact derivative
             model_.regressor(q.data(), qd.data(), qdd.data(), plus);
             qdd[j] -= 1.0;
@@ -108,8 +109,7 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
 double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient) {
     prepare(c);
     // W_s = W S, S = diag(1 / ||w_k||).
-    const Eigen::VectorXd norms = W_.colwise().norm().transpose();
-    const Eigen::VectorXd s = norms.cwiseMax(1e-300).cwiseInverse();
+    const Eigen::VectorXd s = column_scales(W_);
     const Eigen::MatrixXd Ws = W_ * s.asDiagonal();
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Ws, gradient ? Eigen::ComputeThinU | Eigen::ComputeThinV : 0);
     const Eigen::VectorXd& sigma = svd.singularValues();
@@ -151,8 +151,7 @@ double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* g
 
 double ExcitationProblem::condition_number(const Eigen::VectorXd& c) {
     prepare(c);
-    const Eigen::VectorXd s = W_.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse();
-    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(W_ * s.asDiagonal()).singularValues();
+    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(W_ * column_scales(W_).asDiagonal()).singularValues();
     return sigma[0] / sigma[sigma.size() - 1];
 }
 
