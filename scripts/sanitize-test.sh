@@ -32,6 +32,15 @@ echo "sanitize-test: built ${#executables[@]} executables in $(( built - start )
 
 # halt_on_error + abort_on_error: the first report ends the test with a failure; detect_leaks: LSan at exit.
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
+# Under ASan + UBSan the tests run 4-8x slower than natively. Two things keep that stage short (docs/performance.md):
+# the tests that run "on every shared real log" take one log per family (tests/support/realdata.hpp), and
+# ctest starts the longest tests first, from the native run's durations when there is one (a fresh build
+# directory has none, and the longest test then often starts last and runs alone).
+export JACOBID_REALDATA_ONE_PER_FAMILY=1
+native_costs="${JACOBID_BUILD_DIR:-$root/build}/Testing/Temporary/CTestCostData.txt"
+if [ -f "$native_costs" ] && [ ! -f "$build/Testing/Temporary/CTestCostData.txt" ]; then
+    mkdir -p "$build/Testing/Temporary" && cp "$native_costs" "$build/Testing/Temporary/CTestCostData.txt"
+fi
 status=0
 ctest --test-dir "$build" -j "$jobs" -LE '^(vcan|vm|gpio|examples|end-to-end)$' --output-on-failure --timeout 900 || status=$?
 # A report that did not fail its test (e.g. in a child process whose exit code was not checked) still

@@ -8,6 +8,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace jacobid::test {
 
@@ -19,6 +21,15 @@ inline std::filesystem::path realdata_dir() {
 
 // examples/formats/: the --log-format files of the shared logs.
 inline std::filesystem::path log_formats_dir() { return std::filesystem::path(JACOBID_SOURCE_DIR) / "examples" / "formats"; }
+
+// The logs a test runs "on every log" of a family: all of them, or only the first when
+// JACOBID_REALDATA_ONE_PER_FAMILY=1. scripts/sanitize-test.sh sets it: under ASan + UBSan the same code runs
+// 5-8x slower, and one log of a family reaches the code paths the others do (the native suite runs them all).
+inline std::vector<std::filesystem::path> every_or_first(std::vector<std::filesystem::path> logs) {
+    const char* env = std::getenv("JACOBID_REALDATA_ONE_PER_FAMILY");
+    if (env && std::string(env) == "1" && logs.size() > 1) logs.resize(1);
+    return logs;
+}
 
 }  // namespace jacobid::test
 
