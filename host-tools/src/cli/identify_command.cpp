@@ -23,6 +23,7 @@
 #include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
+#include "identify/periodic_log.hpp"
 #include "identify/physical_identification.hpp"
 #include "identify/pipeline.hpp"
 #include "identify/plausibility.hpp"
@@ -68,7 +69,23 @@ struct IdentifyOptions : FitOptions {
     double prior_weight = identify::PhysicalSettings{}.prior_weight;
     identify::ModelExportPaths model_export;  // --export-urdf, --export-robot
     DriveGainOptions drive_gains;  // --drive-gains --loaded --payload-mass ...
+    std::string period;            // --period auto|SECONDS; empty: off
 };
+
+// --period: the log averaged over its periods (periodic_log.hpp), described on stderr and in the output.
+std::unique_ptr<identify::PeriodicLog> periodic_log(const LogSegments& input, const std::vector<identify::LogColumns>& logs, const IdentifyOptions& o,
+                                                    const identify::IdentifySettings& settings) {
+    if (o.period.empty()) return nullptr;
+    if (input.split) throw InputError(fmt::format("--period with --on-gap split: {} has gaps; periods are averaged over one continuous log", o.in));
+    if (identify::is_iterated(settings.estimator.estimator)) {
+        throw InputError(fmt::format("--period with --estimator {}: the estimator simulates the log itself, not its mean period (use wls or ols)",
+                                     identify::to_string(settings.estimator.estimator)));
+    }
+    auto periodic = identify::average_periods(logs.front(), identify::parse_period_option(o.period), o.pipeline.min_joint_motion);
+    // The text output starts with the same line.
+    if (!o.quiet && (o.format == "json" || o.output != "-")) fmt::print(stderr, "identify: {}\n", identify::describe(*periodic));
+    return periodic;
+}
 
 // --physical / --semi-physical as solver settings; nullopt for neither. InputError for both, or a bad weight.
 std::optional<identify::PhysicalSettings> physical_settings(const IdentifyOptions& o) {
@@ -201,7 +218,8 @@ void run(IdentifyOptions o) {
                                                                  {"--truth", !o.truth.empty()},       {"--essential", o.essential_flag},
                                                                  {"--physical", o.physical || o.semi_physical}, {"--can-config", !o.can_config.empty()},
                                                                  {"--velocity", !o.velocity.empty()},
-                                                                 {"--export-urdf / --export-robot", o.model_export.any()}};
+                                                                 {"--export-urdf / --export-robot", o.model_export.any()},
+                                                                 {"--period", !o.period.empty()}};
         write_output(o.output, run_drive_gains(robot, *model, o.drive_gains, o, o.method,
                                                {o.in, o.format, o.time_column, o.time_tolerance, o.quiet, &o.log_format, given}));
         return;
@@ -213,7 +231,8 @@ void run(IdentifyOptions o) {
     const auto parse_start = Clock::now();
     const LogSegments input = read_log(o.in, robot, o);
     const std::vector<identify::LogColumns> logs = columns_of(input, robot, o);
-    const identify::LogColumns& log = logs.front();
+    const std::unique_ptr<identify::PeriodicLog> periodic = periodic_log(input, logs, o, identify_settings(o, identify::Method::Jacobi));
+    const identify::LogColumns& log = periodic ? periodic->columns : logs.front();
     const double parse_seconds = std::chrono::duration<double>(Clock::now() - parse_start).count();
     std::size_t samples = 0;
     for (const auto& l : logs) samples += l.samples();
@@ -232,6 +251,7 @@ void run(IdentifyOptions o) {
     ctx.model_name = model->model_name();
     for (const auto& j : robot.joints) ctx.joint_names.push_back(j.name);
     if (!o.truth.empty()) ctx.truth = read_truth(o.truth);
+    if (periodic) ctx.warnings.insert(ctx.warnings.end(), periodic->warnings.begin(), periodic->warnings.end());
 
     std::vector<identify::Method> methods;
     if (o.method == "jacobi" || o.method == "both") methods.push_back(identify::Method::Jacobi);
@@ -247,7 +267,11 @@ void run(IdentifyOptions o) {
                                          o.velocity, o.method, o.velocity));
         }
         const identify::IdentifySettings resolved = identify_settings(o, m);
-        const identify::SolveOptions solve = resolved.solve;
+        identify::SolveOptions solve = resolved.solve;
+        if (periodic) {
+            settings = identify::periodic_settings(settings, *periodic);
+            solve.joint_noise = periodic->torque_noise;
+        }
         if (identify::is_iterated(resolved.estimator.estimator) && input.split) {
             throw InputError(fmt::format("--estimator {}: {} is split at its gaps (--on-gap split); the estimator simulates one continuous log",
                                          identify::to_string(resolved.estimator.estimator), o.in));
@@ -298,9 +322,11 @@ void run(IdentifyOptions o) {
         j["model"] = model->model_name();
         j["parse_seconds"] = parse_seconds;
         if (exported) j["export"] = *exported;
+        if (periodic) j["period"] = identify::to_json(*periodic);
         text = j.dump(2) + "\n";
     } else {
-        text = identify::format_table(results, ctx) + (exported ? identify::describe_export(*exported) : "");
+        text = (periodic ? identify::describe(*periodic) + "\n\n" : "") + identify::format_table(results, ctx) +
+               (exported ? identify::describe_export(*exported) : "");
     }
     write_output(o.output, text);
     if (!o.report.empty()) identify::write_report(o.report, results, ctx);
@@ -355,6 +381,10 @@ void add_identify_command(CLI::App& app) {
         ->capture_default_str();
     add_model_export_options(cmd, o->model_export);
     add_drive_gain_options(cmd, o->drive_gains);
+    cmd->add_option("--period", o->period,
+                    "the log repeats one trajectory with this period (s, a whole number of samples), or 'auto' to detect it from the "
+                    "positions: the whole periods are averaged (noise / sqrt(periods)), the period-to-period spread gives each joint's "
+                    "noise for the weights, and the mean period is identified as a periodic signal (no edges lost)");
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] {
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;

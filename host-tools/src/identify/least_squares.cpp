@@ -185,11 +185,12 @@ LsSolution solve_least_squares(const JointFactors& factors, const std::vector<st
         return v.norm();
     };
     if (options.weighted && !keep.empty()) {
-        // Gautier: weight joint j by 1 / sigma_j, sigma_j^2 = ||rho_j||^2 / (r_j - c), from the OLS residuals.
+        // Gautier: weight joint j by 1 / sigma_j, sigma_j^2 = ||rho_j||^2 / (r_j - c), from the OLS residuals
+        // (or the known noise, SolveOptions::joint_noise).
         std::vector<double> scale(joints, 1.0);
         for (std::size_t j = 0; j < joints; ++j) {
             const double dof = static_cast<double>(factors.rows[j]) - static_cast<double>(keep.size());
-            const double sigma = dof > 0 ? joint_residual(j) / std::sqrt(dof) : 0.0;
+            const double sigma = j < options.joint_noise.size() ? options.joint_noise[j] : dof > 0 ? joint_residual(j) / std::sqrt(dof) : 0.0;
             scale[j] = sigma > 0.0 ? 1.0 / sigma : 1.0;
         }
         s.joint_weights = scale;

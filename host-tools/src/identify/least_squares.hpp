@@ -74,6 +74,10 @@ struct SolveOptions {
     double rank_tolerance = 1e-7;     // singular values of the column-normalized W below tol * max are null
     std::vector<bool> active;         // columns to use; empty: all
     StdMethod std_method = StdMethod::Pooled;
+    // Per joint noise std known from elsewhere (identify --period: the period-to-period spread); when
+    // weighted, joint j is weighted by 1 / joint_noise[j] instead of 1 / sigma_j of the OLS residuals
+    // (which also hold model error). Empty: from the residuals.
+    std::vector<double> joint_noise;
 };
 
 // The triangular factor [R z] of every joint's rows stacked, joint j's scaled by scale[j] (the weights of a

@@ -287,7 +287,15 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
     // seconds bring a chunk boundary's transient below 1e-16 whatever the order up to 16.
     const auto margin = static_cast<std::size_t>(std::ceil(16.0 * fs / info.decimation_cutoff * std::max(1.0, s.decimation_order / 4.0)));
     const std::size_t a0 = info.first, a1 = info.last;
-    const std::size_t keep0 = a0 + info.crop, keep1 = a1 - info.crop;
+    std::size_t keep0 = a0 + info.crop, keep1 = a1 - info.crop;
+    if (s.kept_to > s.kept_from) {
+        if (s.kept_from < keep0 || s.kept_to > keep1) {
+            throw InputError(fmt::format("{}: the samples to keep [{}, {}) reach into the differentiator and F_p transients (valid [{}, {}))",
+                                         log.source, s.kept_from, s.kept_to, keep0, keep1));
+        }
+        keep0 = s.kept_from;
+        keep1 = s.kept_to;
+    }
     const std::size_t d = static_cast<std::size_t>(info.decimation);
     const std::size_t chunk = std::max(s.chunk, 4 * margin);
 

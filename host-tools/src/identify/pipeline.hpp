@@ -54,6 +54,10 @@ struct PipelineSettings {
     bool measured_velocity = false;
     // Lags of the residual autocorrelation accumulated with the factors (JointFactors::lagged; 0: none).
     int residual_lags = kDefaultResidualLags;
+    // Only the log's samples [kept_from, kept_to) become equations (both 0: all); the samples around them
+    // still feed the differentiators and F_p. identify --period: the middle copy of a tiled mean period
+    // (periodic_log.hpp).
+    std::size_t kept_from = 0, kept_to = 0;
 };
 
 // The positions and torques of a log, one column per joint (pointers into a CsvTable).

@@ -19,6 +19,7 @@ PipelineSettings validation_settings(const PipelineSettings& identification, con
     v.differentiator_cutoff = info.differentiator_cutoff;
     v.decimation_cutoff = info.decimation_cutoff;
     v.progress = false;
+    v.kept_from = v.kept_to = 0;  // another log: all of it
     return v;
 }
 
