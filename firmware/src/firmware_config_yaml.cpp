@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "jacobid/differentiator_bank.hpp"
+#include "jacobid/firmware/trajectory_table.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 
@@ -80,6 +81,47 @@ void read_estimator(Section& s, EstimatorConfig& e, double rate) {
         if (r.status == BankStatus::InvalidKernel) why += std::string(": ") + describe(r.kernel_status);
         s.fail(kKeys[r.channel], why);
     }
+}
+
+// A path in fw.yaml is relative to the file's own folder (the config and its trajectory travel together).
+std::string relative_to(const std::string& source, const std::string& path) {
+    if (path.empty() || path.front() == '/') return path;
+    const std::size_t slash = source.find_last_of('/');
+    return slash == std::string::npos ? path : source.substr(0, slash + 1) + path;
+}
+
+// trajectory: {file, mode, ramp_time, repeat, max_stale_cycles, joints: [{position, velocity, torque,
+// following_error, kp, kd}, ...]} (docs/firmware.md, "Trajectory playback"). Every limit is required: a
+// robot is never moved within limits the file did not state.
+void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
+    PlaybackConfig& p = c.trajectory;
+    p.file = relative_to(c.source, s.required_text("file"));
+    p.mode = s.choice("mode", "position", {"position", "torque"}) == "position" ? hal::CommandMode::Position : hal::CommandMode::Torque;
+    p.ramp_time = s.positive("ramp_time", p.ramp_time, "s");
+    p.repeat = static_cast<int>(s.integer("repeat", p.repeat, 1, 1'000'000));
+    p.max_stale_cycles = static_cast<std::uint32_t>(s.integer("max_stale_cycles", 0, 0, 1000));
+    if (!s.has("joints")) s.fail(node, "joints", "missing (required): one entry of limits per joint");
+    const YAML::Node joints = s.list("joints", c.joints.size(), c.joints.size(), "limits (one per joint of `joints:`)");
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+        Section limits(c.source, joints[j], fmt::format("trajectory.joints[{}]", j));
+        for (const char* key : {"position", "velocity", "torque", "following_error"}) {
+            if (!limits.has(key)) limits.fail(joints[j], key, "missing (required): this joint's limit");
+        }
+        const auto [lo, hi] = limits.range("position", {0.0, 0.0}, "rad");
+        p.position_min[j] = lo;
+        p.position_max[j] = hi;
+        p.velocity_limit[j] = limits.positive("velocity", 0.0, "rad/s");
+        p.torque_limit[j] = limits.positive("torque", 0.0, "N.m");
+        p.following_error[j] = limits.positive("following_error", 0.0, "rad");
+        p.kp[j] = limits.number("kp", 0.0, "N.m/rad");
+        p.kd[j] = limits.number("kd", 0.0, "N.m.s/rad");
+        if (p.kp[j] < 0.0) limits.fail("kp", "must be >= 0");
+        if (p.kd[j] < 0.0) limits.fail("kd", "must be >= 0");
+        limits.reject_unknown();
+    }
+    s.reject_unknown();
+    p.rows = load_trajectory_table(p.file, c.joints.size(), c.rate, p.mode == hal::CommandMode::Torque);
+    c.playback = true;
 }
 
 FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
@@ -149,6 +191,11 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
         c.realtime.report_period = r.number("report_period", c.realtime.report_period);
         if (c.realtime.report_period < 0.0) r.fail("report_period", "must be >= 0 s (0: only at exit)");
         r.reject_unknown();
+    }
+    top.mark_used("trajectory");
+    if (top.has("trajectory")) {
+        Section t(source, top.get("trajectory"), "trajectory");
+        read_trajectory(t, top.get("trajectory"), c);
     }
     top.reject_unknown();
     return c;

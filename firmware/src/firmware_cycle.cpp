@@ -51,6 +51,13 @@ std::string FirmwareCycle::configure(const FirmwareConfig& config) {
         return std::string("estimator.") + kChannel[b.channel] + ": " + why;
     }
     if (bank_.delay_samples() + 1 > delay_line_.size()) return "estimator windows too long for the delay line";
+    profiles_ = profiles;
+    playback_ = config.playback;
+    holding_ = false;
+    deadline_missed_ = false;
+    if (playback_) {
+        if (std::string why = player_.configure(config.trajectory, joint_count_, sample_period_); !why.empty()) return config.trajectory.file + ": " + why;
+    }
     if (config.sync_id > static_cast<std::int32_t>(hal::kCanStandardIdMask)) return "can.sync_id must be a standard (11-bit) id";
     send_sync_ = config.sync_id >= 0;
     sync_frame_ = hal::CanFrame{};
@@ -152,6 +159,7 @@ void FirmwareCycle::step(std::int64_t now_ns) noexcept {
         if (can_.send(sync_frame_) == hal::CanStatus::Ok) ++counters_.sync_sent;
         else ++counters_.sync_failures;
     }
+    if (playback_) run_playback();
     counters_.decode = decoders_.counters();
     counters_.can = can_.counters();
 
@@ -177,6 +185,55 @@ void FirmwareCycle::step(std::int64_t now_ns) noexcept {
     bank_.step(position_, torque_, out_);
     // The first row is the first cycle whose aligned sample exists (tick d + 1).
     if (ticks_ > bank_.delay_samples()) publish_row(out_);
+}
+
+void FirmwareCycle::send_command(std::size_t joint, const hal::JointCommand& command) noexcept {
+    const std::size_t n = hal::encode_command(profiles_[joint], command, command_frames_.data());
+    for (std::size_t i = 0; i < n; ++i) {
+        if (can_.send(command_frames_[i]) == hal::CanStatus::Ok) ++counters_.command_frames;
+        else ++counters_.command_failures;
+    }
+}
+
+// Playback starts once every joint has been measured with the drives enabled (the ramp begins where the
+// robot stands); from then on every cycle sends each joint's command, or, once stopped, a hold where the
+// joint was at the stop (position mode: that position at rest, the drive's own gains; torque mode: zero
+// torque). The e-stop line drops the enable in hardware whatever is sent.
+void FirmwareCycle::run_playback() noexcept {
+    const bool enabled = safety_ == nullptr || safety_->enabled();
+    if (player_.phase() == PlaybackPhase::Idle) {
+        if (!enabled) return;
+        for (std::size_t j = 0; j < joint_count_; ++j) {
+            const hal::JointState& s = decoders_.state(j);
+            if (s.stale || !s.position_fresh) return;
+        }
+        player_.start();
+    }
+    PlayerInput in;
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+        const hal::JointState& s = decoders_.state(j);
+        in.q[j] = s.position;
+        in.fresh[j] = s.position_fresh && !s.stale;
+        in.fault[j] = s.device_error != 0;
+    }
+    in.estop = safety_ != nullptr && safety_->stopped();
+    in.deadline_missed = deadline_missed_;
+    deadline_missed_ = false;
+    player_.step(in);
+    if (player_.stop_drives()) {
+        if (!holding_) {
+            holding_ = true;
+            for (std::size_t j = 0; j < joint_count_; ++j) {
+                const PlaybackConfig& c = player_.config();
+                hold_[j] = hal::JointCommand{c.mode, in.q[j], 0.0, 0.0, c.kp[j], c.kd[j]};
+            }
+        }
+        ++counters_.stop_cycles;
+        for (std::size_t j = 0; j < joint_count_; ++j) send_command(j, hold_[j]);
+        return;
+    }
+    // Active, or finished: the last row is held.
+    for (std::size_t j = 0; j < joint_count_; ++j) send_command(j, player_.commands()[j]);
 }
 
 void FirmwareCycle::publish_row(const Bank::Output& out) noexcept {

@@ -34,6 +34,7 @@ extern "C" void on_reset(int) { g_reset = 1; }
 
 constexpr int kExitConfig = 2;   // bad configuration (message names the key and line)
 constexpr int kExitDevice = 1;   // CAN, GPIO or UDP could not be opened
+constexpr int kExitPlaybackStopped = 4;  // trajectory playback stopped on a fault (the summary says which)
 
 std::int64_t monotonic_ns() noexcept {
     timespec ts{};
@@ -180,6 +181,7 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
         while (next <= done) {
             next += period;
             ++overruns;
+            cycle->note_missed_deadline();
         }
         if (next_report != 0 && now >= next_report) {
             next_report += report_every;
@@ -195,7 +197,8 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
     std::fprintf(stderr, "jacobid-fw: %s, max cycle cost %.1f us\n", firmware::format_jitter(*jitter, overruns, line, sizeof line),
                  static_cast<double>(max_cost) / 1e3);
     std::fprintf(stderr, "jacobid-fw: %s\n", firmware::format_counters(cycle->counters(), cycle->joint_count(), line, sizeof line));
-    return 0;
+    if (cycle->playback()) std::fprintf(stderr, "jacobid-fw: %s\n", firmware::format_playback(cycle->player(), cycle->counters(), line, sizeof line));
+    return cycle->playback() && cycle->player().phase() == firmware::PlaybackPhase::Stopped ? kExitPlaybackStopped : 0;
 }
 
 }  // namespace
@@ -209,7 +212,8 @@ int main(int argc, char** argv) {
     app.add_option("--duration", duration, "stop after this many seconds (0: run until SIGINT/SIGTERM)")->capture_default_str();
     app.add_flag("--no-realtime", no_realtime, "do not ask for SCHED_FIFO, mlockall or CPU affinity");
     app.footer("Signals: SIGINT/SIGTERM stop cleanly (drive enable dropped, summary printed); SIGUSR1 resets a released e-stop.\n"
-               "Exit codes: 0 ok, 1 device (CAN, GPIO, UDP) could not be opened, 2 configuration error.");
+               "Exit codes: 0 ok, 1 device (CAN, GPIO, UDP) could not be opened, 2 configuration error, 4 trajectory playback stopped on "
+               "a fault (e-stop, missed deadline, drive fault, stale joint, following error, limit).");
     CLI11_PARSE(app, argc, argv);
     return run(config, duration, no_realtime);
 }

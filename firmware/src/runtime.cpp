@@ -147,4 +147,17 @@ const char* format_counters(const CycleCounters& c, std::size_t joints, char* bu
     return buffer;
 }
 
+const char* format_playback(const TrajectoryPlayer& p, const CycleCounters& c, char* buffer, std::size_t size) noexcept {
+    auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+    char stopped[96] = "";
+    if (p.phase() == PlaybackPhase::Stopped) {
+        if (p.stop_joint() >= 0) std::snprintf(stopped, sizeof stopped, " (stopped: %s, joint %d)", to_string(p.stop_reason()), p.stop_joint() + 1);
+        else std::snprintf(stopped, sizeof stopped, " (stopped: %s)", to_string(p.stop_reason()));
+    }
+    std::snprintf(buffer, size, "playback: %s%s, row %zu of %zu, %llu cycles, %llu command frames (failures %llu), %llu stop cycles",
+                  to_string(p.phase()), stopped, p.row() + 1, p.config().rows.size(), u(p.cycles()), u(c.command_frames), u(c.command_failures),
+                  u(c.stop_cycles));
+    return buffer;
+}
+
 }  // namespace jacobid::firmware

@@ -12,17 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "jacobid/firmware/capacity.hpp"
+#include "jacobid/firmware/playback_config.hpp"
 #include "jacobid/hal/joint_decoder_set.hpp"
 #include "jacobid/kernel_params.hpp"
 
 namespace jacobid::firmware {
-
-// Compile-time bounds of the cycle (fixed-size storage, nothing allocated after start-up).
-constexpr std::size_t kMaxJoints = 8;
-// Taps of the longest Jacobi window: 0.5 s at 1 kHz.
-constexpr std::size_t kKernelCapacity = 512;
-// Frames one cycle may drain; more stay queued for the next cycle (and are counted as backlog).
-constexpr std::size_t kMaxFramesPerCycle = 64;
 
 struct JointConfig {
     std::string name;
@@ -77,6 +72,9 @@ struct FirmwareConfig {
     StreamConfig stream;
     GpioConfig gpio;
     RealtimeConfig realtime;
+    // `trajectory:` given: the cycle plays it on the drives (TrajectoryPlayer); else it only measures.
+    bool playback = false;
+    PlaybackConfig trajectory;
 
     double sample_period() const noexcept { return 1.0 / rate; }
 };

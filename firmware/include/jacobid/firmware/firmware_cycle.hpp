@@ -19,6 +19,7 @@
 
 #include "jacobid/differentiator_bank.hpp"
 #include "jacobid/firmware/firmware_config.hpp"
+#include "jacobid/firmware/trajectory_player.hpp"
 #include "jacobid/hal/can_transport.hpp"
 #include "jacobid/hal/gpio.hpp"
 #include "jacobid/hal/joint_decoder_set.hpp"
@@ -62,6 +63,9 @@ struct CycleCounters {
     std::uint64_t conflicting_duplicates = 0;
     std::uint64_t sync_sent = 0;         // SYNC frames sent (can.sync_id set)
     std::uint64_t sync_failures = 0;     // SYNC frames the transport refused (e.g. transmit queue full)
+    std::uint64_t command_frames = 0;    // playback: command frames sent
+    std::uint64_t command_failures = 0;  // playback: command frames the transport refused
+    std::uint64_t stop_cycles = 0;       // playback: cycles that sent the stop (hold) command
     hal::DecodeCounters decode{};        // of the decoder set: frames, decoded, rejected by reason
     hal::CanCounters can{};              // of the transport, copied every cycle (error frames, overflows)
     std::array<JointCounters, kMaxJoints> joints{};
@@ -87,6 +91,11 @@ public:
     bool reset_estop() noexcept;
     // Drops the drive enable now (shutdown path).
     void stop() noexcept;
+    // The loop missed a cycle deadline: playback stops in the next step() (a late command is a wrong one).
+    void note_missed_deadline() noexcept { deadline_missed_ = true; }
+    // Trajectory playback (fw.yaml `trajectory:`): its phase, stop reason and last commands.
+    bool playback() const noexcept { return playback_; }
+    const TrajectoryPlayer& player() const noexcept { return player_; }
 
     bool configured() const noexcept { return configured_; }
     std::size_t joint_count() const noexcept { return joint_count_; }
@@ -123,6 +132,8 @@ private:
     void note_decoded(std::size_t joint, const hal::CanFrame& f) noexcept;
     void update_safety() noexcept;
     void publish_row(const Bank::Output& out) noexcept;
+    void run_playback() noexcept;
+    void send_command(std::size_t joint, const hal::JointCommand& command) noexcept;
 
     hal::CanTransport& can_;
     Publisher& publisher_;
@@ -152,6 +163,14 @@ private:
     std::array<std::uint8_t, stream::datagram_size(kMaxJoints)> encoded_{};
     std::size_t encoded_size_ = 0;
     CycleCounters counters_{};
+    // Playback (docs/firmware.md, "Trajectory playback").
+    bool playback_ = false;
+    TrajectoryPlayer player_{};
+    std::array<hal::ProfileConfig, kMaxJoints> profiles_{};
+    std::array<hal::CanFrame, hal::kMaxCommandFrames> command_frames_{};
+    std::array<hal::JointCommand, kMaxJoints> hold_{};  // the stop: where each joint was when playback stopped
+    bool holding_ = false;
+    bool deadline_missed_ = false;
 };
 
 }  // namespace jacobid::firmware

@@ -76,5 +76,7 @@ RealtimeOutcome apply_realtime(const RealtimeConfig& config);
 // One line each, into a caller's buffer (snprintf: no allocation). Return the buffer.
 const char* format_jitter(const JitterStats& s, std::uint64_t overruns, char* buffer, std::size_t size) noexcept;
 const char* format_counters(const CycleCounters& c, std::size_t joints, char* buffer, std::size_t size) noexcept;
+// "playback: <phase> [(stopped: <reason>, joint N)], row R, C cycles, F command frames (failures X), S stop cycles".
+const char* format_playback(const TrajectoryPlayer& p, const CycleCounters& c, char* buffer, std::size_t size) noexcept;
 
 }  // namespace jacobid::firmware

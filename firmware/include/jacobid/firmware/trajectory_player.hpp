@@ -20,9 +20,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <vector>
 
-#include "jacobid/firmware/firmware_config.hpp"
+#include "jacobid/firmware/capacity.hpp"
+#include "jacobid/firmware/playback_config.hpp"
 #include "jacobid/hal/joint_command.hpp"
 
 namespace jacobid::firmware {
@@ -41,21 +41,6 @@ enum class StopReason : std::uint8_t {
 };
 const char* to_string(PlaybackPhase phase) noexcept;
 const char* to_string(StopReason reason) noexcept;
-
-// One row per control cycle; joints beyond the robot's are unused.
-struct TrajectoryRow {
-    std::array<double, kMaxJoints> q{}, qd{}, tau{};  // rad, rad/s, N.m (feed-forward; 0 if not given)
-};
-
-struct PlaybackConfig {
-    std::vector<TrajectoryRow> rows;  // at the control rate
-    hal::CommandMode mode = hal::CommandMode::Position;
-    double ramp_time = 3.0;  // s
-    int repeat = 1;          // passes over the table
-    std::array<double, kMaxJoints> position_min{}, position_max{}, velocity_limit{}, torque_limit{}, following_error{};
-    std::array<double, kMaxJoints> kp{}, kd{};  // MIT drives' own PD gains (device side), else ignored
-    std::uint32_t max_stale_cycles = 0;
-};
 
 struct PlayerInput {
     std::array<double, kMaxJoints> q{};     // measured, link side
@@ -84,6 +69,7 @@ public:
     const std::array<hal::JointCommand, kMaxJoints>& commands() const noexcept { return commands_; }
     std::uint64_t cycles() const noexcept { return cycles_; }
     std::size_t row() const noexcept { return row_; }  // table row of the last Playing cycle
+    const PlaybackConfig& config() const noexcept { return config_; }
 
 private:
     void stop(StopReason reason, int joint) noexcept;

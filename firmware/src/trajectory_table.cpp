@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: MIT
+#include "jacobid/firmware/trajectory_table.hpp"
+
+#include <fmt/core.h>
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "jacobid/firmware/firmware_config_yaml.hpp"
+
+namespace jacobid::firmware {
+namespace {
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> cells;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= line.size(); ++i) {
+        if (i == line.size() || line[i] == ',') {
+            cells.push_back(line.substr(start, i - start));
+            start = i + 1;
+        }
+    }
+    if (!cells.empty() && !cells.back().empty() && cells.back().back() == '\r') cells.back().pop_back();
+    return cells;
+}
+
+}  // namespace
+
+std::vector<TrajectoryRow> load_trajectory_table(const std::string& path, std::size_t joints, double rate, bool torques) {
+    // A device or a pipe (/dev/zero) would be read forever; a table of an hour at 10 kHz for 8 joints is
+    // far below the bound.
+    constexpr std::uintmax_t kMaxBytes = std::uintmax_t{2} << 30;
+    std::error_code fs_error;
+    if (!std::filesystem::is_regular_file(path, fs_error)) throw ConfigError(fmt::format("{}: not a regular file (expected the trajectory table's CSV)", path));
+    if (const std::uintmax_t bytes = std::filesystem::file_size(path, fs_error); !fs_error && bytes > kMaxBytes) {
+        throw ConfigError(fmt::format("{}: {} bytes, above the {} bytes a trajectory table may have", path, bytes, kMaxBytes));
+    }
+    std::ifstream in(path);
+    if (!in) throw ConfigError(fmt::format("{}: cannot open the trajectory table", path));
+    std::string line;
+    if (!std::getline(in, line)) throw ConfigError(fmt::format("{}: empty trajectory table (expected a header t,q1,..,qd1,..)", path));
+    const std::vector<std::string> header = split(line);
+    std::map<std::string, std::size_t> column;
+    for (std::size_t c = 0; c < header.size(); ++c) {
+        if (!column.emplace(header[c], c).second) throw ConfigError(fmt::format("{}:1:{}: column '{}' appears twice", path, c + 1, header[c]));
+    }
+    auto find = [&](const std::string& name, bool required) -> std::optional<std::size_t> {
+        const auto it = column.find(name);
+        if (it != column.end()) return it->second;
+        if (required) throw ConfigError(fmt::format("{}:1: no column '{}' (expected t, q1..q{}, qd1..qd{}{})", path, name, joints, joints,
+                                                    torques ? fmt::format(" and tau1..tau{} for torque mode", joints) : ""));
+        return std::nullopt;
+    };
+    const std::size_t t_column = *find("t", true);
+    std::vector<std::size_t> q, qd;
+    std::vector<std::optional<std::size_t>> tau;
+    for (std::size_t j = 1; j <= joints; ++j) {
+        q.push_back(*find(fmt::format("q{}", j), true));
+        qd.push_back(*find(fmt::format("qd{}", j), true));
+        tau.push_back(find(fmt::format("tau{}", j), torques));
+    }
+    const double period = 1.0 / rate;
+    std::vector<TrajectoryRow> rows;
+    for (std::size_t number = 2; std::getline(in, line); ++number) {
+        if (line.empty() || line == "\r") continue;
+        const std::vector<std::string> cells = split(line);
+        if (cells.size() != header.size()) {
+            throw ConfigError(fmt::format("{}:{}: {} cells, the header has {}", path, number, cells.size(), header.size()));
+        }
+        auto value = [&](std::size_t c) {
+            const std::string& text = cells[c];
+            double v = 0.0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
+                throw ConfigError(fmt::format("{}:{}:{}: column {}: '{}' is not a finite number", path, number, c + 1, header[c], text));
+            }
+            return v;
+        };
+        const double t = value(t_column);
+        const double expected = static_cast<double>(rows.size()) * period;
+        if (std::abs(t - expected) > 1e-3 * period + 1e-12 * std::abs(expected)) {
+            throw ConfigError(fmt::format("{}:{}:{}: t = {} s, expected {} s: the table must hold one row per control cycle ({} Hz) from t = 0",
+                                          path, number, t_column + 1, t, expected, rate));
+        }
+        TrajectoryRow r;
+        for (std::size_t j = 0; j < joints; ++j) {
+            r.q[j] = value(q[j]);
+            r.qd[j] = value(qd[j]);
+            r.tau[j] = tau[j] ? value(*tau[j]) : 0.0;
+        }
+        rows.push_back(r);
+    }
+    if (rows.size() < 2) throw ConfigError(fmt::format("{}: {} rows, a trajectory needs at least two", path, rows.size()));
+    return rows;
+}
+
+}  // namespace jacobid::firmware
