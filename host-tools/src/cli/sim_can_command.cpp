@@ -18,6 +18,8 @@
 #include "robot/robot_description.hpp"
 #include "io/candump_writer.hpp"
 #include "sim/can_player.hpp"
+#include "sim/closed_loop.hpp"
+#include "sim/command_follower.hpp"
 #include "sim/simulator.hpp"
 
 #if JACOBID_WITH_FIRMWARE
@@ -40,6 +42,7 @@ struct SimCanOptions {
     int sync_id = -1;           // -1: pace by the clock; else answer each SYNC frame with this id
     double sync_timeout = 1.0;  // s without a SYNC (after the first) that end the run with an error
     bool quiet = false;
+    bool follow = false;        // the reference from the controller's command frames (sim/command_follower.hpp)
 };
 
 #if JACOBID_WITH_FIRMWARE
@@ -57,12 +60,14 @@ void report_sent(const sim::CanPlayer& player) {
 
 // Blocks until a SYNC frame (the only frames the socket's filter lets through) arrives; `timeout_s`
 // without one is an error that names the bus and the id.
-void wait_for_sync(hal::SocketCanTransport& can, const SimCanOptions& o, double timeout_s) {
+// Following commands, the other frames read meanwhile go to `follower`.
+void wait_for_sync(hal::SocketCanTransport& can, const SimCanOptions& o, double timeout_s, sim::CommandFollower* follower) {
     hal::CanFrame frame;
     for (;;) {
         const hal::CanStatus s = can.receive(frame);
         if (s == hal::CanStatus::Ok) {
             if (!frame.extended() && frame.id == static_cast<std::uint32_t>(o.sync_id)) return;
+            if (follower) follower->take(frame);
             continue;
         }
         if (s != hal::CanStatus::Empty) throw InputError(fmt::format("--iface {}: {} (errno {})", o.iface, hal::describe(s), can.last_errno()));
@@ -114,6 +119,7 @@ void run(SimCanOptions o) {
     sim::MeasurementModel measurement(ms);
     const double period_ns = 1e9 / o.settings.output_rate;
     std::uint64_t k = 0;
+    if (o.follow && !o.candump.empty()) throw InputError("--follow with --candump: a capture file sends no commands to follow (use --iface)");
     if (!o.candump.empty()) {
         // A capture file instead of a bus: simulated time stamps, no pacing (as fast as it computes).
         io::CandumpWriter writer(o.candump, "can0");
@@ -130,14 +136,29 @@ void run(SimCanOptions o) {
     hal::SocketCanTransport can;
     hal::SocketCanConfig sc;
     sc.interface = o.iface.c_str();
-    // Only the SYNC frames (if any): the other drives' frames would just fill the receive queue.
+    // Only the SYNC frames (if any): the other drives' frames would just fill the receive queue. Following
+    // commands, every frame is read (the joints' decoders tell commands from the rest).
     const hal::CanFilter sync_filter = hal::exact_filter(o.sync_id < 0 ? 0u : static_cast<std::uint32_t>(o.sync_id));
-    if (o.sync_id >= 0) sc.filters = Span<const hal::CanFilter>(&sync_filter, 1);
+    if (o.sync_id >= 0 && !o.follow) sc.filters = Span<const hal::CanFilter>(&sync_filter, 1);
     if (const hal::CanStatus s = can.open(sc); s != hal::CanStatus::Ok) {
         throw InputError(fmt::format("--iface {}: {} (errno {}); the in-process chain test runs the same simulator on the virtual bus",
                                      o.iface, hal::describe(s), can.last_errno()));
     }
     sim::CanPlayer player(can, joints);
+    std::unique_ptr<sim::CommandFollower> follower;
+    if (o.follow) {
+        const Eigen::VectorXd q0 = sim::start_configuration(robot.joints);
+        follower = std::make_unique<sim::CommandFollower>(can, joints, std::vector<double>(q0.data(), q0.data() + q0.size()));
+        o.settings.reference = [&follower](double t, sim::ReferenceSample& out) { follower->reference(t, out); };
+        o.settings.reference_start.assign(q0.data(), q0.data() + q0.size());
+    }
+    auto report = [&] {
+        report_sent(player);
+        if (follower) {
+            const sim::CommandFollowerCounters& c = follower->counters();
+            fmt::print(stderr, "sim-can: followed {} command frames ({} rejected) of {} read\n", c.commands, c.rejected, c.frames);
+        }
+    };
     const std::int64_t start = monotonic_ns() + 100'000'000;  // first frame 100 ms from now
     if (!o.quiet) {
         fmt::print(stderr, "sim-can: {} joints on {} ({}), {} s at {} Hz, {}\n", n, o.iface, o.config.empty() ? o.profile : o.config,
@@ -148,11 +169,11 @@ void run(SimCanOptions o) {
         // The firmware may start after us: the first SYNC gets a long wait, the others sync_timeout.
         constexpr double kFirstSyncTimeout = 30.0;
         sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
-            wait_for_sync(can, o, k == 0 ? kFirstSyncTimeout : o.sync_timeout);
+            wait_for_sync(can, o, k == 0 ? kFirstSyncTimeout : o.sync_timeout, follower.get());
             player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
             ++k;
         });
-        report_sent(player);
+        report();
         return;
     }
     sim::simulate(*model, x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
@@ -163,7 +184,7 @@ void run(SimCanOptions o) {
         player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
         ++k;
     });
-    report_sent(player);
+    report();
 }
 #else
 void run(const SimCanOptions&) { throw InputError("sim-can: this jacobid was built without the HAL/firmware (JACOBID_BUILD_HAL=OFF)"); }
@@ -208,6 +229,9 @@ void add_sim_can_command(CLI::App& app) {
     cmd->add_option("--sync-timeout", o->sync_timeout, "with SYNC: seconds without one (after the first, which may take 30 s) that are an error")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
+    cmd->add_flag("--follow", o->follow,
+                  "follow the controller's command frames (jacobid-fw playing a trajectory: each joint's newest commanded position and "
+                  "velocity are the simulated robot's reference; it holds its start pose until the first) instead of random moves");
     cmd->add_flag("--quiet", o->quiet, "no start message");
     cmd->footer("Positions are quantized by the profile's own codes (MIT: 16 bit over the position range), not by an extra encoder model.");
 }

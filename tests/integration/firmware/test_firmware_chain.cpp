@@ -21,6 +21,7 @@
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 #include "sim/can_player.hpp"
+#include "sim/command_follower.hpp"
 #include "sim/simulator.hpp"
 #include "stream/recorder.hpp"
 
@@ -136,6 +137,96 @@ TEST(Chain, SimCanFirmwareRecordIdentifyWithinTheIssueAccuracy) {
                 j["parameters"]["FC2"]["value"].get<double>(), j["relative_error_norm"].get<double>());
     test::expect_table2_bars(j);
     EXPECT_TRUE(j["settings"]["bandwidth_estimated"].get<bool>());
+}
+
+// A 10 s period of five harmonics for the 2R (at rest at t = 0), written at 1 kHz for jacobid-fw to play.
+std::string write_excitation_table() {
+    const std::string file = path("loop_traj.csv");
+    std::ofstream out(file);
+    out.precision(17);
+    out << "t,q1,q2,qd1,qd2\n";
+    const double w = 2.0 * M_PI / 10.0;
+    // q_j = c_j + sum_l a_jl (1 - cos(l w t)), l = 1..5
+    const double c[2] = {0.3, -0.4};
+    const double a[2][5] = {{0.6, 0.2, -0.25, 0.1, 0.08}, {0.5, 0.4, 0.3, -0.15, 0.1}};
+    for (int k = 0; k <= 10000; ++k) {
+        const double t = k * 1e-3;
+        double q[2], qd[2];
+        for (int j = 0; j < 2; ++j) {
+            q[j] = c[j];
+            qd[j] = 0.0;
+            for (int l = 1; l <= 5; ++l) {
+                q[j] += a[j][l - 1] * (1.0 - std::cos(l * w * t));
+                qd[j] += a[j][l - 1] * l * w * std::sin(l * w * t);
+            }
+        }
+        out << t << ',' << q[0] << ',' << q[1] << ',' << qd[0] << ',' << qd[1] << '\n';
+    }
+    return file;
+}
+
+// The loop of issue 17 on the virtual bus: FirmwareCycle plays the table (fw.yaml trajectory:, 3 passes),
+// the closed-loop 2R simulator follows its MIT command frames (sim::CommandFollower, the core of
+// `sim-can --follow`) and answers with telemetry, the estimates go to the recorder, and `jacobid identify`
+// gets the Table II truth from what the robot did while playing.
+TEST(Chain, PlaybackLoopSimulatedRobotFollowsAndIdentifies) {
+    const std::string log = path("loop.csv");
+    stream::Recorder recorder({log, stream::GapPolicy::Error, true, 32});
+    RecorderPublisher publisher(recorder);
+    const robot::RobotDescription robot = robot::default_planar2r_description();
+    const auto model = robot::make_robot_model(robot);
+
+    test::TestBus bus;
+    auto* fw_end = bus.attach();
+    auto* sim_end = bus.attach();
+    test::FakeInput estop;
+    test::FakeOutput enable, sync;
+    hal::SafetyIo safety(estop, enable, sync);
+    const firmware::FirmwareConfig config = test::chain_config(
+        "trajectory:\n  file: " + write_excitation_table() + "\n  ramp_time: 1\n  repeat: 3\n  joints:\n"
+        "    - {position: [-3, 3], velocity: 5, torque: 120, following_error: 0.2, kp: 40, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 5, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}\n");
+    auto cycle = std::make_unique<firmware::FirmwareCycle>(*fw_end, publisher, &safety);
+    ASSERT_EQ(cycle->configure(config), "");
+    EXPECT_TRUE(cycle->reset_estop());
+    sim::CanPlayer player(*sim_end, test::profiles_of(config));
+    sim::CommandFollower follower(*sim_end, test::profiles_of(config), {0.0, 0.0});
+
+    sim::SimulationSettings settings;
+    settings.duration = 1.0 + 3 * 10.0 + 0.5;
+    settings.reference = [&follower](double t, sim::ReferenceSample& out) { follower.reference(t, out); };
+    settings.reference_start = {0.0, 0.0};
+    sim::MeasurementSettings ms;
+    ms.encoder_counts_per_rev = 0.0;
+    ms.torque_noise = {0.05, 0.01};
+    ms.seed = 8;
+    sim::MeasurementModel measurement(ms);
+    std::uint64_t samples = 0;
+    sim::simulate(*model, table2(*model), robot.joints, settings, measurement, [&](const sim::SimulatedSample& s) {
+        const auto now = static_cast<std::int64_t>(samples++) * 1'000'000;
+        bus.set_time_ns(now);
+        player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
+        cycle->step(now);
+    });
+    recorder.finish();
+    const firmware::TrajectoryPlayer& p = cycle->player();
+    EXPECT_EQ(p.phase(), firmware::PlaybackPhase::Finished) << firmware::to_string(p.stop_reason()) << " joint " << p.stop_joint() + 1 << " at cycle " << p.cycles() << ", row " << p.row() << ", command " << p.commands()[1].position;
+    EXPECT_EQ(cycle->counters().command_failures, 0u);
+    // The simulated drives read every command frame but the last cycle's two (sent after the last control instant).
+    EXPECT_EQ(follower.counters().commands + 2, cycle->counters().command_frames);
+    EXPECT_EQ(follower.counters().rejected, 0u);
+    EXPECT_GE(follower.counters().joint_commands[1], 1000u + 3u * 10000u);
+
+    std::ofstream(path("loop_robot.yaml")) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
+    const test::CommandResult id = test::run_command(std::string(JACOBID_EXECUTABLE) + " identify --robot " + path("loop_robot.yaml") +
+                                                     " --in " + log + " --method jacobi --format json --quiet");
+    ASSERT_EQ(id.exit_code, 0) << id.err;
+    const json j = json::parse(id.out);
+    std::printf("playback loop identification: ZZ1R %.4g ZZ2 %.4g MX2 %.4g FC1 %.4g FC2 %.4g, relative error norm %.4g\n",
+                j["parameters"]["ZZ1R"]["value"].get<double>(), j["parameters"]["ZZ2"]["value"].get<double>(),
+                j["parameters"]["MX2"]["value"].get<double>(), j["parameters"]["FC1"]["value"].get<double>(),
+                j["parameters"]["FC2"]["value"].get<double>(), j["relative_error_norm"].get<double>());
+    test::expect_table2_bars(j);
 }
 
 // The same chain over a real UDP socket into the `jacobid record` executable, paced at 1 kHz wall time
