@@ -1,9 +1,12 @@
 # SPDX-License-Identifier: MIT
 # The emulated controller board (docs/targets.md, "Emulated controller board"): qemu -M virt (aarch64,
-# TCG) with the cross-compiled jacobid-fw and jacobid. jacobid sim-can plays the 2R robot's MIT drivers on
-# vcan0 (20 s at 1 kHz), jacobid-fw reads vcan0, drives the enable and cycle-sync outputs of the board's
+# TCG) with the cross-compiled jacobid-fw and jacobid. jacobid-fw plays an excitation table on the drives
+# (fw.yaml trajectory:, docs/firmware.md "Trajectory playback": a 1 s ramp, then a 6 s period of five
+# harmonics 3 times), jacobid sim-can --follow plays the 2R robot's MIT drivers on vcan0 following those
+# commands (20 s at 1 kHz), jacobid-fw reads vcan0, drives the enable and cycle-sync outputs of the board's
 # PL061 GPIO chip through libgpiod (e-stop input on a third line) and streams estimate datagrams over UDP
 # on the loopback, jacobid record writes the CSV, jacobid identify compares with the Table II truth.
+# Gated too: the playback finished (no stop) and the drives followed every command frame but the last.
 # Gated: the chain (chain-lib.sh gate_chain: every frame decoded, 0 datagrams lost/late/malformed, no firmware
 # overrun, the identification bars; rows with holes are reported) and the GPIO lines driven (enable high and sync toggling while running, as
 # debugfs' gpiolib view reads them back from the chip; no e-stop event; released at exit).
@@ -27,6 +30,28 @@ mount -t debugfs debugfs /sys/kernel/debug || exit 10
 # The virt machine's PL061 by label (gpiochip0; line 3 is the power key). The e-stop input is active high
 # here: the PL061's unconnected inputs read low, i.e. released.
 chain_configs "gpio: {chip: 9030000.pl061, enable_line: 0, sync_line: 1, estop_line: 2, estop_active_low: false}"
+# The table: q_j = c_j + sum_l a_jl (1 - cos(l w t)), l = 1..5, w = 2 pi / 6 s (tests/integration/firmware's
+# playback loop test, there with a 10 s period), at 1 kHz. Debian's busybox awk has no math functions:
+# cos and sin by their series after reduction to [-pi, pi] (terms to x^30: below 1e-12).
+awk 'function cosine(x,   s, term, n) { x -= 2 * PI * int(x / (2 * PI)); if (x > PI) x -= 2 * PI; if (x < -PI) x += 2 * PI
+                                        s = 1; term = 1; for (n = 1; n <= 15; n++) { term *= -x * x / ((2 * n - 1) * (2 * n)); s += term }; return s }
+     function sine(x) { return cosine(x - PI / 2) }
+     BEGIN { PI = 3.14159265358979323846; w = 2 * PI / 6; split("0.6 0.2 -0.25 0.1 0.08", a1, " "); split("0.5 0.4 0.3 -0.15 0.1", a2, " ")
+             print "t,q1,q2,qd1,qd2"
+             for (k = 0; k <= 6000; k++) {
+               t = k / 1000; q1 = 0.3; q2 = -0.4; v1 = 0; v2 = 0
+               for (l = 1; l <= 5; l++) { c = 1 - cosine(l * w * t); s = l * w * sine(l * w * t); q1 += a1[l] * c; q2 += a2[l] * c; v1 += a1[l] * s; v2 += a2[l] * s }
+               printf "%.6f,%.9f,%.9f,%.9f,%.9f\n", t, q1, q2, v1, v2 } }' > traj.csv
+cat >> fw.yaml <<'EOF'
+trajectory:
+  file: traj.csv
+  ramp_time: 1
+  repeat: 3
+  joints:
+    - {position: [-3, 3], velocity: 5, torque: 120, following_error: 0.2, kp: 40, kd: 1}
+    - {position: [-3, 3], velocity: 5, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}
+EOF
+SIM_ARGS=--follow
 
 # The lines as gpiolib sees them (the chip's data register), every 0.25 s while sim-can runs.
 gpio_watch() {
@@ -39,6 +64,14 @@ gpio_watch() {
 run_chain $DURATION gpio_watch
 after=$(grep -c "jacobid-fw" /sys/kernel/debug/gpio)
 gate_chain $DURATION; verdict=$?
+# Playback: finished before sim-can stopped (1 + 3 x 6 s < 20 s), no stop; the drives followed every
+# command frame but the last cycle's (sent after sim-can's last sample).
+playback=$(grep "playback:" fw.out | tail -1 | sed 's/^jacobid-fw: //')
+followed=$(sed -n 's/.*followed \([0-9]*\) command frames (\([0-9]*\) rejected).*/\1 \2/p' sim.err)
+say "$playback; sim-can followed/rejected: $followed"
+case "$playback" in "playback: finished"*) ;; *) say "the playback did not finish"; verdict=1 ;; esac
+set -- $followed
+[ $# -eq 2 ] && [ "$2" = 0 ] && [ "$1" -ge 38000 ] || { say "the drives did not follow the commands"; verdict=1; }
 
 # Enable driven high (active high) in every sample while running, sync seen at both levels (it toggles
 # every cycle), the e-stop input requested and never active, every line released at the end.

@@ -132,16 +132,16 @@ stop_chain() {
 }
 
 # run_chain DURATION [HOOK]: record (one file, every row; holes counted in record.json), jacobid-fw, then
-# sim-can for DURATION s of the robot at 1 kHz in the foreground; `HOOK start` runs just before sim-can,
-# `HOOK stop` just after it. Then SIGTERM to the firmware, SIGINT to the recorder. Sets sim_rc, fw_rc,
-# rec_rc; prints the processes' reports.
+# sim-can for DURATION s of the robot at 1 kHz in the foreground (with $SIM_ARGS, e.g. --follow);
+# `HOOK start` runs just before sim-can, `HOOK stop` just after it. Then SIGTERM to the firmware, SIGINT
+# to the recorder. Sets sim_rc, fw_rc, rec_rc; prints the processes' reports.
 run_chain() {
   start_record 5005 all.csv record.json || exit 11
   start_firmware fw.yaml || exit 12
   say "record + jacobid-fw up at $(elapsed) s; sim-can $1 s of robot at 1 kHz"
   [ $# -lt 2 ] || $2 start
   s0=$(uptime_s)
-  jacobid sim-can --robot robot.yaml --config fw.yaml --iface vcan0 --duration "$1" 2> sim.err
+  jacobid sim-can --robot robot.yaml --config fw.yaml --iface vcan0 --duration "$1" ${SIM_ARGS:-} 2> sim.err
   sim_rc=$?
   sim_time=$(since "$s0")
   [ $# -lt 2 ] || $2 stop
