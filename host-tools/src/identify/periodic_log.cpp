@@ -117,12 +117,37 @@ std::vector<double> tiled(const std::vector<double>& period, int tiles) {
     return out;
 }
 
+// The whole-log mismatch also compares the log's start (a ramp from rest, a settling loop) with the
+// periods after it, which can move its minimum by samples (a 1 s ramp before a 4 s period: 4002 instead
+// of 4000, and the periods then drift through the average). Around the coarse period the mismatch is
+// recomputed without the first period when the log holds three.
+DetectedPeriod refine_period(const std::vector<std::vector<double>>& x, DetectedPeriod coarse, std::size_t longest) {
+    const std::size_t n = x.front().size();
+    if (n < 3 * coarse.samples) return coarse;
+    const std::size_t reach = std::max<std::size_t>(2, std::min<std::size_t>(coarse.samples / 50, 50));
+    const std::size_t from = coarse.samples > reach + 2 ? coarse.samples - reach : 2;
+    const std::size_t to = std::min(longest, coarse.samples + reach);
+    DetectedPeriod best{coarse.samples, 2.0};
+    for (std::size_t lag = from; lag <= to; ++lag) {
+        double difference = 0.0, both = 0.0;
+        for (const auto& v : x) {
+            for (std::size_t k = coarse.samples; k + lag < n; ++k) {
+                difference += (v[k + lag] - v[k]) * (v[k + lag] - v[k]);
+                both += v[k + lag] * v[k + lag] + v[k] * v[k];
+            }
+        }
+        const double m = both > 0.0 ? difference / both : 1.0;
+        if (m < best.mismatch) best = {lag, m};
+    }
+    return best;
+}
+
 }  // namespace
 
 DetectedPeriod detect_period(const LogColumns& log, double min_joint_motion) {
     const std::size_t n = log.samples();
     std::vector<double> cross(n, 0.0), energy(n, 0.0);
-    int moving = 0;
+    std::vector<std::vector<double>> normalized;  // the moving joints' positions, centred and scaled
     for (const auto* column : log.q) {
         const auto [lo, hi] = std::minmax_element(column->begin(), column->end());
         if (*hi - *lo < min_joint_motion) continue;
@@ -139,9 +164,9 @@ DetectedPeriod detect_period(const LogColumns& log, double min_joint_motion) {
         const std::vector<double> s = autocorrelation_sums(x);
         for (std::size_t lag = 0; lag < n; ++lag) cross[lag] += s[lag];
         for (std::size_t k = 0; k < n; ++k) energy[k] += x[k] * x[k];
-        ++moving;
+        normalized.push_back(std::move(x));
     }
-    if (moving == 0) throw InputError(fmt::format("{}: --period auto: no joint moves, so no period can be detected", log.source));
+    if (normalized.empty()) throw InputError(fmt::format("{}: --period auto: no joint moves, so no period can be detected", log.source));
     std::vector<double> energy_prefix(n + 1, 0.0);
     for (std::size_t k = 0; k < n; ++k) energy_prefix[k + 1] = energy_prefix[k] + energy[k];
     // mismatch(L) = sum (x[k + L] - x[k])^2 / sum (x[k + L]^2 + x[k]^2) over k < n - L.
@@ -157,11 +182,11 @@ DetectedPeriod detect_period(const LogColumns& log, double min_joint_motion) {
     for (; lag <= longest; ++lag) {
         const double m = mismatch(lag);
         if (m < kRepeats) {
-            // The whole basin below the threshold; its minimum is the period.
+            // The whole basin below the threshold; its minimum is the period, refined without the log's start.
             for (; lag <= longest && mismatch(lag) < kRepeats; ++lag) {
                 if (mismatch(lag) < best.mismatch) best = {lag, mismatch(lag)};
             }
-            return best;
+            return refine_period(normalized, best, longest);
         }
         // The closest return, reported if none is close enough: from twice the decorrelation lag on, past the
         // motion's own short-lag similarity.

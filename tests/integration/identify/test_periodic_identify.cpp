@@ -10,7 +10,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
@@ -100,6 +102,44 @@ TEST(PeriodicIdentify, PeriodIsFoundAndTheSpreadIsTheSimulatedNoise) {
     const json given = identify("--period 4");
     EXPECT_FALSE(given["period"]["detected"].get<bool>());
     EXPECT_EQ(given["parameters"].dump(), j["parameters"].dump());
+}
+
+// The periodic log with a 1 s ramp from 0 to its first pose in front (what jacobid-fw's playback records):
+// the start that is no period must neither move the period found nor enter the mean.
+std::string ramped_log() {
+    const std::string file = path("ramped.csv");
+    std::ifstream in(periodic_log());
+    std::ofstream out(file);
+    out.precision(17);
+    std::string header, first;
+    std::getline(in, header);
+    std::getline(in, first);
+    out << header << '\n';
+    std::vector<double> cells;
+    std::stringstream ss(first);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(std::stod(c));
+    const int ramp = 1000;
+    for (int k = 0; k < ramp; ++k) {
+        const double u = static_cast<double>(k) / ramp, s = u * u * u * (10 - 15 * u + 6 * u * u);
+        out << k * 1e-3 << ',' << cells[1] * s << ',' << cells[2] * s;
+        for (std::size_t c = 3; c < cells.size(); ++c) out << ',' << cells[c];
+        out << '\n';
+    }
+    // The periodic rows after it, their times shifted by the ramp's second.
+    int row = ramp;
+    auto shifted = [&](const std::string& line) { out << (row++) * 1e-3 << line.substr(line.find(',')) << '\n'; };
+    shifted(first);
+    for (std::string line; std::getline(in, line);) shifted(line);
+    return file;
+}
+
+TEST(PeriodicIdentify, ARampBeforeThePeriodsNeitherMovesThePeriodNorEntersTheMean) {
+    const auto r = jacobid_cli("identify --quiet --format json --robot " + robot() + " --in " + ramped_log() + " --period auto");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json p = json::parse(r.out)["period"];
+    EXPECT_EQ(p["samples"].get<int>(), static_cast<int>(kPeriod * 1000.0)) << "the whole-log minimum alone was 4002" << p.dump();
+    EXPECT_EQ(p["skipped_periods"].dump(), "[1]") << p.dump();
+    for (int k = 0; k < 2; ++k) EXPECT_NEAR(p["torque_noise"][k].get<double>(), kNoise[k], 0.1 * kNoise[k]) << p.dump();
 }
 
 TEST(PeriodicIdentify, MeanPeriodIdentifiesTheTruthWithHonestStd) {
