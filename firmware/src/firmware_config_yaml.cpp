@@ -96,6 +96,7 @@ std::string relative_to(const std::string& source, const std::string& path) {
 void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
     PlaybackConfig& p = c.trajectory;
     p.file = relative_to(c.source, s.required_text("file"));
+    p.log = relative_to(c.source, s.text("log", ""));
     p.mode = s.choice("mode", "position", {"position", "torque"}) == "position" ? hal::CommandMode::Position : hal::CommandMode::Torque;
     p.ramp_time = s.positive("ramp_time", p.ramp_time, "s");
     p.repeat = static_cast<int>(s.integer("repeat", p.repeat, 1, 1'000'000));

@@ -159,7 +159,7 @@ void FirmwareCycle::step(std::int64_t now_ns) noexcept {
         if (can_.send(sync_frame_) == hal::CanStatus::Ok) ++counters_.sync_sent;
         else ++counters_.sync_failures;
     }
-    if (playback_) run_playback();
+    if (playback_) run_playback(now_ns);
     counters_.decode = decoders_.counters();
     counters_.can = can_.counters();
 
@@ -199,7 +199,24 @@ void FirmwareCycle::send_command(std::size_t joint, const hal::JointCommand& com
 // robot stands); from then on every cycle sends each joint's command, or, once stopped, a hold where the
 // joint was at the stop (position mode: that position at rest, the drive's own gains; torque mode: zero
 // torque). The e-stop line drops the enable in hardware whatever is sent.
-void FirmwareCycle::run_playback() noexcept {
+void FirmwareCycle::log_commands(std::int64_t now_ns, const PlayerInput& in, const std::array<hal::JointCommand, kMaxJoints>& sent) noexcept {
+    if (command_log_ == nullptr) return;
+    CommandRecord r;
+    r.time_ns = now_ns;
+    r.phase = player_.phase();
+    r.reason = player_.stop_reason();
+    r.row = player_.row();
+    r.joints = joint_count_;
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+        r.measured[j] = in.q[j];
+        r.position[j] = sent[j].position;
+        r.velocity[j] = sent[j].velocity;
+        r.torque[j] = sent[j].torque;
+    }
+    command_log_->record(r);
+}
+
+void FirmwareCycle::run_playback(std::int64_t now_ns) noexcept {
     const bool enabled = safety_ == nullptr || safety_->enabled();
     if (player_.phase() == PlaybackPhase::Idle) {
         if (!enabled) return;
@@ -230,10 +247,12 @@ void FirmwareCycle::run_playback() noexcept {
         }
         ++counters_.stop_cycles;
         for (std::size_t j = 0; j < joint_count_; ++j) send_command(j, hold_[j]);
+        log_commands(now_ns, in, hold_);
         return;
     }
     // Active, or finished: the last row is held.
     for (std::size_t j = 0; j < joint_count_; ++j) send_command(j, player_.commands()[j]);
+    log_commands(now_ns, in, player_.commands());
 }
 
 void FirmwareCycle::publish_row(const Bank::Output& out) noexcept {

@@ -119,6 +119,13 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
         }
     }
     firmware::TeePublisher publisher(udp, config.stream.log.empty() ? nullptr : &log);
+    firmware::CsvCommandLog command_log;
+    if (config.playback && !config.trajectory.log.empty()) {
+        if (const std::string e = command_log.open(config.trajectory.log, config.joints.size()); !e.empty()) {
+            std::fprintf(stderr, "jacobid-fw: %s\n", e.c_str());
+            return kExitDevice;
+        }
+    }
 
     // ~0.3 MB of kernels and rings: on the heap, once.
     auto cycle = std::make_unique<firmware::FirmwareCycle>(*can, publisher, lines.io ? &*lines.io : nullptr);
@@ -126,6 +133,7 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
         std::fprintf(stderr, "jacobid-fw: error: %s: %s\n", config.source.c_str(), e.c_str());
         return kExitConfig;
     }
+    if (config.playback && !config.trajectory.log.empty()) cycle->set_command_log(&command_log);
     // Starting the firmware is the operator's reset of the start-up latch; an e-stop pressed now stays.
     if (lines.io && !cycle->reset_estop()) {
         std::fprintf(stderr, "jacobid-fw: warning: e-stop active at start: drives stay disabled until it is released and reset (SIGUSR1)\n");
@@ -193,6 +201,12 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
     // --- shutdown ---
     cycle->stop();
     if (!config.stream.log.empty()) log.flush();
+    if (config.playback && !config.trajectory.log.empty()) {
+        if (!command_log.flush() || command_log.failures() != 0) {
+            std::fprintf(stderr, "jacobid-fw: warning: trajectory.log %s: %llu rows not written\n", config.trajectory.log.c_str(),
+                         static_cast<unsigned long long>(command_log.failures()));
+        }
+    }
     std::fprintf(stderr, "jacobid-fw: stopped (%s)\n", g_stop == SIGINT ? "SIGINT" : g_stop == SIGTERM ? "SIGTERM" : "--duration");
     std::fprintf(stderr, "jacobid-fw: %s, max cycle cost %.1f us\n", firmware::format_jitter(*jitter, overruns, line, sizeof line),
                  static_cast<double>(max_cost) / 1e3);

@@ -88,6 +88,33 @@ bool FilePublisher::publish(Span<const std::uint8_t> datagram) noexcept {
     return ok;
 }
 
+std::string CsvCommandLog::open(const std::string& path, std::size_t joints) {
+    if (std::string e = file_.open(path); !e.empty()) return "trajectory.log " + path + e.substr(e.find(':'));
+    std::string header = "t_ns,phase,stop_reason,row";
+    for (std::size_t j = 1; j <= joints; ++j) {
+        const std::string n = std::to_string(j);
+        header += ",q" + n + ",q_cmd" + n + ",qd_cmd" + n + ",tau_cmd" + n;
+    }
+    header += '\n';
+    if (!file_.publish(Span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(header.data()), header.size()))) return "trajectory.log " + path + ": write failed";
+    return {};
+}
+
+void CsvCommandLog::record(const CommandRecord& r) noexcept {
+    char line[96 + kMaxJoints * 4 * 26];
+    int n = std::snprintf(line, sizeof line, "%lld,%s,%s,%zu", static_cast<long long>(r.time_ns), to_string(r.phase), to_string(r.reason), r.row);
+    for (std::size_t j = 0; j < r.joints && n > 0 && static_cast<std::size_t>(n) < sizeof line; ++j) {
+        n += std::snprintf(line + n, sizeof line - static_cast<std::size_t>(n), ",%.17g,%.17g,%.17g,%.17g", r.measured[j], r.position[j], r.velocity[j],
+                           r.torque[j]);
+    }
+    if (n <= 0 || static_cast<std::size_t>(n) + 1 >= sizeof line) {
+        ++failures_;
+        return;
+    }
+    line[n++] = '\n';
+    if (!file_.publish(Span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(line), static_cast<std::size_t>(n)))) ++failures_;
+}
+
 RealtimeOutcome apply_realtime(const RealtimeConfig& config) {
     RealtimeOutcome r;
     if (config.lock_memory) {

@@ -15,6 +15,7 @@
 
 #include "allocation_counter.hpp"
 #include "firmware_test_support.hpp"
+#include "jacobid/firmware/runtime.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 #include "scratch_directory.hpp"
 #include "sim/can_player.hpp"
@@ -51,6 +52,15 @@ std::string playback_yaml() {
            "    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01, kp: 10, kd: 0.5}\n";
 }
 
+// Keeps every record the cycle hands out (reserved up front: the cycle's step() must not allocate).
+struct MemoryCommandLog final : firmware::CommandLog {
+    std::vector<firmware::CommandRecord> records;
+    MemoryCommandLog() { records.reserve(20000); }
+    void record(const firmware::CommandRecord& r) noexcept override {
+        if (records.size() < records.capacity()) records.push_back(r);
+    }
+};
+
 struct PlaybackRig {
     test::TestBus bus;
     test::TestBus::Endpoint* fw = bus.attach();
@@ -71,8 +81,11 @@ struct PlaybackRig {
     bool joint2_silent = false;
     std::uint64_t step_allocations = 0;  // heap allocations inside the firmware's step()
 
+    MemoryCommandLog log;
+
     PlaybackRig() {
         EXPECT_EQ(cycle->configure(config), "");
+        cycle->set_command_log(&log);
         EXPECT_TRUE(cycle->reset_estop());
     }
     void tick() {
@@ -141,6 +154,16 @@ TEST(FirmwarePlayback, DrivesReceiveTheRampThenEveryRowTwice) {
     EXPECT_NEAR(rig.received.back()[0].position, rows.back().q[0], kCode);
     EXPECT_EQ(rig.cycle->counters().stop_cycles, 0u);
     EXPECT_EQ(rig.step_allocations, 0u) << "playback allocates nothing in the cycle";
+    // The command log: one record per commanding cycle, what was sent beside what was measured then.
+    ASSERT_EQ(rig.log.records.size(), rig.received.size() + 1) << "the drives read the last cycle's frames in a tick not run";
+    for (std::size_t c = 1; c < rig.received.size(); ++c) {
+        const firmware::CommandRecord& r = rig.log.records[c];
+        EXPECT_NEAR(r.position[1], rig.received[c][1].position, kCode) << "record " << c;
+        // The ideal drive reached the previous command: measured = previous command, to one code.
+        EXPECT_NEAR(r.measured[0], rig.log.records[c - 1].position[0], kCode) << "record " << c;
+    }
+    EXPECT_EQ(rig.log.records[600].phase, firmware::PlaybackPhase::Playing);
+    EXPECT_EQ(rig.log.records[600].row, 101u) << "records 0..499 are the ramp, 500 is row 1";
 }
 
 // Runs into the middle of the table, injects a fault, and checks that the next frames the drives read are
@@ -172,6 +195,34 @@ TEST(FirmwarePlayback, EachFaultTurnsTheNextCommandsIntoAHold) {
     expect_hold_after([](PlaybackRig& r) { r.drive_fault = true; }, firmware::StopReason::DriveFault, 1);
     expect_hold_after([](PlaybackRig& r) { r.joint2_silent = true; }, firmware::StopReason::StaleJoint, 1);
     expect_hold_after([](PlaybackRig& r) { r.cycle->note_missed_deadline(); }, firmware::StopReason::MissedDeadline, -1);
+}
+
+TEST(FirmwarePlayback, CsvCommandLogWritesAHeaderAndOneLinePerRecord) {
+    const std::string file = (test::scratch_directory() / "commands.csv").string();
+    {
+        firmware::CsvCommandLog log;
+        ASSERT_EQ(log.open(file, 2), "");
+        firmware::CommandRecord r;
+        r.time_ns = 1'000'000'123;
+        r.phase = firmware::PlaybackPhase::Stopped;
+        r.reason = firmware::StopReason::FollowingError;
+        r.row = 7;
+        r.joints = 2;
+        r.measured = {0.5, -0.25};
+        r.position = {0.125, 1.5};
+        r.velocity = {0.0, 2.0};
+        r.torque = {3.0, -4.0};
+        log.record(r);
+        EXPECT_TRUE(log.flush());
+        EXPECT_EQ(log.failures(), 0u);
+    }
+    std::ifstream in(file);
+    std::string header, line;
+    std::getline(in, header);
+    std::getline(in, line);
+    EXPECT_EQ(header, "t_ns,phase,stop_reason,row,q1,q_cmd1,qd_cmd1,tau_cmd1,q2,q_cmd2,qd_cmd2,tau_cmd2");
+    EXPECT_EQ(line, "1000000123,stopped,following error,7,0.5,0.125,0,3,-0.25,1.5,2,-4");
+    EXPECT_FALSE(std::getline(in, line));
 }
 
 TEST(FirmwarePlayback, ConfigNamesTheMissingLimitAndTheBadTableLine) {

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "jacobid/differentiator_bank.hpp"
+#include "jacobid/firmware/command_log.hpp"
 #include "jacobid/firmware/firmware_config.hpp"
 #include "jacobid/firmware/trajectory_player.hpp"
 #include "jacobid/hal/can_transport.hpp"
@@ -95,6 +96,8 @@ public:
     void note_missed_deadline() noexcept { deadline_missed_ = true; }
     // Trajectory playback (fw.yaml `trajectory:`): its phase, stop reason and last commands.
     bool playback() const noexcept { return playback_; }
+    // Where each playback cycle's commands and measurements go (null: nowhere). Must outlive the cycle.
+    void set_command_log(CommandLog* log) noexcept { command_log_ = log; }
     const TrajectoryPlayer& player() const noexcept { return player_; }
 
     bool configured() const noexcept { return configured_; }
@@ -132,8 +135,9 @@ private:
     void note_decoded(std::size_t joint, const hal::CanFrame& f) noexcept;
     void update_safety() noexcept;
     void publish_row(const Bank::Output& out) noexcept;
-    void run_playback() noexcept;
+    void run_playback(std::int64_t now_ns) noexcept;
     void send_command(std::size_t joint, const hal::JointCommand& command) noexcept;
+    void log_commands(std::int64_t now_ns, const PlayerInput& in, const std::array<hal::JointCommand, kMaxJoints>& sent) noexcept;
 
     hal::CanTransport& can_;
     Publisher& publisher_;
@@ -171,6 +175,7 @@ private:
     std::array<hal::JointCommand, kMaxJoints> hold_{};  // the stop: where each joint was when playback stopped
     bool holding_ = false;
     bool deadline_missed_ = false;
+    CommandLog* command_log_ = nullptr;
 };
 
 }  // namespace jacobid::firmware

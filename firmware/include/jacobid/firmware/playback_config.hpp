@@ -20,6 +20,7 @@ struct TrajectoryRow {
 
 struct PlaybackConfig {
     std::string file;                 // the table's CSV (fw.yaml trajectory.file), for messages
+    std::string log;                  // trajectory.log: commands beside measurements, CSV (empty: none)
     std::vector<TrajectoryRow> rows;  // at the control rate
     hal::CommandMode mode = hal::CommandMode::Position;
     double ramp_time = 3.0;  // s

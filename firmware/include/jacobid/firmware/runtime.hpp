@@ -49,6 +49,21 @@ private:
     std::size_t used_ = 0;
 };
 
+// trajectory.log: the CommandLog as CSV, one row per playback cycle (t_ns, phase, stop_reason, row, then
+// per joint q<j> measured and q_cmd<j>, qd_cmd<j>, tau_cmd<j> sent), formatted with snprintf into a fixed
+// line and written through a FilePublisher's buffer (a syscall every ~64 KB).
+class CsvCommandLog final : public CommandLog {
+public:
+    std::string open(const std::string& path, std::size_t joints);
+    void record(const CommandRecord& r) noexcept override;
+    bool flush() noexcept { return file_.flush(); }
+    std::uint64_t failures() const noexcept { return failures_; }
+
+private:
+    FilePublisher file_;
+    std::uint64_t failures_ = 0;  // rows that did not fit the line or the file
+};
+
 // Hands every datagram to up to two publishers; succeeds when the first (the stream) did.
 class TeePublisher final : public Publisher {
 public:
