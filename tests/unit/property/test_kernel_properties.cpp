@@ -72,7 +72,9 @@ void check_random_valid_kernels(std::uint64_t seed) {
         ASSERT_GT(sum_abs, 0.0) << "case " << i;
         EXPECT_TRUE(std::isfinite(kernel.delay_samples()));
     }
-    EXPECT_GT(designed, kCases / 2);  // most cases must reach the weights, or the test proves little
+    // Many cases must reach the weights, or the test proves little. Every design needs q + n + 1 weighted
+    // points, so with a capacity of 8 taps only about a third of the random cases can (497 of 1500).
+    EXPECT_GT(designed, kCases / 4);
 }
 
 TEST(KernelProperties, RandomValidParametersGiveFiniteWeights) {
