@@ -43,9 +43,9 @@ void refuse_oversized_search(const DiagnoseOptions& o, const identify::LogColumn
     const double joints = model.joint_count(), columns = model.parameter_count(), samples = static_cast<double>(log.samples());
     // Each fold keeps one Gram matrix per joint.
     refuse_oversized(fmt::format("--folds {}", s.folds), s.folds, 1000, "folds", joints * columns * columns * 8.0, "lower --folds");
-    // Each delay candidate re-solves the selection with the torques shifted by one more sample.
+    // Each delay candidate re-solves the selection with the torques shifted by one more sample (a cost in time).
     refuse_oversized(fmt::format("--max-delay {:g} s at the log's sample period {:g} s", s.max_delay, log.sample_period),
-                     2.0 * std::round(s.max_delay / log.sample_period) + 1.0, 20001, "delay candidates", joints * samples * 8.0, "lower --max-delay");
+                     2.0 * std::round(s.max_delay / log.sample_period) + 1.0, 20001, "delay candidates", 0.0, "lower --max-delay");
     // Each cogging order adds a sine and a cosine column over the whole log, per joint.
     refuse_oversized(fmt::format("--max-cogging-order {}", o.settings.catalogue.max_cogging_order),
                      joints * (o.settings.catalogue.max_cogging_order - 1), 1e5, "cogging candidates", 2.0 * samples * 8.0,

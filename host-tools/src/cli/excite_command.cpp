@@ -240,7 +240,7 @@ void add_excite_command(CLI::App& app) {
     cmd->add_option("--duration", o->duration, "s: a whole number of periods (period = 1 / --base-frequency), played back to back")
         ->check(positive_number())
         ->capture_default_str();
-    cmd->add_option("--harmonics", o->harmonics, "harmonics per joint (2 coefficients each)")->check(whole_number_in(1, 50))->capture_default_str();
+    cmd->add_option("--harmonics", o->harmonics, "harmonics per joint (2 coefficients each)")->capture_default_str();  // 1..50: check()
     cmd->add_option("--base-frequency", o->base_frequency, "Hz: the fundamental; one period lasts 1 / f")->check(positive_number())->capture_default_str();
     cmd->add_option("--criterion", o->criterion, "cond (log of the condition number) or logdet (-log det W^T W), both of the column-scaled base regressor")
         ->check(CLI::IsMember({"cond", "logdet"}))
@@ -251,13 +251,11 @@ void add_excite_command(CLI::App& app) {
     cmd->add_option("--pose", o->pose, "rad: the rest pose at both ends of each period, one value or one per joint (default: the middle of each joint's limits)")
         ->delimiter(',')
         ->check(finite_number());
-    cmd->add_option("--velocity-limit", o->velocity_limit, "rad/s: one value or one per joint (default: none)")->delimiter(',')->check(positive_number());
-    cmd->add_option("--acceleration-limit", o->acceleration_limit, "rad/s^2: one value or one per joint (default: none)")
-        ->delimiter(',')
-        ->check(positive_number());
+    // The limits are checked per joint by joint_limits() (> 0, naming the joint; inf: none).
+    cmd->add_option("--velocity-limit", o->velocity_limit, "rad/s: one value or one per joint (default: none)")->delimiter(',');
+    cmd->add_option("--acceleration-limit", o->acceleration_limit, "rad/s^2: one value or one per joint (default: none)")->delimiter(',');
     cmd->add_option("--torque-limit", o->torque_limit, "N.m, on the model's torque (description's parameters): one value or one per joint (default: none)")
-        ->delimiter(',')
-        ->check(positive_number());
+        ->delimiter(',');
     cmd->add_option("--rate", o->rate, "Hz: control rate of the CSV; every sample is checked against the limits")->check(positive_number())->capture_default_str();
     cmd->add_option("--samples", o->samples, "samples per period seen by the optimizer (0: 20 per period of the highest harmonic, at least 100)")
         ->check(whole_number_in(0, 1e6))

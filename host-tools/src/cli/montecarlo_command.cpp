@@ -101,7 +101,7 @@ void add_montecarlo_command(CLI::App& app) {
                                        "parameter: mean error and its standard error, spread of the estimates vs the reported std, coverage "
                                        "of the truth by +-2 reported std (docs/montecarlo.md)");
     cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (auto in identification)");
-    cmd->add_option("--runs", o->runs, "number of simulated runs")->check(whole_number_from(1))->capture_default_str();
+    cmd->add_option("--runs", o->runs, "number of simulated runs")->capture_default_str();  // >= 2: checked by the study (montecarlo/study.cpp)
     cmd->add_option("--threads", o->threads, "worker threads (0: one per core); the results do not depend on it")
         ->check(whole_number_from(0))
         ->capture_default_str();

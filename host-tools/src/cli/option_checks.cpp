@@ -126,7 +126,7 @@ void refuse_oversized(const std::string& request, double count, double limit, co
                       const std::string& remedy) {
     if (count <= limit) return;
     const std::string cost = bytes_per_unit > 0.0 ? fmt::format(" (about {})", describe_bytes(count * bytes_per_unit)) : std::string();
-    throw InputError(fmt::format("{}: {:.3g} {}{}, more than the {:.3g} this command accepts; {}", request, count, unit, cost, limit, remedy));
+    throw InputError(fmt::format("{}: {:.3g} {}{}, more than the {:g} this command accepts; {}", request, count, unit, cost, limit, remedy));
 }
 
 }  // namespace jacobid::cli

@@ -137,7 +137,7 @@ TEST(CliOptionValues, SimulationValuesAreRefused) {
         {simulate + "--substeps 0", "--substeps", "whole number >= 1"},
         {"sim-can --candump c.log --torque-noise nan", "--torque-noise", "'nan'"},
         {"sim-can --candump c.log --noise-seed -1", "--noise-seed", ">= 0"},
-        {"montecarlo --runs 0", "--runs", ">= 1"},
+        {"montecarlo --threads -1", "--threads", ">= 0"},
         {"record --udp 127.0.0.1:0 -o r.csv --duration -1", "--duration", ">= 0"},
     });
 }
@@ -178,6 +178,8 @@ TEST(CliMessages, NameWhatTheUserShouldChange) {
     expect_refused("bode --order 1 --window 0.1 --ts 0.001 --compare kappa=nan", {"--compare 'kappa=nan'", "finite"});
     expect_refused("bode --order 1 --window 0.1 --ts 0.001 --compare kappa=500", {"--compare 'kappa=500'", "kappa must be"});
     expect_refused("identify --quiet --robot " + f.robot + " --in " + f.log + " --bandwidth 1e9", {"--bandwidth 1e+09 Hz", "give a --bandwidth below 100 Hz"});
+    // An IPv6 address was reported as a host that cannot be resolved.
+    expect_refused("record --udp [::1]:0 -o r.csv", {"--udp '[::1]:0': an IPv6 address; the stream is IPv4"});
     // differentiate has no --ts: a sample period the kernel cannot use is the log's time column.
     const fs::path fast = jacobid::test::scratch_directory() / "fast.csv";
     {
