@@ -8,11 +8,14 @@
 // dropped, log flushed, summary printed); SIGUSR1 asks for an e-stop reset.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "jacobid/firmware/firmware_config_yaml.hpp"
 #include "jacobid/firmware/firmware_cycle.hpp"
@@ -215,6 +218,19 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
     return cycle->playback() && cycle->player().phase() == firmware::PlaybackPhase::Stopped ? kExitPlaybackStopped : 0;
 }
 
+// --duration: seconds >= 0 (0: until a signal), at most 1e9 s (31 years) so that the deadline in nanoseconds
+// stays far inside an int64; a negative or non-finite value would otherwise mean "run forever".
+constexpr double kMaxDurationSeconds = 1e9;
+
+std::string check_duration(const std::string& text) {
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value) || value < 0.0 || value > kMaxDurationSeconds) {
+        return "expected a number of seconds in [0, 1e9] (0: run until SIGINT/SIGTERM), got '" + text + "'";
+    }
+    return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -223,11 +239,21 @@ int main(int argc, char** argv) {
     double duration = 0.0;
     bool no_realtime = false;
     app.add_option("--config,-c", config, "firmware configuration (YAML, see docs/firmware.md)")->required();
-    app.add_option("--duration", duration, "stop after this many seconds (0: run until SIGINT/SIGTERM)")->capture_default_str();
+    app.add_option("--duration", duration, "stop after this many seconds (0: run until SIGINT/SIGTERM)")
+        ->check(CLI::Validator(check_duration, "SECONDS"))
+        ->capture_default_str();
     app.add_flag("--no-realtime", no_realtime, "do not ask for SCHED_FIFO, mlockall or CPU affinity");
     app.footer("Signals: SIGINT/SIGTERM stop cleanly (drive enable dropped, summary printed); SIGUSR1 resets a released e-stop.\n"
                "Exit codes: 0 ok, 1 device (CAN, GPIO, UDP) could not be opened, 2 configuration error, 4 trajectory playback stopped on "
                "a fault (e-stop, missed deadline, drive fault, stale joint, following error, limit).");
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);  // --help: printed, exit 0
+    } catch (const CLI::ParseError& e) {
+        // An unknown option, a missing or refused value: a configuration error, on one line.
+        std::fprintf(stderr, "jacobid-fw: error: %s\n", e.what());
+        return kExitConfig;
+    }
     return run(config, duration, no_realtime);
 }

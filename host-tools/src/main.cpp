@@ -3,9 +3,24 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <exception>
+#include <string>
 
 #include "cli/command.hpp"
+
+namespace {
+
+// "jacobid <command>: error: <message>" on one line: the subcommand being read, if any.
+int report_input_error(const CLI::App& app, std::string message) {
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    const auto subcommands = app.get_subcommands();
+    const std::string command = subcommands.empty() ? std::string() : " " + subcommands.front()->get_name();
+    fmt::print(stderr, "jacobid{}: error: {}\n", command, message);
+    return jacobid::kExitInputError;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"jacobid: robot dynamic identification with the Jacobi differentiator"};
@@ -27,12 +42,13 @@ int main(int argc, char** argv) {
 
     try {
         app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);  // --help, --help-all, --version: printed, exit 0
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // An unknown option, a missing or unconvertible value, a validator's refusal: bad input like any other.
+        return report_input_error(app, e.what());
     } catch (const jacobid::InputError& e) {
-        const auto* sub = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
-        fmt::print(stderr, "jacobid {}: error: {}\n", sub ? sub->get_name() : "", e.what());
-        return jacobid::kExitInputError;
+        return report_input_error(app, e.what());
     } catch (const std::exception& e) {
         fmt::print(stderr, "jacobid: internal error: {}\n", e.what());
         return jacobid::kExitInternalError;

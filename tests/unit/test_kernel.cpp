@@ -237,6 +237,10 @@ TEST(Kernel, InvalidParametersAreRejected) {
     p = ok; p.window = 0.064; check(p, KernelStatus::TooManyTaps);  // 65 taps > 64
     p = ok; p.window = 0.063; check(p, KernelStatus::Ok);          // exactly 64 fit
     p = make(3, 6, 6, 5, 8, 0.0, Discretization::Exact); check(p, KernelStatus::TooFewPoints);  // 6 weighted < 9
+    // The trapezoidal designs too (issue 20: order 2, q 2 on 3 taps gave -7.9e7 on the unit grid): 1 weighted < 5.
+    p = make(2, 6, 6, 2, 3, 0.0, Discretization::Trapezoidal); check(p, KernelStatus::TooFewPoints);
+    std::vector<double> w3(3);
+    EXPECT_EQ(jacobid::design_closed_form_trapezoidal(p, jacobid::Span<double>(w3)), KernelStatus::TooFewPoints);
     std::vector<double> w(31);
     p = ok; p.xi = 0.5;
     EXPECT_EQ(jacobid::design_closed_form_trapezoidal(p, jacobid::Span<double>(w)), KernelStatus::ClosedFormNeedsCentral);

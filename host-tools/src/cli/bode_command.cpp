@@ -10,6 +10,7 @@
 
 #include "cli/command.hpp"
 #include "cli/kernel_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
 #include "plot/gnuplot.hpp"
@@ -17,6 +18,9 @@
 
 namespace jacobid::cli {
 namespace {
+
+// Frequency points over all curves: 1e7 (a GB of CSV) is far beyond what a plot resolves.
+constexpr double kMaxCurvePoints = 1e7;
 
 struct BodeOptions {
     KernelOptions kernel;
@@ -43,7 +47,11 @@ std::string column_label(std::string s) {
 
 void run(const BodeOptions& o) {
     std::vector<KernelParams> configs{to_kernel_params(o.kernel)};
-    for (const auto& spec : o.compare) configs.push_back(to_kernel_params(with_overrides(o.kernel, spec, "--compare")));
+    for (const auto& spec : o.compare) {
+        KernelSource source;
+        source.overrides = fmt::format("--compare '{}'", spec);
+        configs.push_back(to_kernel_params(with_overrides(o.kernel, spec, "--compare"), source));
+    }
     const int order = configs.front().order;
     const double ts = configs.front().sample_period;
     for (const auto& p : configs) {
@@ -54,7 +62,9 @@ void run(const BodeOptions& o) {
     const double nyquist = 0.5 / ts;
     const double fmax = o.fmax > 0 ? o.fmax : nyquist;
     if (fmax > nyquist * (1 + 1e-12)) throw InputError(fmt::format("--fmax: {} Hz is above the Nyquist frequency {} Hz", fmax, nyquist));
-    if (o.points < 2) throw InputError("--points: need at least 2 frequency points");
+    // Each point holds a response and a group delay per curve, and about 75 bytes of CSV per curve.
+    refuse_oversized(fmt::format("--points {}", o.points), static_cast<double>(o.points) * static_cast<double>(configs.size() + o.butterworth.size()),
+                     kMaxCurvePoints, "curve points", 100.0, "lower --points");
     std::vector<double> f(static_cast<std::size_t>(o.points));
     for (std::size_t i = 0; i < f.size(); ++i) f[i] = fmax * static_cast<double>(i + 1) / static_cast<double>(f.size());
 
@@ -137,8 +147,8 @@ void add_bode_command(CLI::App& app) {
                     "another Jacobi configuration on the same plot, as overrides of the main one, e.g. 'kappa=12,mu=12,q=6' (repeatable)");
     cmd->add_option("--butterworth", o->butterworth,
                     "overlay a forward-backward Butterworth low-pass + central Euler difference of the same order, as ORDER:CUTOFF_HZ, e.g. 6:25 (repeatable)");
-    cmd->add_option("--fmax", o->fmax, "highest frequency in Hz (default: Nyquist)");
-    cmd->add_option("--points", o->points, "number of frequency points")->capture_default_str();
+    cmd->add_option("--fmax", o->fmax, "highest frequency in Hz (default: Nyquist)")->check(positive_number());
+    cmd->add_option("--points", o->points, "number of frequency points")->check(whole_number_from(2))->capture_default_str();
     cmd->add_option("--csv", o->csv, "CSV output (f_hz, ideal_mag, then magnitude, phase and group delay per curve); '-' = stdout")->capture_default_str();
     cmd->add_option("--png", o->png, "write a Bode plot (magnitude and phase) to this PNG file");
     cmd->add_flag("--db", o->db, "magnitude in dB instead of a logarithmic axis");

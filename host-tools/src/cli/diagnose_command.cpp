@@ -4,9 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <cmath>
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/fit_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/log_format_options.hpp"
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/log_columns.hpp"
@@ -32,25 +35,31 @@ struct DiagnoseOptions {
     LogFormatOptions log_format;
 };
 
-void check(const DiagnoseOptions& o) {
+// The search's sizes that follow from the options and the log, refused before the search allocates them.
+// The bounds are far above any real use: 1000 folds (5 is the default), a delay grid of 20001 one-sample
+// shifts (+-10 s at 1 kHz), 100000 cogging candidates (30 orders per joint is the default).
+void refuse_oversized_search(const DiagnoseOptions& o, const identify::LogColumns& log, const robot::RobotModel& model) {
     const auto& s = o.settings.selection;
-    if (!(s.alpha > 0.0 && s.alpha < 1.0)) throw InputError("--alpha must be in (0, 1)");
-    if (!(s.min_gain >= 0.0 && s.min_gain < 1.0)) throw InputError("--min-gain must be in [0, 1)");
-    if (s.max_effects < 0) throw InputError("--max-effects must be >= 0");
-    if (s.folds < 2) throw InputError("--folds must be >= 2");
-    if (!(s.max_delay > 0.0)) throw InputError("--max-delay must be > 0 s");
-    if (o.settings.catalogue.max_cogging_order < 1) throw InputError("--max-cogging-order must be >= 1");
-    if (!(o.settings.horizon.horizon > 0.0) || !(o.settings.horizon.spacing > 0.0)) throw InputError("--horizon and --horizon-spacing must be > 0 s");
+    const double joints = model.joint_count(), columns = model.parameter_count(), samples = static_cast<double>(log.samples());
+    // Each fold keeps one Gram matrix per joint.
+    refuse_oversized(fmt::format("--folds {}", s.folds), s.folds, 1000, "folds", joints * columns * columns * 8.0, "lower --folds");
+    // Each delay candidate re-solves the selection with the torques shifted by one more sample (a cost in time).
+    refuse_oversized(fmt::format("--max-delay {:g} s at the log's sample period {:g} s", s.max_delay, log.sample_period),
+                     2.0 * std::round(s.max_delay / log.sample_period) + 1.0, 20001, "delay candidates", 0.0, "lower --max-delay");
+    // Each cogging order adds a sine and a cosine column over the whole log, per joint.
+    refuse_oversized(fmt::format("--max-cogging-order {}", o.settings.catalogue.max_cogging_order),
+                     joints * (o.settings.catalogue.max_cogging_order - 1), 1e5, "cogging candidates", 2.0 * samples * 8.0,
+                     "lower --max-cogging-order");
 }
 
 void run(DiagnoseOptions o) {
-    check(o);
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const io::CsvTable table = read_log_table(o.in, o.log_format, robot_column_names(robot, o.time_column), o.quiet);
     const identify::LogColumns log = identify::log_columns(table, robot, o.time_column, o.time_tolerance);
+    refuse_oversized_search(o, log, *model);
     std::unique_ptr<io::CsvTable> vtable;
     identify::LogColumns vlog;
     if (!o.validate.empty()) {
@@ -98,26 +107,30 @@ void add_diagnose_command(CLI::App& app) {
     cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
     cmd->add_option("--report", o->report, "also write DIR/report.md with PNG plots of the residual vs velocity and position, before and after");
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
-    cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
-        ->capture_default_str();
+    add_time_tolerance_option(cmd, o->time_tolerance);
     add_log_format_options(cmd, o->log_format);
     cmd->add_option("--alpha", o->settings.selection.alpha, "significance level of each step (Bonferroni over all candidates tried)")
+        ->check(number_between(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--min-gain", o->settings.selection.min_gain, "minimum relative reduction of the held-out error for a candidate to be named")
+        ->check(number_in(0.0, 1.0))
         ->capture_default_str();
-    cmd->add_option("--max-effects", o->settings.selection.max_effects, "stop after naming this many effects")->capture_default_str();
-    cmd->add_option("--folds", o->settings.selection.folds, "blocks of the blocked cross-validation (without --validate)")->capture_default_str();
-    cmd->add_option("--max-delay", o->settings.selection.max_delay, "torque delays searched in [-max, max] s")->capture_default_str();
+    cmd->add_option("--max-effects", o->settings.selection.max_effects, "stop after naming this many effects")
+        ->check(whole_number_from(0))
+        ->capture_default_str();
+    cmd->add_option("--folds", o->settings.selection.folds, "blocks of the blocked cross-validation (without --validate)")
+        ->check(whole_number_from(2))
+        ->capture_default_str();
+    cmd->add_option("--max-delay", o->settings.selection.max_delay, "torque delays searched in [-max, max] s")->check(positive_number())->capture_default_str();
     cmd->add_flag("--no-delay", o->no_delay, "do not search a torque delay");
     cmd->add_option("--max-cogging-order", o->settings.catalogue.max_cogging_order, "cogging harmonics tried: 2..this order per revolution")
+        ->check(whole_number_from(1))
         ->capture_default_str();
-    cmd->add_option("--horizon", o->settings.horizon.horizon, "length of the short-horizon simulations in s")->capture_default_str();
+    cmd->add_option("--horizon", o->settings.horizon.horizon, "length of the short-horizon simulations in s")->check(positive_number())->capture_default_str();
     cmd->add_option("--horizon-spacing", o->settings.horizon.spacing, "time between the starts of the short-horizon simulations in s")
+        ->check(positive_number())
         ->capture_default_str();
-    cmd->add_option("--bandwidth", o->settings.pipeline.bandwidth, "motion bandwidth in Hz (default: estimated, as identify)");
-    cmd->add_option("--cutoff", o->settings.pipeline.differentiator_cutoff, "differentiator cutoff in Hz (default: 10 x bandwidth)");
-    cmd->add_option("--decimation-cutoff", o->settings.pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)");
-    cmd->add_option("--decimation", o->settings.pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))");
+    add_pipeline_rate_options(cmd, o->settings.pipeline);
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] { run(*o); });
 }

@@ -10,6 +10,7 @@
 #include "cli/command.hpp"
 #include "cli/kernel_options.hpp"
 #include "cli/log_format_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
@@ -43,8 +44,15 @@ KernelParams jacobi_params_for(const DifferentiateOptions& o, int order, double 
     KernelOptions k = o.kernel;
     k.order = order;
     k.ts = ts;
+    // The sample period is the log's, not an option of this command.
+    KernelSource source;
+    source.sample_period = fmt::format("{}: time column '{}'", o.input, o.time_column);
     if (o.cutoff > 0.0) {
-        KernelParams base = to_kernel_params(with_overrides(k, "window=1", "--cutoff"));
+        if (o.cutoff >= 0.5 / ts) {
+            throw InputError(fmt::format("--cutoff {:g} Hz: must be below the log's Nyquist frequency {:g} Hz (sample period {:g} s)", o.cutoff,
+                                         0.5 / ts, ts));
+        }
+        KernelParams base = to_kernel_params(with_overrides(k, "window=1", "--cutoff"), source);
         std::vector<double> scratch(200001);
         const WindowDesign d = window_for_cutoff(base, o.cutoff, true, Span<double>(scratch));
         if (d.status != KernelStatus::Ok) {
@@ -54,7 +62,7 @@ KernelParams jacobi_params_for(const DifferentiateOptions& o, int order, double 
         fmt::print(stderr, "order {}: window {:.6g} s ({} taps) for a cutoff of {:.4g} Hz\n", order, d.window,
                    std::llround(d.window / ts) + 1, d.cutoff);
     }
-    return to_kernel_params(k);
+    return to_kernel_params(k, source);
 }
 
 // The output column of derivative order n of `column`: q1_d1, or q1_filtered for order 0.
@@ -170,13 +178,17 @@ void add_differentiate_command(CLI::App& app) {
     cmd->add_option("--method", o->method, "jacobi or butterworth (forward-backward Butterworth + central Euler differences)")
         ->check(CLI::IsMember({"jacobi", "butterworth"}))
         ->capture_default_str();
-    cmd->add_option("--orders", o->orders, "derivative orders to write (0 = smoothed signal), e.g. 1,2")->delimiter(',')->capture_default_str();
-    add_kernel_options(cmd, o->kernel, false, false);
-    cmd->add_option("--cutoff", o->cutoff, "Jacobi: choose each window so that the cutoff is this frequency in Hz (instead of --window)");
-    cmd->add_option("--butterworth", o->butterworth, "Butterworth method: ORDER:CUTOFF_HZ, e.g. 4:5");
-    cmd->add_option("--crop-edges", o->crop, "Butterworth method: seconds dropped at each end (default 3/cutoff, the filter's end transient)");
-    cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
+    cmd->add_option("--orders", o->orders, "derivative orders to write (0 = smoothed signal), e.g. 1,2")
+        ->delimiter(',')
+        ->check(whole_number_in(0, kMaxOrder))
         ->capture_default_str();
+    add_kernel_options(cmd, o->kernel, false, false);
+    cmd->add_option("--cutoff", o->cutoff, "Jacobi: choose each window so that the cutoff is this frequency in Hz (instead of --window)")
+        ->check(positive_number());
+    cmd->add_option("--butterworth", o->butterworth, "Butterworth method: ORDER:CUTOFF_HZ, e.g. 4:5");
+    cmd->add_option("--crop-edges", o->crop, "Butterworth method: seconds dropped at each end (default 3/cutoff, the filter's end transient)")
+        ->check(non_negative_number());
+    add_time_tolerance_option(cmd, o->time_tolerance);
     add_log_format_options(cmd, o->log_format);
     cmd->add_option("--out,-o", o->output,
                     "output CSV ('-' = stdout): time, then <column>_d<order> for each column and order (and segment, 1-based, with --on-gap split)")->capture_default_str();

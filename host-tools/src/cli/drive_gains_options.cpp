@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "identify/drive_gains.hpp"
 #include "identify/drive_gains_report.hpp"
 #include "identify/log_columns.hpp"
@@ -18,17 +19,20 @@ void add_drive_gain_options(CLI::App* cmd, DriveGainOptions& o) {
                   "robot with a payload of known --payload-mass on the last link): least squares with std, total least squares and the "
                   "physically constrained estimate, and the `gains:` line of a log-format file");
     cmd->add_option("--loaded", o.loaded, "with --drive-gains: the log with the payload (same format and robot as --in)");
-    cmd->add_option("--payload-mass", o.payload_mass, "with --drive-gains: the payload's mass (kg, > 0); it fixes the gains' scale");
+    cmd->add_option("--payload-mass", o.payload_mass, "with --drive-gains: the payload's mass (kg, > 0); it fixes the gains' scale")
+        ->check(positive_number());
     cmd->add_option("--payload-com", o.payload_com,
                     "with --drive-gains: the payload's centre of mass x,y,z (m) in the last link's frame (URDF: the last moving joint's "
                     "frame); identified when not given")
         ->delimiter(',')
-        ->expected(3);
+        ->expected(3)
+        ->check(finite_number());
     cmd->add_option("--payload-inertia", o.payload_inertia,
                     "with --drive-gains and --payload-com: the payload's inertia about its centre of mass, XX,XY,XZ,YY,YZ,ZZ (kg.m^2) in the "
                     "last link's axes; identified when not given")
         ->delimiter(',')
-        ->expected(6);
+        ->expected(6)
+        ->check(finite_number());
 }
 
 std::string run_drive_gains(const robot::RobotDescription& robot, const robot::RobotModel& model, const DriveGainOptions& o, const FitOptions& fit,

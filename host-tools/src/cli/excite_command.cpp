@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "excite/excitation_design.hpp"
 #include "plot/gnuplot.hpp"
@@ -151,6 +152,9 @@ void run(const ExciteOptions& o) {
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
+    // The trajectory is sampled in memory (t and q, qd, qdd, tau per joint) and written as CSV (t, q, qd, qdd).
+    refuse_oversized(fmt::format("--duration {:g} s at --rate {:g} Hz", o.duration, o.rate), std::floor(o.duration * o.rate) + 1.0, 1e8,
+                     "trajectory samples", 8.0 * (1 + 4 * n) + 18.0 * (1 + 3 * n), "lower --duration or --rate");
     const Eigen::VectorXd x = robot::true_parameters(robot, *model);
     Eigen::VectorXd pose(n);
     const auto given_pose = per_joint(o.pose, n, std::numeric_limits<double>::quiet_NaN(), "--pose");
@@ -233,9 +237,11 @@ void add_excite_command(CLI::App& app) {
                                        "design an excitation trajectory: finite Fourier series per joint, at rest at a pose at both ends of every period, "
                                        "optimized for the column-scaled base regressor's condition number within the joints' limits");
     cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters for the torque")->required();
-    cmd->add_option("--duration", o->duration, "s: a whole number of periods (period = 1 / --base-frequency), played back to back")->capture_default_str();
-    cmd->add_option("--harmonics", o->harmonics, "harmonics per joint (2 coefficients each)")->capture_default_str();
-    cmd->add_option("--base-frequency", o->base_frequency, "Hz: the fundamental; one period lasts 1 / f")->capture_default_str();
+    cmd->add_option("--duration", o->duration, "s: a whole number of periods (period = 1 / --base-frequency), played back to back")
+        ->check(positive_number())
+        ->capture_default_str();
+    cmd->add_option("--harmonics", o->harmonics, "harmonics per joint (2 coefficients each)")->capture_default_str();  // 1..50: check()
+    cmd->add_option("--base-frequency", o->base_frequency, "Hz: the fundamental; one period lasts 1 / f")->check(positive_number())->capture_default_str();
     cmd->add_option("--criterion", o->criterion, "cond (log of the condition number) or logdet (-log det W^T W), both of the column-scaled base regressor")
         ->check(CLI::IsMember({"cond", "logdet"}))
         ->capture_default_str();
@@ -243,18 +249,21 @@ void add_excite_command(CLI::App& app) {
     cmd->add_option("--json", o->json, "JSON: coefficients, criterion, cond, peak position/velocity/acceleration/torque and limit use per joint");
     cmd->add_option("--plot", o->plot, "PNG: positions, velocities and the model's torques over the whole duration");
     cmd->add_option("--pose", o->pose, "rad: the rest pose at both ends of each period, one value or one per joint (default: the middle of each joint's limits)")
-        ->delimiter(',');
+        ->delimiter(',')
+        ->check(finite_number());
+    // The limits are checked per joint by joint_limits() (> 0, naming the joint; inf: none).
     cmd->add_option("--velocity-limit", o->velocity_limit, "rad/s: one value or one per joint (default: none)")->delimiter(',');
     cmd->add_option("--acceleration-limit", o->acceleration_limit, "rad/s^2: one value or one per joint (default: none)")->delimiter(',');
     cmd->add_option("--torque-limit", o->torque_limit, "N.m, on the model's torque (description's parameters): one value or one per joint (default: none)")
         ->delimiter(',');
-    cmd->add_option("--rate", o->rate, "Hz: control rate of the CSV; every sample is checked against the limits")->capture_default_str();
+    cmd->add_option("--rate", o->rate, "Hz: control rate of the CSV; every sample is checked against the limits")->check(positive_number())->capture_default_str();
     cmd->add_option("--samples", o->samples, "samples per period seen by the optimizer (0: 20 per period of the highest harmonic, at least 100)")
+        ->check(whole_number_in(0, 1e6))
         ->capture_default_str();
-    cmd->add_option("--starts", o->starts, "random starts of the optimizer (the best feasible one is kept)")->capture_default_str();
-    cmd->add_option("--time-limit", o->time_limit, "s for all starts together")->capture_default_str();
-    cmd->add_option("--threads", o->threads, "starts optimized side by side (default: the machine's cores)")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "seed of the random starts")->capture_default_str();
+    cmd->add_option("--starts", o->starts, "random starts of the optimizer (the best feasible one is kept)")->check(whole_number_from(1))->capture_default_str();
+    cmd->add_option("--time-limit", o->time_limit, "s for all starts together")->check(positive_number())->capture_default_str();
+    cmd->add_option("--threads", o->threads, "starts optimized side by side (default: the machine's cores)")->check(whole_number_in(1, 4096))->capture_default_str();
+    cmd->add_option("--seed", o->seed, "seed of the random starts")->check(whole_number_from(0))->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o] { run(*o); });
 }

@@ -7,26 +7,27 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "cli/option_checks.hpp"
 #include "core/errors.hpp"
 
 namespace jacobid::cli {
 
 void add_fit_options(CLI::App* cmd, FitOptions& o) {
-    cmd->add_option("--bandwidth", o.pipeline.bandwidth, "motion bandwidth in Hz (default: estimated from the data: 99 % of the velocity energy above the noise floor, limited by the noise; docs/method.md)");
-    cmd->add_option("--cutoff", o.pipeline.differentiator_cutoff,
-                    "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)");
-    cmd->add_option("--velocity-window", o.pipeline.velocity_window, "Jacobi velocity window T in s (overrides --cutoff)");
-    cmd->add_option("--acceleration-window", o.pipeline.acceleration_window, "Jacobi acceleration window T in s (overrides --cutoff)");
-    cmd->add_option("--kappa", o.pipeline.kappa, "Jacobi kappa")->capture_default_str();
-    cmd->add_option("--mu", o.pipeline.mu, "Jacobi mu")->capture_default_str();
-    cmd->add_option("--q", o.pipeline.q, "Jacobi truncation order q")->capture_default_str();
+    add_pipeline_rate_options(cmd, o.pipeline);
+    cmd->add_option("--velocity-window", o.pipeline.velocity_window, "Jacobi velocity window T in s (overrides --cutoff)")->check(positive_number());
+    cmd->add_option("--acceleration-window", o.pipeline.acceleration_window, "Jacobi acceleration window T in s (overrides --cutoff)")
+        ->check(positive_number());
+    cmd->add_option("--kappa", o.pipeline.kappa, "Jacobi kappa")->check(finite_number())->capture_default_str();
+    cmd->add_option("--mu", o.pipeline.mu, "Jacobi mu")->check(finite_number())->capture_default_str();
+    cmd->add_option("--q", o.pipeline.q, "Jacobi truncation order q")->check(whole_number_from(0))->capture_default_str();
     cmd->add_option("--discretization", o.discretization, "Jacobi kernel discretization: exact (polynomial-exact on the grid) or trapezoidal (paper)")
         ->check(CLI::IsMember({"exact", "trapezoidal"}))
         ->capture_default_str();
-    cmd->add_option("--butterworth-order", o.pipeline.butterworth_order, "order of the Butterworth prefilter")->capture_default_str();
-    cmd->add_option("--decimation-cutoff", o.pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)");
-    cmd->add_option("--decimation", o.pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))");
+    cmd->add_option("--butterworth-order", o.pipeline.butterworth_order, "order of the Butterworth prefilter")
+        ->check(whole_number_from(1))
+        ->capture_default_str();
     cmd->add_option("--min-motion", o.pipeline.min_joint_motion, "position range in rad below which a joint counts as not moving")
+        ->check(non_negative_number())
         ->capture_default_str();
     cmd->add_option("--torque-delay", o.torque_delay,
                     "offset of the torque channel behind the positions: auto (estimated by least squares, compensated when "
@@ -52,9 +53,25 @@ void add_fit_options(CLI::App* cmd, FitOptions& o) {
                     "Newey-West weights; the default) or pooled (sigma_rho^2 (W^T W)^-1, rows independent)")
         ->check(CLI::IsMember({"joint-hac", "pooled"}))
         ->capture_default_str();
-    cmd->add_option("--std-lags", o.pipeline.residual_lags, "lags of the residual autocorrelation for --std joint-hac")->capture_default_str();
-    cmd->add_option("--rank-tolerance", o.rank_tolerance, "relative singular value below which the column-normalized W is rank deficient")
+    cmd->add_option("--std-lags", o.pipeline.residual_lags, "lags of the residual autocorrelation for --std joint-hac")
+        ->check(whole_number_in(0, 1000))
         ->capture_default_str();
+    cmd->add_option("--rank-tolerance", o.rank_tolerance, "relative singular value below which the column-normalized W is rank deficient")
+        ->check(number_between(0.0, 1.0))
+        ->capture_default_str();
+}
+
+void add_pipeline_rate_options(CLI::App* cmd, identify::PipelineSettings& pipeline) {
+    cmd->add_option("--bandwidth", pipeline.bandwidth,
+                    "motion bandwidth in Hz (default: estimated from the data: 99 % of the velocity energy above the noise floor, limited by "
+                    "the noise; docs/method.md)")
+        ->check(positive_number());
+    cmd->add_option("--cutoff", pipeline.differentiator_cutoff,
+                    "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)")
+        ->check(positive_number());
+    cmd->add_option("--decimation-cutoff", pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)")
+        ->check(positive_number());
+    cmd->add_option("--decimation", pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))")->check(whole_number_from(1));
 }
 
 std::optional<double> given_torque_delay(const FitOptions& o) {

@@ -32,6 +32,9 @@ struct FitOptions {
 // --bandwidth ... --min-motion, --torque-delay, --estimator, --weighting (--weighted, --unweighted), --std, --std-lags, --rank-tolerance.
 void add_fit_options(CLI::App* cmd, FitOptions& o);
 
+// --bandwidth, --cutoff, --decimation-cutoff, --decimation (the pipeline's rates, also diagnose's).
+void add_pipeline_rate_options(CLI::App* cmd, identify::PipelineSettings& pipeline);
+
 // --torque-delay: nullopt for auto, else the seconds given (InputError naming the option if malformed).
 std::optional<double> given_torque_delay(const FitOptions& o);
 

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/drive_gains_options.hpp"
 #include "cli/fit_options.hpp"
 #include "cli/log_format_options.hpp"
@@ -353,8 +354,7 @@ void add_identify_command(CLI::App& app) {
     cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table");
     cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors; a log that holds a pose gets the static (gravity) check per joint");
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
-    cmd->add_option("--time-tolerance", o->time_tolerance, "allowed deviation of each time step from the sample period, as a fraction")
-        ->capture_default_str();
+    add_time_tolerance_option(cmd, o->time_tolerance);
     cmd->add_option("--can-config", o->can_config,
                     "jacobid-fw config (YAML) whose joints' CAN profiles, ids, gear ratios and torque constants decode --in and "
                     "--validate as candump -L captures instead of CSV");
@@ -366,6 +366,7 @@ void add_identify_command(CLI::App& app) {
         ->check(CLI::IsMember({"measured", "jacobi", "butterworth"}));
     cmd->add_option("--essential", o->essential,
                     "essential parameters: drop the parameter with the largest %sigma_r above this threshold (%), re-identify, repeat")
+        ->check(positive_number())
         ->each([o](const std::string&) { o->essential_flag = true; })
         ->expected(0, 1)
         ->default_str("10");
@@ -378,6 +379,7 @@ void add_identify_command(CLI::App& app) {
     cmd->add_option("--prior-weight", o->prior_weight,
                     "weight of the description's standard values in --physical: w sum ((s - prior) / unit)^2 beside the data's chi^2 "
                     "(units 0.01 kg.m^2, 0.1 kg.m, 1 kg, 1 N.m); it decides only what the log does not excite")
+        ->check(non_negative_number())
         ->capture_default_str();
     add_model_export_options(cmd, o->model_export);
     add_drive_gain_options(cmd, o->drive_gains);

@@ -4,6 +4,8 @@
 #include <fmt/core.h>
 #include <fmt/os.h>
 
+#include <algorithm>
+#include <cctype>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +23,37 @@ struct KernelCommandOptions {
     std::string output = "-";
     std::string name = "kJacobiKernel";
 };
+
+// The C++ keywords (C++20, with the alternative tokens), which are no valid table name.
+constexpr const char* kCppKeywords[] = {
+    "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch", "char", "char8_t",
+    "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr", "constinit", "const_cast", "continue",
+    "co_await", "co_return", "co_yield", "decltype", "default", "delete", "do", "double", "dynamic_cast", "else", "enum", "explicit",
+    "export", "extern", "false", "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new",
+    "noexcept", "not", "not_eq", "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register",
+    "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
+    "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned",
+    "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq"};
+
+// --name goes verbatim into the generated header: only a C++ identifier that is no keyword (and not one
+// reserved to the implementation: a double underscore, or an underscore and a capital) can be written there.
+CLI::Validator cpp_identifier() {
+    return CLI::Validator(
+        [](std::string& name) -> std::string {
+            auto is_start = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+            auto is_part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+            const bool identifier = !name.empty() && is_start(name[0]) && std::all_of(name.begin(), name.end(), is_part);
+            if (!identifier) return fmt::format("expected a C++ identifier (letters, digits, '_', not starting with a digit), got '{}'", name);
+            for (const char* keyword : kCppKeywords) {
+                if (name == keyword) return fmt::format("'{}' is a C++ keyword; expected an identifier such as kJacobiKernel", name);
+            }
+            if (name.find("__") != std::string::npos || (name.size() > 1 && name[0] == '_' && std::isupper(static_cast<unsigned char>(name[1])))) {
+                return fmt::format("'{}' is reserved to the C++ implementation (double underscore, or underscore and capital)", name);
+            }
+            return {};
+        },
+        "C++ identifier");
+}
 
 std::string as_csv(const std::vector<double>& w) {
     std::string s;
@@ -85,7 +118,9 @@ void add_kernel_command(CLI::App& app) {
         ->check(CLI::IsMember({"csv", "json", "header"}))
         ->capture_default_str();
     cmd->add_option("--output,-o", options->output, "output file, '-' for standard output")->capture_default_str();
-    cmd->add_option("--name", options->name, "identifier of the table with --format header")->capture_default_str();
+    cmd->add_option("--name", options->name, "identifier of the table with --format header (a C++ identifier, not a keyword)")
+        ->check(cpp_identifier())
+        ->capture_default_str();
     cmd->callback([options] { run(*options); });
 }
 

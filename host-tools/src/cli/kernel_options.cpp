@@ -4,9 +4,11 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <cmath>
 #include <type_traits>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "jacobid/kernel_design.hpp"
 
 namespace jacobid::cli {
@@ -18,12 +20,17 @@ constexpr std::size_t kMaxHostTaps = 10'000'000;
 }  // namespace
 
 void add_kernel_options(CLI::App* command, KernelOptions& o, bool with_order, bool with_ts) {
-    if (with_order) command->add_option("--order,-n", o.order, "derivative order n (0, 1, 2 or 3)")->capture_default_str();
-    command->add_option("--kappa", o.kappa, "Jacobi weight exponent kappa in (-1, 300] of (1 + tau), the oldest end")->capture_default_str();
-    command->add_option("--mu", o.mu, "Jacobi weight exponent mu in (-1, 300] of (1 - tau), the newest end")->capture_default_str();
-    command->add_option("--q", o.q, "truncation order q >= 0 (polynomial degree q + n)")->capture_default_str();
-    command->add_option("--window,-T", o.window, "window length T in seconds (taps = round(T/Ts) + 1)");
-    if (with_ts) command->add_option("--ts", o.ts, "sample period Ts in seconds")->required();
+    // The ranges of kappa, mu and q + n are the library's (validate()); the validators refuse what is no number.
+    if (with_order) {
+        command->add_option("--order,-n", o.order, "derivative order n (0, 1, 2 or 3)")->check(whole_number_in(0, kMaxOrder))->capture_default_str();
+    }
+    command->add_option("--kappa", o.kappa, "Jacobi weight exponent kappa in (-1, 300] of (1 + tau), the oldest end")
+        ->check(finite_number())
+        ->capture_default_str();
+    command->add_option("--mu", o.mu, "Jacobi weight exponent mu in (-1, 300] of (1 - tau), the newest end")->check(finite_number())->capture_default_str();
+    command->add_option("--q", o.q, "truncation order q >= 0 (polynomial degree q + n)")->check(whole_number_from(0))->capture_default_str();
+    command->add_option("--window,-T", o.window, "window length T in seconds (taps = round(T/Ts) + 1)")->check(positive_number());
+    if (with_ts) command->add_option("--ts", o.ts, "sample period Ts in seconds")->check(positive_number())->required();
     command->add_option("--xi", o.xi,
                         "evaluation point in [-1, 1]: 0 or 'central' (delay T/2), 1 or 'causal' (no delay), "
                         "'delayed' (largest root of P_{q+1}^{(mu+n,kappa+n)}), or any number")
@@ -33,13 +40,14 @@ void add_kernel_options(CLI::App* command, KernelOptions& o, bool with_order, bo
         ->capture_default_str();
 }
 
-const char* option_for(KernelStatus status) {
+std::string option_for(KernelStatus status, const KernelSource& source) {
+    if (!source.overrides.empty()) return source.overrides;
     switch (status) {
         case KernelStatus::InvalidOrder: return "--order";
         case KernelStatus::InvalidKappa: return "--kappa";
         case KernelStatus::InvalidMu: return "--mu";
         case KernelStatus::InvalidTruncation: return "--q";
-        case KernelStatus::InvalidSamplePeriod: return "--ts";
+        case KernelStatus::InvalidSamplePeriod: return source.sample_period;
         case KernelStatus::WindowTooShort:
         case KernelStatus::TooManyTaps:
         case KernelStatus::TooFewPoints: return "--window";
@@ -50,7 +58,7 @@ const char* option_for(KernelStatus status) {
     return "kernel parameters";
 }
 
-KernelParams to_kernel_params(const KernelOptions& o) {
+KernelParams to_kernel_params(const KernelOptions& o, const KernelSource& source) {
     KernelParams p;
     p.order = o.order;
     p.kappa = o.kappa;
@@ -75,12 +83,19 @@ KernelParams to_kernel_params(const KernelOptions& o) {
             p.xi = std::stod(o.xi, &used);
             if (used != o.xi.size()) throw std::invalid_argument(o.xi);
         } catch (const std::exception&) {
-            throw InputError(fmt::format("--xi: expected a number in [-1, 1] or central|causal|delayed, got '{}'", o.xi));
+            throw InputError(fmt::format("{}: expected a number in [-1, 1] or central|causal|delayed, got '{}'",
+                                         source.overrides.empty() ? "--xi" : source.overrides, o.xi));
         }
     }
-    if (o.window <= 0.0) throw InputError("--window: the window length T in seconds is required and must be > 0");
+    const std::string window = source.overrides.empty() ? "--window" : source.overrides;
+    if (!(o.window > 0.0)) throw InputError(fmt::format("{}: the window length T in seconds is required and must be > 0", window));
     const KernelStatus s = validate(p, kMaxHostTaps);
-    if (s != KernelStatus::Ok) throw InputError(fmt::format("{}: {}", option_for(s), describe(s)));
+    if (s != KernelStatus::Ok) throw InputError(fmt::format("{}: {}", option_for(s, source), describe(s)));
+    if (check_weighted_points(p) == KernelStatus::TooFewPoints) {
+        throw InputError(fmt::format("{}: a window of {} taps has {} weighted samples, fewer than the q + order + 1 = {} coefficients of "
+                                     "the polynomial; lengthen the window or lower --q",
+                                     window, tap_count(p), weighted_point_count(p), p.q + p.order + 1));
+    }
     return p;
 }
 
@@ -99,10 +114,10 @@ KernelOptions with_overrides(KernelOptions o, const std::string& spec, const std
             try {
                 std::size_t used = 0;
                 const double v = std::stod(value, &used);
-                if (used != value.size()) throw std::invalid_argument(value);
+                if (used != value.size() || !std::isfinite(v)) throw std::invalid_argument(value);
                 target = static_cast<std::remove_reference_t<decltype(target)>>(v);
             } catch (const std::exception&) {
-                throw InputError(fmt::format("{} '{}': {} expects a number, got '{}'", option_name, spec, key, value));
+                throw InputError(fmt::format("{} '{}': {} expects a finite number, got '{}'", option_name, spec, key, value));
             }
         };
         if (key == "order" || key == "n") number(o.order);

@@ -27,11 +27,20 @@ struct KernelOptions {
 // Adds --kappa --mu --q --window --xi --discretization (and --order, --ts when asked) to `command`.
 void add_kernel_options(CLI::App* command, KernelOptions& options, bool with_order, bool with_ts);
 
-// Converts and validates; InputError names the offending option ("--kappa must be ...").
-KernelParams to_kernel_params(const KernelOptions& options);
+// Where the values of a KernelOptions came from, for messages that must not name an option the user did not
+// give: `overrides` (e.g. "--compare 'kappa=nan'") replaces every option name when set; `sample_period`
+// names the source of Ts ("--ts", or a log's time column for commands that read one).
+struct KernelSource {
+    std::string overrides;
+    std::string sample_period = "--ts";
+};
 
-// The option a KernelStatus complains about, for messages.
-const char* option_for(KernelStatus status);
+// Converts and validates (including a window too short for the polynomial, any discretization); InputError
+// names the offending option ("--kappa: kappa must be ...") or `source`.
+KernelParams to_kernel_params(const KernelOptions& options, const KernelSource& source = {});
+
+// The option (or source) a KernelStatus complains about, for messages.
+std::string option_for(KernelStatus status, const KernelSource& source = {});
 
 // Applies "key=value,key=value" overrides (keys: order kappa mu q window ts xi discretization) to
 // `options`, e.g. "kappa=12,mu=12,q=6,window=0.21"; InputError names `option_name` and the bad item.

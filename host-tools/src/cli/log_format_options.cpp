@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include "cli/option_checks.hpp"
 #include "core/errors.hpp"
 
 namespace jacobid::cli {
@@ -19,8 +20,16 @@ void add_log_format_options(CLI::App* command, LogFormatOptions& o) {
                         "segments processed separately (identify, differentiate; docs/log-format.md)")
         ->check(CLI::IsMember({"error", "interpolate", "split"}))
         ->capture_default_str();
-    command->add_option("--max-gap", o.read.max_gap, "with --log-format: longest time step in s that is not a gap (default: 3 median steps)");
+    command->add_option("--max-gap", o.read.max_gap, "with --log-format: longest time step in s that is not a gap (default: 3 median steps)")
+        ->check(positive_number());
     command->add_option("--interpolate-max", o.read.interpolate_max, "with --on-gap interpolate: most missing samples a gap may span")
+        ->check(whole_number_from(0))
+        ->capture_default_str();
+}
+
+void add_time_tolerance_option(CLI::App* command, double& tolerance) {
+    command->add_option("--time-tolerance", tolerance, "allowed deviation of each time step from the sample period, as a fraction")
+        ->check(number_in(0.0, 1.0))
         ->capture_default_str();
 }
 

@@ -24,6 +24,9 @@ struct LogFormatOptions {
 
 void add_log_format_options(CLI::App* command, LogFormatOptions& o);
 
+// --time-tolerance (a fraction in [0, 1]) of the commands that check a log's uniform time column.
+void add_time_tolerance_option(CLI::App* command, double& tolerance);
+
 // The table of `path`: with --log-format, read and resampled with it (each skipped row and a summary on stderr, each
 // irregular step too unless quiet), its columns named by `names` (q1.., qd1.., tau1.. when `names.q`
 // is empty); otherwise read_csv(path).

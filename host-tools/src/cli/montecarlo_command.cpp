@@ -11,6 +11,7 @@
 
 #include "cli/command.hpp"
 #include "cli/fit_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "cli/simulation_options.hpp"
 #include "montecarlo/study.hpp"
@@ -75,6 +76,8 @@ void run(const MonteCarloOptions& o) {
     SimulationOptions simulation = o;  // the description's controller, if any
     apply_controller(s.robot, simulation);
     s.simulation = simulation_settings(simulation);
+    // Each run holds its log in memory: positions, torques and references as doubles.
+    refuse_oversized_simulation(s.simulation, 32.0 * static_cast<double>(s.robot.joints.size()));
     s.measurement = measurement_settings(o, static_cast<int>(s.robot.joints.size()));
     for (const identify::Method m : methods_of(o.method)) s.methods.push_back(identify_settings(o, m));
     s.runs = o.runs;
@@ -98,8 +101,10 @@ void add_montecarlo_command(CLI::App& app) {
                                        "parameter: mean error and its standard error, spread of the estimates vs the reported std, coverage "
                                        "of the truth by +-2 reported std (docs/montecarlo.md)");
     cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (auto in identification)");
-    cmd->add_option("--runs", o->runs, "number of simulated runs")->capture_default_str();
-    cmd->add_option("--threads", o->threads, "worker threads (0: one per core); the results do not depend on it")->capture_default_str();
+    cmd->add_option("--runs", o->runs, "number of simulated runs")->capture_default_str();  // >= 2: checked by the study (montecarlo/study.cpp)
+    cmd->add_option("--threads", o->threads, "worker threads (0: one per core); the results do not depend on it")
+        ->check(whole_number_from(0))
+        ->capture_default_str();
     cmd->add_option("--method", o->method, "jacobi, butterworth, or both")->check(CLI::IsMember({"jacobi", "butterworth", "both"}))->capture_default_str();
     cmd->add_option("--format", o->format, "table (text) or json (with every run's estimates)")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
     cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();

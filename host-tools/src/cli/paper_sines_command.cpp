@@ -14,6 +14,7 @@
 
 #include "cli/command.hpp"
 #include "cli/kernel_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
 #include "jacobid/kernel_design.hpp"
@@ -25,6 +26,10 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586476925;
 constexpr double kFrequencies[] = {4.0, 9.0, 15.0};
+// The experiment is 2 s long; a million samples (1000 s at 1 kHz) already takes about 340 MB (the signal,
+// four estimates and the plotted error series), so more is a typo.
+constexpr double kMaxSamples = 1e6;
+constexpr double kBytesPerSample = 340.0;
 
 struct PaperSinesOptions {
     double duration = 2.0;
@@ -56,7 +61,8 @@ double truth(int order, double t) {
 }
 
 void run(const PaperSinesOptions& o) {
-    if (!(o.duration > 0) || !(o.ts > 0)) throw InputError("--duration and --ts must be > 0");
+    refuse_oversized(fmt::format("--duration {:g} s at --ts {:g} s", o.duration, o.ts), std::round(o.duration / o.ts) + 1.0, kMaxSamples,
+                     "samples", kBytesPerSample, "lower --duration or raise --ts");
     const auto n = static_cast<std::size_t>(std::llround(o.duration / o.ts)) + 1;
     // Signal and noise (docs/method.md, "Paper Section III"): 0.2 N(0,1) + 0.2 sin(2 pi 200 t) + 0.2 Poisson(0.1).
     std::mt19937_64 rng(o.seed);
@@ -168,16 +174,16 @@ void run(const PaperSinesOptions& o) {
 void add_paper_sines_command(CLI::App& app) {
     auto o = std::make_shared<PaperSinesOptions>();
     CLI::App* cmd = app.add_subcommand("paper-sines", "the paper's Section III experiment: Jacobi vs Butterworth + Euler on noisy sines");
-    cmd->add_option("--duration", o->duration, "signal length in seconds")->capture_default_str();
-    cmd->add_option("--ts", o->ts, "sample period in seconds")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "noise seed")->capture_default_str();
-    cmd->add_option("--kappa", o->kappa, "Jacobi kappa")->capture_default_str();
-    cmd->add_option("--mu", o->mu, "Jacobi mu")->capture_default_str();
-    cmd->add_option("--q", o->q, "Jacobi truncation order")->capture_default_str();
-    cmd->add_option("--window,-T", o->window, "Jacobi window in seconds")->capture_default_str();
+    cmd->add_option("--duration", o->duration, "signal length in seconds")->check(positive_number())->capture_default_str();
+    cmd->add_option("--ts", o->ts, "sample period in seconds")->check(positive_number())->capture_default_str();
+    cmd->add_option("--seed", o->seed, "noise seed")->check(whole_number_in(0, 4294967295.0))->capture_default_str();
+    cmd->add_option("--kappa", o->kappa, "Jacobi kappa")->check(finite_number())->capture_default_str();
+    cmd->add_option("--mu", o->mu, "Jacobi mu")->check(finite_number())->capture_default_str();
+    cmd->add_option("--q", o->q, "Jacobi truncation order")->check(whole_number_from(0))->capture_default_str();
+    cmd->add_option("--window,-T", o->window, "Jacobi window in seconds")->check(positive_number())->capture_default_str();
     cmd->add_option("--discretization", o->discretization, "trapezoidal or exact")->check(CLI::IsMember({"trapezoidal", "exact"}))->capture_default_str();
-    cmd->add_option("--bw-order", o->bw_order, "Butterworth order")->capture_default_str();
-    cmd->add_option("--bw-cutoff", o->bw_cutoff, "Butterworth cutoff in Hz")->capture_default_str();
+    cmd->add_option("--bw-order", o->bw_order, "Butterworth order")->check(whole_number_from(1))->capture_default_str();
+    cmd->add_option("--bw-cutoff", o->bw_cutoff, "Butterworth cutoff in Hz")->check(positive_number())->capture_default_str();
     cmd->add_option("--out-dir", o->out_dir, "folder for the PNG plots")->capture_default_str();
     cmd->add_option("--format", o->format, "text or json")->check(CLI::IsMember({"text", "json"}))->capture_default_str();
     cmd->callback([o] { run(*o); });

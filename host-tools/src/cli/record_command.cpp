@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "stream/recorder.hpp"
 #include "stream/udp_receiver.hpp"
 
@@ -132,9 +133,12 @@ void add_record_command(CLI::App& app) {
     cmd->add_option("--udp", o->udp, "HOST:PORT to listen on, e.g. 0.0.0.0:5005 (port 0 = any free port, printed on stderr)")->required();
     cmd->add_option("--out,-o", o->output, "CSV log: t,q1..qn,tau1..taun[,estimates],seq,stream_flags,flags1..n")->required();
     cmd->add_option("--summary", o->summary, "also write the summary (counts, lost/late/unmeasured sequence numbers, files) as JSON");
-    cmd->add_option("--count", o->count, "stop after this many datagrams (any, malformed included); 0 = no limit")->capture_default_str();
-    cmd->add_option("--duration", o->duration, "stop after this many seconds; 0 = no limit")->capture_default_str();
+    cmd->add_option("--count", o->count, "stop after this many datagrams (any, malformed included); 0 = no limit")
+        ->check(whole_number_from(0))
+        ->capture_default_str();
+    cmd->add_option("--duration", o->duration, "stop after this many seconds; 0 = no limit")->check(non_negative_number())->capture_default_str();
     cmd->add_option("--idle-timeout", o->idle_timeout, "stop when no datagram arrived for this many seconds; 0 = no limit")
+        ->check(non_negative_number())
         ->capture_default_str();
     cmd->add_option("--on-gap", o->on_gap,
                     "lost/late datagrams, stale rows, restarts: error = write what arrived and exit 2 naming them; "
@@ -142,6 +146,7 @@ void add_record_command(CLI::App& app) {
         ->check(CLI::IsMember({"error", "split", "mark"}))
         ->capture_default_str();
     cmd->add_option("--reorder-window", o->reorder_window, "datagrams held back to undo reordering before a missing one is given up")
+        ->check(whole_number_in(0, 1e6))
         ->capture_default_str();
     cmd->add_flag("--estimates", o->estimates, "also write the controller's estimates q<j>_hat, qd<j>_hat, qdd<j>_hat");
     cmd->add_flag("--quiet", o->quiet, "no progress line every second");

@@ -15,6 +15,8 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
+#include "cli/simulation_options.hpp"
 #include "robot/robot_description.hpp"
 #include "io/candump_writer.hpp"
 #include "sim/can_player.hpp"
@@ -110,6 +112,8 @@ void run(SimCanOptions o) {
     if (o.torque_noise.size() == 1) o.torque_noise.assign(n, o.torque_noise[0]);
     if (o.torque_noise.size() != n) throw InputError(fmt::format("--torque-noise: expected 1 or {} values, got {}", n, o.torque_noise.size()));
     sim::validate(o.settings);
+    // A sample: one candump -L line (about 45 bytes) per joint.
+    refuse_oversized_simulation(o.settings, 45.0 * static_cast<double>(n));
 
     const Eigen::VectorXd x = robot::true_parameters(robot, *model);
     sim::MeasurementSettings ms;
@@ -217,17 +221,17 @@ void add_sim_can_command(CLI::App& app) {
         if (iface->count() + candump->count() != 1) throw InputError("sim-can: give exactly one of --iface and --candump");
         run(*o);
     });
-    cmd->add_option("--duration", o->settings.duration, "simulated (and wall-clock) time in s")->capture_default_str();
-    cmd->add_option("--rate", o->settings.output_rate, "frames per joint per second (Hz)")->capture_default_str();
-    cmd->add_option("--seed", o->settings.seed, "seed of the random moves")->capture_default_str();
-    cmd->add_option("--torque-noise", o->torque_noise, "torque noise standard deviation in N.m, one value or one per joint")->delimiter(',');
-    cmd->add_option("--noise-seed", o->noise_seed, "seed of the torque noise")->capture_default_str();
+    cmd->add_option("--duration", o->settings.duration, "simulated (and wall-clock) time in s")->check(positive_number())->capture_default_str();
+    cmd->add_option("--rate", o->settings.output_rate, "frames per joint per second (Hz)")->check(positive_number())->capture_default_str();
+    cmd->add_option("--seed", o->settings.seed, "seed of the random moves")->check(whole_number_from(0))->capture_default_str();
+    add_torque_noise_option(cmd, o->torque_noise);
+    add_noise_seed_option(cmd, o->noise_seed);
     cmd->add_option("--sync-id", o->sync_id,
                     "answer each CANopen SYNC frame with this standard id with the next sample instead of pacing by the clock "
                     "(default: can.sync_id of --config, if set)")
         ->check(CLI::Range(1, 0x7FF));
     cmd->add_option("--sync-timeout", o->sync_timeout, "with SYNC: seconds without one (after the first, which may take 30 s) that are an error")
-        ->check(CLI::PositiveNumber)
+        ->check(positive_number())
         ->capture_default_str();
     cmd->add_flag("--follow", o->follow,
                   "follow the controller's command frames (jacobid-fw playing a trajectory: each joint's newest commanded position and "

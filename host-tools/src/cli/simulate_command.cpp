@@ -92,6 +92,8 @@ void run(SimulateOptions o) {
         if (!o.duration_given) o.settings.duration = reference->length();
     }
     o.settings = simulation_settings(o);
+    // A row: the time, then position, torque and two reference columns per joint (10-17 digits each).
+    refuse_oversized_simulation(o.settings, 12.0 + 60.0 * n);
     if (reference) {
         o.settings.reference = [reference](double t, sim::ReferenceSample& out) { reference->evaluate(t, out); };
         o.settings.reference_start = reference->start();

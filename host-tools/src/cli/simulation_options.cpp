@@ -6,33 +6,76 @@
 
 #include <cmath>
 
+#include "cli/option_checks.hpp"
 #include "core/errors.hpp"
 #include "robot/robot_description.hpp"
 
 namespace jacobid::cli {
+namespace {
+
+// Simulated logs beyond these sizes are typos (--duration 1e12), not experiments: a billion log samples is
+// about 100 GB of CSV, ten billion RK4 steps hours of computing.
+constexpr double kMaxLogSamples = 1e9;
+constexpr double kMaxIntegrationSteps = 1e10;
+// N.m: far above any drive's torque, and its squares stay finite in the noise and ripple models.
+constexpr double kMaxTorqueAmplitude = 1e6;
+
+}  // namespace
 
 void add_simulation_options(CLI::App* cmd, SimulationOptions& o) {
-    cmd->add_option("--duration", o.settings.duration, "simulated time in s")->capture_default_str();
-    cmd->add_option("--rate", o.settings.output_rate, "log sample rate in Hz (must divide the integration rate)")->capture_default_str();
+    cmd->add_option("--duration", o.settings.duration, "simulated time in s")->check(positive_number())->capture_default_str();
+    cmd->add_option("--rate", o.settings.output_rate, "log sample rate in Hz (must divide the integration rate)")->check(positive_number())->capture_default_str();
     const char* described = " (a robot description's controller: replaces it)";
     o.controller_options = {
-        cmd->add_option("--control-rate", o.settings.control_rate, std::string("PD controller rate in Hz") + described)->capture_default_str(),
-        cmd->add_option("--substeps", o.settings.substeps, std::string("RK4 steps per control period") + described)->capture_default_str(),
-        cmd->add_option("--omega-dyn", o.settings.omega_dyn, std::string("wanted position-loop bandwidth in rad/s (sets the PD gains)") + described)
+        cmd->add_option("--control-rate", o.settings.control_rate, std::string("PD controller rate in Hz") + described)
+            ->check(positive_number())
             ->capture_default_str(),
-        cmd->add_option("--damping", o.settings.damping, std::string("damping ratio of the PD loop") + described)->capture_default_str()};
-    cmd->add_option("--seed", o.settings.seed, "seed of the random targets and move durations")->capture_default_str();
-    cmd->add_option("--move-duration", o.move_duration, "MIN,MAX duration of each move in s")->delimiter(',')->expected(2)->capture_default_str();
-    cmd->add_option("--dwell", o.settings.moves.max_dwell, "maximum rest after each move in s (uniform in [0, dwell])")->capture_default_str();
-    cmd->add_option("--encoder-counts", o.encoder_counts, "encoder counts per revolution (0: no quantization)")->capture_default_str();
+        cmd->add_option("--substeps", o.settings.substeps, std::string("RK4 steps per control period") + described)
+            ->check(whole_number_from(1))
+            ->capture_default_str(),
+        cmd->add_option("--omega-dyn", o.settings.omega_dyn, std::string("wanted position-loop bandwidth in rad/s (sets the PD gains)") + described)
+            ->check(positive_number())
+            ->capture_default_str(),
+        cmd->add_option("--damping", o.settings.damping, std::string("damping ratio of the PD loop") + described)->check(positive_number())->capture_default_str()};
+    cmd->add_option("--seed", o.settings.seed, "seed of the random targets and move durations")->check(whole_number_from(0))->capture_default_str();
+    cmd->add_option("--move-duration", o.move_duration, "MIN,MAX duration of each move in s")
+        ->delimiter(',')
+        ->expected(2)
+        ->check(positive_number())
+        ->capture_default_str();
+    cmd->add_option("--dwell", o.settings.moves.max_dwell, "maximum rest after each move in s (uniform in [0, dwell])")
+        ->check(non_negative_number())
+        ->capture_default_str();
+    cmd->add_option("--encoder-counts", o.encoder_counts, "encoder counts per revolution (0: no quantization)")->check(non_negative_number())->capture_default_str();
     cmd->add_option("--position-noise", o.position_noise,
                     "standard deviation in rad of white noise on the logged positions (before the encoder quantization; own seed stream)")
+        ->check(non_negative_number())
         ->capture_default_str();
-    cmd->add_option("--torque-noise", o.torque_noise, "torque noise standard deviation in N.m: one value or one per joint")->delimiter(',');
+    add_torque_noise_option(cmd, o.torque_noise);
     cmd->add_option("--ripple", o.ripple, "torque ripple amplitude in N.m (one value or one per joint), amplitude * sin(periods * q)")
-        ->delimiter(',');
-    cmd->add_option("--ripple-periods", o.ripple_periods, "ripple periods per revolution")->capture_default_str();
-    cmd->add_option("--noise-seed", o.noise_seed, "seed of the torque noise")->capture_default_str();
+        ->delimiter(',')
+        ->check(number_in(0.0, kMaxTorqueAmplitude));
+    cmd->add_option("--ripple-periods", o.ripple_periods, "ripple periods per revolution")->check(non_negative_number())->capture_default_str();
+    add_noise_seed_option(cmd, o.noise_seed);
+}
+
+void add_torque_noise_option(CLI::App* cmd, std::vector<double>& torque_noise) {
+    cmd->add_option("--torque-noise", torque_noise, "torque noise standard deviation in N.m: one value or one per joint")
+        ->delimiter(',')
+        ->check(number_in(0.0, kMaxTorqueAmplitude));
+}
+
+void add_noise_seed_option(CLI::App* cmd, std::uint64_t& noise_seed) {
+    cmd->add_option("--noise-seed", noise_seed, "seed of the torque noise")->check(whole_number_from(0))->capture_default_str();
+}
+
+void refuse_oversized_simulation(const sim::SimulationSettings& s, double bytes_per_sample) {
+    const double samples = std::floor(s.duration * s.output_rate) + 1.0;
+    refuse_oversized(fmt::format("--duration {:g} s at --rate {:g} Hz", s.duration, s.output_rate), samples, kMaxLogSamples, "log samples",
+                     bytes_per_sample, "lower --duration or --rate");
+    const double steps = s.duration * s.control_rate * static_cast<double>(s.substeps);
+    refuse_oversized(fmt::format("--duration {:g} s at --control-rate {:g} Hz x --substeps {}", s.duration, s.control_rate, s.substeps), steps,
+                     kMaxIntegrationSteps, "integration steps", 0.0, "lower --duration, --control-rate or --substeps");
 }
 
 void apply_controller(const robot::RobotDescription& description, SimulationOptions& o) {

@@ -37,6 +37,14 @@ struct SimulationOptions {
 // --encoder-counts, --position-noise, --torque-noise, --ripple, --ripple-periods, --noise-seed.
 void add_simulation_options(CLI::App* cmd, SimulationOptions& o);
 
+// --torque-noise and --noise-seed alone (sim-can's noise).
+void add_torque_noise_option(CLI::App* cmd, std::vector<double>& torque_noise);
+void add_noise_seed_option(CLI::App* cmd, std::uint64_t& noise_seed);
+
+// InputError when `s` asks for more than a billion log samples (about `bytes_per_sample` bytes each) or ten
+// billion integration steps, naming the options and the estimate; before anything is allocated or run.
+void refuse_oversized_simulation(const sim::SimulationSettings& s, double bytes_per_sample);
+
 // The description's controller (robot/controller_description.hpp), if it has one, replaces the controller
 // options; InputError if one of them is given as well (two controllers for one run).
 void apply_controller(const robot::RobotDescription& description, SimulationOptions& o);

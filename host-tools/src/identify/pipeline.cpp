@@ -137,9 +137,14 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
                                      "half the sample rate ({:.4g} Hz); give --bandwidth (the motion's bandwidth in Hz)",
                                      log.source, bandwidth_description, s.decimation_ratio, info.decimation_cutoff, 0.5 * fs));
     }
+    if (info.decimation_cutoff >= 0.5 * fs && s.decimation_cutoff <= 0.0) {
+        // The cutoff follows from the --bandwidth given: name that option, not one the user never gave.
+        throw InputError(fmt::format("--bandwidth {:.4g} Hz puts the decimation filter ({} x bandwidth = {:.4g} Hz) above half the sample rate "
+                                     "({:.4g} Hz); give a --bandwidth below {:.4g} Hz",
+                                     info.bandwidth, s.decimation_ratio, info.decimation_cutoff, 0.5 * fs, 0.5 * fs / s.decimation_ratio));
+    }
     if (info.decimation_cutoff >= 0.5 * fs) {
-        throw InputError(fmt::format("decimation filter cutoff {:.4g} Hz must be below half the sample rate ({:.4g} Hz); lower --decimation-cutoff",
-                                     info.decimation_cutoff, 0.5 * fs));
+        throw InputError(fmt::format("--decimation-cutoff {:.4g} Hz must be below half the sample rate ({:.4g} Hz)", info.decimation_cutoff, 0.5 * fs));
     }
     info.decimation = s.decimation > 0 ? s.decimation : std::max(1, static_cast<int>(std::floor(fs / (4.0 * info.decimation_cutoff))));
     info.crop = static_cast<std::size_t>(std::ceil(3.0 * fs / info.decimation_cutoff));

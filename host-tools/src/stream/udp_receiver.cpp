@@ -25,6 +25,8 @@ Endpoint parse_endpoint(const std::string& text, const std::string& option) {
     e.host = text.substr(0, colon);
     const std::string port = text.substr(colon + 1);
     if (e.host.empty()) throw bad("empty host");
+    // The estimate stream is IPv4 (AF_INET): an IPv6 address is a wrong host, not an unresolvable one.
+    if (e.host.front() == '[' || e.host.find(':') != std::string::npos) throw bad("an IPv6 address; the stream is IPv4: give an IPv4 address or a host name");
     if (port.empty() || port.size() > 5 || port.find_first_not_of("0123456789") != std::string::npos) throw bad("port is not a number");
     const unsigned long value = std::stoul(port);
     if (value > 65535) throw bad("port above 65535");

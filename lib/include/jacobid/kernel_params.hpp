@@ -37,7 +37,7 @@ enum class KernelStatus {
     WindowTooShort,        // T < 2 Ts
     InvalidXi,             // xi outside [-1, 1]
     TooManyTaps,           // round(T / Ts) + 1 exceeds the storage capacity
-    TooFewPoints,          // fewer grid points with non-zero weight than polynomial coefficients (exact)
+    TooFewPoints,          // fewer grid points with non-zero weight than polynomial coefficients (any discretization)
     ClosedFormNeedsCentral,  // eq. (12) is the central estimator only
 };
 

@@ -3,6 +3,7 @@
 // of the real cycle loop (clock_nanosleep, UDP, SIGTERM, jitter statistics) into `jacobid record`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -32,6 +33,22 @@ TEST(FirmwareExecutable, ConfigErrorExitsTwoNamingKeyAndLine) {
     const auto r = run_command(fw("--config " + path("bad.yaml")));
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("bad.yaml:3:32: joints[0].gear_ratio: gear ratio must be finite and non-zero"), std::string::npos) << r.err;
+}
+
+// Issue 20: --duration -1 meant "run until a signal" (any value <= 0 did), nan too, and 1e12 s overflowed the
+// deadline in nanoseconds; CLI11's own errors exited 105-109 on two lines. All are one-line exit-2 errors now.
+TEST(FirmwareExecutable, InvalidDurationAndParseErrorsExitTwoOnOneLine) {
+    std::ofstream(path("ok.yaml")) << test::chain_config_yaml();
+    for (const std::string& value : {"-1", "nan", "inf", "1e12", "abc"}) {
+        const auto r = run_command("timeout 5 " + fw("--config " + path("ok.yaml") + " --no-realtime --duration " + value));
+        EXPECT_EQ(r.exit_code, 2) << value << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("jacobid-fw: error: --duration: expected a number of seconds in [0, 1e9]", 0), 0u) << value << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    const auto unknown = run_command(fw("--config " + path("ok.yaml") + " --bogus"));
+    EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
+    EXPECT_EQ(unknown.err.rfind("jacobid-fw: error: ", 0), 0u) << unknown.err;
+    EXPECT_NE(unknown.err.find("--bogus"), std::string::npos) << unknown.err;
 }
 
 TEST(FirmwareExecutable, MissingCanInterfaceIsAClearDeviceError) {

@@ -25,7 +25,7 @@ using jacobid::test::RandomParams;
 
 constexpr int kCases = 1500;
 
-// Weights that are non-zero: the exact design needs degree + 1 of them (TooFewPoints otherwise).
+// Weights that are non-zero: every design needs degree + 1 of them (TooFewPoints otherwise).
 // Independent of the design code: w(tau) = (1 - tau)^mu (1 + tau)^kappa vanishes at an end of the
 // window only when that end's exponent is positive.
 std::size_t nonzero_weight_points(const KernelParams& p, std::size_t taps) {
@@ -46,14 +46,15 @@ void check_random_valid_kernels(std::uint64_t seed) {
         p.window = static_cast<double>(taps - 1) * p.sample_period;
         ASSERT_EQ(jacobid::validate(p, Capacity), KernelStatus::Ok) << "case " << i;
         const KernelStatus s = kernel.design(p);
-        // The exact design needs q + n + 1 weighted points; fewer non-zero ends-excluded points can only
-        // mean fewer weighted ones (interior weights may still underflow, so the converse is not checked).
-        if (p.discretization == Discretization::Exact && nonzero_weight_points(p, taps) < static_cast<std::size_t>(p.q + p.order + 1)) {
+        // Every design needs q + n + 1 weighted points (the trapezoidal one too, issue 20: it gave weights of
+        // 1e8 without them); fewer non-zero ends-excluded points can only mean fewer weighted ones (interior
+        // weights may still underflow, so the converse is not checked).
+        if (nonzero_weight_points(p, taps) < static_cast<std::size_t>(p.q + p.order + 1)) {
             EXPECT_EQ(s, KernelStatus::TooFewPoints) << "case " << i;
         }
         if (s == KernelStatus::TooFewPoints) {
-            // Only the exact design may refuse valid parameters, and only for lack of weighted points.
-            EXPECT_EQ(p.discretization, Discretization::Exact) << "case " << i;
+            // Valid parameters are refused only for lack of weighted points.
+            EXPECT_EQ(jacobid::check_weighted_points(p), KernelStatus::TooFewPoints) << "case " << i;
             EXPECT_FALSE(kernel.designed());
             continue;
         }
@@ -71,7 +72,9 @@ void check_random_valid_kernels(std::uint64_t seed) {
         ASSERT_GT(sum_abs, 0.0) << "case " << i;
         EXPECT_TRUE(std::isfinite(kernel.delay_samples()));
     }
-    EXPECT_GT(designed, kCases / 2);  // most cases must reach the weights, or the test proves little
+    // Many cases must reach the weights, or the test proves little. Every design needs q + n + 1 weighted
+    // points, so with a capacity of 8 taps only about a third of the random cases can (497 of 1500).
+    EXPECT_GT(designed, kCases / 4);
 }
 
 TEST(KernelProperties, RandomValidParametersGiveFiniteWeights) {
