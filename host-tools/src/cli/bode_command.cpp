@@ -42,6 +42,7 @@ std::string column_label(std::string s) {
 }
 
 void run(const BodeOptions& o) {
+    check_outputs({{"--csv", o.csv}, {"--png", o.png}});
     std::vector<KernelParams> configs{to_kernel_params(o.kernel)};
     for (const auto& spec : o.compare) configs.push_back(to_kernel_params(with_overrides(o.kernel, spec, "--compare")));
     const int order = configs.front().order;

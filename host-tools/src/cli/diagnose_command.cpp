@@ -44,6 +44,7 @@ void check(const DiagnoseOptions& o) {
 }
 
 void run(DiagnoseOptions o) {
+    check_outputs({{"--output", o.output}}, {{"--robot", o.robot}, {"--in", o.in}, {"--validate", o.validate}, {"--log-format", o.log_format.file}});
     check(o);
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");

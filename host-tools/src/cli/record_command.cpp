@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/command.hpp"
+#include "cli/output_file.hpp"
 #include "stream/recorder.hpp"
 #include "stream/udp_receiver.hpp"
 
@@ -58,6 +59,7 @@ private:
 };
 
 void run(const RecordOptions& o) {
+    check_outputs({{"--out", o.output}, {"--summary", o.summary}});
     const stream::GapPolicy policy = stream::parse_gap_policy(o.on_gap);
     if (o.duration < 0.0 || o.idle_timeout < 0.0) throw InputError("--duration / --idle-timeout: seconds must be >= 0 (0 = no limit)");
     const stream::Endpoint endpoint = stream::parse_endpoint(o.udp, "--udp");
