@@ -4,6 +4,7 @@
 // exit 0); docs/reliability.md, "Bad input, round two: files, non-finite data, impossible robots".
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -93,6 +94,14 @@ TEST(BadFiles, DevZeroAsAnInputIsRefusedAtOnce) {
     expect_refused(jacobid("simulate --robot /dev/zero -o " + scratch("z.csv").string()), {"/dev/zero", "not a regular file"});
     expect_refused(jacobid("simulate --duration 1 --effects /dev/zero -o " + scratch("z.csv").string()), {"/dev/zero", "not a regular file"});
     expect_refused(jacobid("identify --robot /dev/zero --in " + planar_log()), {"/dev/zero", "not a regular file"});
+}
+
+TEST(BadFiles, AnInputAboveTheSizeBoundIsRefusedBeforeItIsRead) {
+    const fs::path big = scratch("big.csv");
+    std::ofstream(big) << "t,q1\n";
+    fs::resize_file(big, std::uintmax_t{3} << 30);  // sparse: no disk used, nothing read
+    expect_refused(jacobid("differentiate --in " + big.string() + " -c q1"), {"big.csv", "3072 MB is more than the 2048 MB"});
+    fs::remove(big);
 }
 
 TEST(BadFiles, FirmwareConfigFromDevZeroIsRefused) {
@@ -231,6 +240,18 @@ TEST(BadFiles, ADivergingSimulationStopsAtTheFirstNonFiniteState) {
     const auto r = jacobid("simulate --duration 2 --robot " + planar_with("stiff.yaml", "FV1: 1e5") + " -o " + out);
     expect_refused(r, {"simulation at t = ", "joint 1", "diverged", "--substeps"});
     EXPECT_FALSE(fs::exists(out));
+}
+
+// Options and injected effects that drove the simulator to -nan rows with exit 0: refused (by their
+// option's check or, at the latest, by the first non-finite state), with no log left behind.
+TEST(BadFiles, NoiseDampingOrEffectsThatDivergeLeaveNoNanRows) {
+    for (const std::string args : {"--damping -1", "--torque-noise 1e308", "--ripple 0.1 --ripple-periods nan", "--effect rotor_inertia:joint=2,value=-1"}) {
+        const std::string out = scratch("noise.csv").string();
+        const auto r = jacobid("simulate --quiet --duration 30 " + args + " -o " + out);
+        EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+        EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    }
 }
 
 }  // namespace
