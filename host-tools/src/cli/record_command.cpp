@@ -6,7 +6,6 @@
 
 #include <chrono>
 #include <csignal>
-#include <fstream>
 #include <memory>
 
 #include "cli/command.hpp"
@@ -99,11 +98,7 @@ void run(const RecordOptions& o) {
     summary["endpoint"] = fmt::format("{}:{}", receiver.address(), receiver.port());
     summary["stopped"] = stop_reason;
     summary["seconds"] = seconds_since(start);
-    if (!o.summary.empty()) {
-        std::ofstream out(o.summary);
-        out << summary.dump(2) << '\n';
-        if (!out) throw InputError(fmt::format("--summary {}: cannot write the file", o.summary));
-    }
+    if (!o.summary.empty()) write_output(o.summary, summary.dump(2) + "\n");  // the close is checked (a full disk)
     const auto& c = recorder.tracker().counts();
     fmt::print(stderr, "record: stopped: {}\n", stop_reason);
     fmt::print(stderr, "record: {} datagrams received, {} rows written, {} lost, {} late, {} duplicated, {} reordered, {} malformed\n",
