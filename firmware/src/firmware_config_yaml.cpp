@@ -17,6 +17,7 @@
 #include "jacobid/firmware/trajectory_table.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::firmware {
 namespace {
@@ -218,11 +219,7 @@ FirmwareConfig parse_firmware_config(const std::string& yaml_text, const std::st
 }
 
 FirmwareConfig load_firmware_config(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw ConfigError(fmt::format("{}: cannot open the configuration file", path));
-    std::stringstream text;
-    text << in.rdbuf();
-    return parse_firmware_config(text.str(), path);
+    return parse_firmware_config(yaml::read_input_file<ConfigError>(path, "the configuration file"), path);
 }
 
 }  // namespace jacobid::firmware

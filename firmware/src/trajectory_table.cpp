@@ -5,12 +5,12 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <map>
 #include <optional>
 
 #include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::firmware {
 namespace {
@@ -31,16 +31,8 @@ std::vector<std::string> split(const std::string& line) {
 }  // namespace
 
 std::vector<TrajectoryRow> load_trajectory_table(const std::string& path, std::size_t joints, double rate, bool torques) {
-    // A device or a pipe (/dev/zero) would be read forever; a table of an hour at 10 kHz for 8 joints is
-    // far below the bound.
-    constexpr std::uintmax_t kMaxBytes = std::uintmax_t{2} << 30;
-    std::error_code fs_error;
-    if (!std::filesystem::is_regular_file(path, fs_error)) throw ConfigError(fmt::format("{}: not a regular file (expected the trajectory table's CSV)", path));
-    if (const std::uintmax_t bytes = std::filesystem::file_size(path, fs_error); !fs_error && bytes > kMaxBytes) {
-        throw ConfigError(fmt::format("{}: {} bytes, above the {} bytes a trajectory table may have", path, bytes, kMaxBytes));
-    }
-    std::ifstream in(path);
-    if (!in) throw ConfigError(fmt::format("{}: cannot open the trajectory table", path));
+    // The one reader of input files (a regular file of bounded size: /dev/zero would be read forever).
+    std::istringstream in(yaml::read_input_file<ConfigError>(path, "the trajectory table"));
     std::string line;
     if (!std::getline(in, line)) throw ConfigError(fmt::format("{}: empty trajectory table (expected a header t,q1,..,qd1,..)", path));
     const std::vector<std::string> header = split(line);

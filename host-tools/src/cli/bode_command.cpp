@@ -46,6 +46,7 @@ std::string column_label(std::string s) {
 }
 
 void run(const BodeOptions& o) {
+    check_outputs({{"--csv", o.csv}, {"--png", o.png}});
     std::vector<KernelParams> configs{to_kernel_params(o.kernel)};
     for (const auto& spec : o.compare) {
         KernelSource source;

@@ -53,6 +53,7 @@ void refuse_oversized_search(const DiagnoseOptions& o, const identify::LogColumn
 }
 
 void run(DiagnoseOptions o) {
+    check_outputs({{"--output", o.output}}, {{"--robot", o.robot}, {"--in", o.in}, {"--validate", o.validate}, {"--log-format", o.log_format.file}});
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);

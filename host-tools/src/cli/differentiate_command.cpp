@@ -110,7 +110,9 @@ std::string estimate_rows(const io::CsvTable& table, const std::string& what, co
         const double index = first + static_cast<double>(r);
         out += fmt::format("{:.17g}", time.start + index * ts);
         for (const Channel& c : channels) {
-            out += fmt::format(",{:.17g}", c.estimate.values[static_cast<std::size_t>(std::llround(index - c.estimate.first_index))]);
+            const double v = c.estimate.values[static_cast<std::size_t>(std::llround(index - c.estimate.first_index))];
+            if (!std::isfinite(v)) throw InputError(fmt::format("{}: {} at t = {:.17g} s is not finite (values too large to differentiate)", what, c.name, time.start + index * ts));
+            out += fmt::format(",{:.17g}", v);
         }
         out += marker.empty() ? "\n" : "," + marker + "\n";
     }
@@ -118,6 +120,7 @@ std::string estimate_rows(const io::CsvTable& table, const std::string& what, co
 }
 
 void run(const DifferentiateOptions& o) {
+    check_outputs({{"--out", o.output}}, {{"--in", o.input}, {"--log-format", o.log_format.file}});
     io::LogColumnNames names;  // q1.., qd1.., tau1.. from the log format's joints
     names.time = o.time_column;
     const LogSegments log = read_log_segments(o.input, o.log_format, names, false);

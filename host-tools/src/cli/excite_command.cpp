@@ -148,6 +148,7 @@ void plot(const std::string& path, const Sampled& s) {
 }
 
 void run(const ExciteOptions& o) {
+    check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, {{"--robot", o.robot}});
     check(o);
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);

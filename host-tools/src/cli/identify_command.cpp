@@ -139,11 +139,10 @@ LogSegments read_log(const std::string& path, const robot::RobotDescription& rob
 }
 
 std::map<std::string, double> read_truth(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("--truth {}: cannot open file", path));
+    const std::string text = io::read_text_file(path, "--truth file");
     nlohmann::json j;
     try {
-        in >> j;
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw InputError(fmt::format("--truth {}: invalid JSON: {}", path, e.what()));
     }
@@ -205,6 +204,7 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
 }
 
 void run(IdentifyOptions o) {
+    check_outputs({{"--output", o.output}}, {{"--robot", o.robot}, {"--in", o.in}, {"--truth", o.truth}, {"--validate", o.validate}, {"--can-config", o.can_config}, {"--log-format", o.log_format.file}});
     using Clock = std::chrono::steady_clock;
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
@@ -309,6 +309,7 @@ void run(IdentifyOptions o) {
         results.push_back(std::move(r));
     }
     for (const auto& w : ctx.warnings) fmt::print(stderr, "jacobid identify: warning: {}\n", w);
+    for (const auto& r : results) identify::require_finite_solution(r.solution, o.in);
 
     std::optional<nlohmann::json> exported;
     if (o.model_export.any()) exported = write_model_export(o.model_export, robot, results.front(), o.in);

@@ -98,6 +98,7 @@ std::string as_header(const KernelParams& p, const std::vector<double>& w, const
 }
 
 void run(const KernelCommandOptions& o) {
+    check_outputs({{"--output", o.output}});
     const KernelParams p = to_kernel_params(o.kernel);
     const std::vector<double> w = design_kernel_or_throw(p);
     std::string text;

@@ -3,23 +3,77 @@
 
 #include <fmt/core.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "cli/command.hpp"
 
 namespace jacobid::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool same_file(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::equivalent(a, b, ec)) return true;  // both exist: compares inodes (links, "./x" vs "x")
+    return fs::absolute(a, ec).lexically_normal() == fs::absolute(b, ec).lexically_normal();
+}
+
+void check_writable(const NamedPath& out) {
+    std::error_code ec;
+    const fs::path parent = fs::absolute(out.path, ec).parent_path();
+    if (!fs::is_directory(parent, ec)) throw InputError(fmt::format("{} {}: directory '{}' does not exist", out.option, out.path, parent.string()));
+    if (fs::is_directory(out.path, ec)) throw InputError(fmt::format("{} {}: is a directory, expected a file name", out.option, out.path));
+    const bool existed = fs::exists(out.path, ec);
+    // Append mode: an existing file is left as it is until the command writes its result.
+    std::FILE* f = std::fopen(out.path.c_str(), "ab");
+    if (!f) throw InputError(fmt::format("{} {}: cannot open for writing: {}", out.option, out.path, std::strerror(errno)));
+    std::fclose(f);
+    if (!existed) fs::remove(out.path, ec);
+}
+
+}  // namespace
+
+void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_list<NamedPath> inputs) {
+    for (auto out = outputs.begin(); out != outputs.end(); ++out) {
+        if (out->path.empty() || out->path == "-") continue;
+        for (const NamedPath& in : inputs) {
+            if (!in.path.empty() && same_file(out->path, in.path)) {
+                throw InputError(fmt::format("{} {}: is the input given to {}; write the result to another file", out->option, out->path, in.option));
+            }
+        }
+        for (auto other = outputs.begin(); other != out; ++other) {
+            if (!other->path.empty() && other->path != "-" && same_file(out->path, other->path)) {
+                throw InputError(fmt::format("{} {}: is also the output of {}; give two different files", out->option, out->path, other->option));
+            }
+        }
+        check_writable(*out);
+    }
+}
+
+void prepare_output_directory(const NamedPath& directory) {
+    std::error_code ec;
+    if (fs::exists(directory.path, ec) && !fs::is_directory(directory.path, ec)) {
+        throw InputError(fmt::format("{} {}: exists and is not a directory", directory.option, directory.path));
+    }
+    fs::create_directories(directory.path, ec);
+    if (ec) throw InputError(fmt::format("{} {}: cannot create the directory: {}", directory.option, directory.path, ec.message()));
+}
 
 void write_output(const std::string& path, const std::string& text) {
     if (path == "-") {
-        std::fwrite(text.data(), 1, text.size(), stdout);
-        std::fflush(stdout);
+        const bool written = std::fwrite(text.data(), 1, text.size(), stdout) == text.size();
+        if (std::fflush(stdout) != 0 || !written) throw InputError(fmt::format("standard output: write failed: {}", std::strerror(errno)));
         return;
     }
     std::ofstream out(path, std::ios::binary);
     if (!out) throw InputError(fmt::format("{}: cannot open for writing", path));
     out << text;
-    if (!out) throw InputError(fmt::format("{}: write failed", path));
+    out.close();  // the last block reaches the file (or fails: a full disk) here
+    if (!out) throw InputError(fmt::format("{}: write failed (disk full?)", path));
 }
 
 }  // namespace jacobid::cli

@@ -2,10 +2,27 @@
 #pragma once
 // Writing command results: '-' is standard output, anything else a file (InputError if it cannot be
 // written, naming the path).
+#include <initializer_list>
 #include <string>
 
 namespace jacobid::cli {
 
+// A file a command reads or writes, with the option that named it ("--in", "-o", ...).
+struct NamedPath {
+    std::string option;
+    std::string path;  // empty: not given (skipped); "-": standard output
+};
+
+// Checks, before any work is done, that each output can be written: its directory exists, it is not a
+// directory, the file can be created or opened for writing (tried without truncating; a file created for
+// the try is removed again), and it is neither one of the inputs nor another output (a result written over
+// the log it came from). InputError naming the option and the path otherwise.
+void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_list<NamedPath> inputs = {});
+
+// Checks an output folder (paper-sines --out-dir): it exists as a directory or is created now.
+void prepare_output_directory(const NamedPath& directory);
+
+// Writes `text`; a failed write, flush or close (a full disk, /dev/full) is an InputError.
 void write_output(const std::string& path, const std::string& text);
 
 }  // namespace jacobid::cli

@@ -63,6 +63,7 @@ double truth(int order, double t) {
 void run(const PaperSinesOptions& o) {
     refuse_oversized(fmt::format("--duration {:g} s at --ts {:g} s", o.duration, o.ts), std::round(o.duration / o.ts) + 1.0, kMaxSamples,
                      "samples", kBytesPerSample, "lower --duration or raise --ts");
+    prepare_output_directory({"--out-dir", o.out_dir});
     const auto n = static_cast<std::size_t>(std::llround(o.duration / o.ts)) + 1;
     // Signal and noise (docs/method.md, "Paper Section III"): 0.2 N(0,1) + 0.2 sin(2 pi 200 t) + 0.2 Poisson(0.1).
     std::mt19937_64 rng(o.seed);
@@ -126,7 +127,6 @@ void run(const PaperSinesOptions& o) {
             panels[d].series.push_back(std::move(s));
         }
     }
-    std::filesystem::create_directories(o.out_dir);
     const std::string errors_png = (std::filesystem::path(o.out_dir) / "paper_sines_errors.png").string();
     const std::string bode_png = (std::filesystem::path(o.out_dir) / "paper_sines_bode.png").string();
     plot::render_png(errors_png, {panels[0], panels[1]});

@@ -6,11 +6,11 @@
 
 #include <chrono>
 #include <csignal>
-#include <fstream>
 #include <memory>
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/output_file.hpp"
 #include "stream/recorder.hpp"
 #include "stream/udp_receiver.hpp"
 
@@ -59,6 +59,7 @@ private:
 };
 
 void run(const RecordOptions& o) {
+    check_outputs({{"--out", o.output}, {"--summary", o.summary}});
     const stream::GapPolicy policy = stream::parse_gap_policy(o.on_gap);
     if (o.duration < 0.0 || o.idle_timeout < 0.0) throw InputError("--duration / --idle-timeout: seconds must be >= 0 (0 = no limit)");
     const stream::Endpoint endpoint = stream::parse_endpoint(o.udp, "--udp");
@@ -98,11 +99,7 @@ void run(const RecordOptions& o) {
     summary["endpoint"] = fmt::format("{}:{}", receiver.address(), receiver.port());
     summary["stopped"] = stop_reason;
     summary["seconds"] = seconds_since(start);
-    if (!o.summary.empty()) {
-        std::ofstream out(o.summary);
-        out << summary.dump(2) << '\n';
-        if (!out) throw InputError(fmt::format("--summary {}: cannot write the file", o.summary));
-    }
+    if (!o.summary.empty()) write_output(o.summary, summary.dump(2) + "\n");  // the close is checked (a full disk)
     const auto& c = recorder.tracker().counts();
     fmt::print(stderr, "record: stopped: {}\n", stop_reason);
     fmt::print(stderr, "record: {} datagrams received, {} rows written, {} lost, {} late, {} duplicated, {} reordered, {} malformed\n",

@@ -17,7 +17,9 @@
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/simulation_options.hpp"
+#include "cli/output_file.hpp"
 #include "robot/robot_description.hpp"
+#include "robot/simulated_parameters.hpp"
 #include "io/candump_writer.hpp"
 #include "sim/can_player.hpp"
 #include "sim/closed_loop.hpp"
@@ -83,6 +85,7 @@ void wait_for_sync(hal::SocketCanTransport& can, const SimCanOptions& o, double 
 }
 
 void run(SimCanOptions o) {
+    check_outputs({{"--candump", o.candump}}, {{"--robot", o.robot}, {"--config", o.config}});
     const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const auto n = static_cast<std::size_t>(model->joint_count());
@@ -115,7 +118,7 @@ void run(SimCanOptions o) {
     // A sample: one candump -L line (about 45 bytes) per joint.
     refuse_oversized_simulation(o.settings, 45.0 * static_cast<double>(n));
 
-    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
+    const Eigen::VectorXd x = robot::simulated_parameters(robot, *model);
     sim::MeasurementSettings ms;
     ms.encoder_counts_per_rev = 0.0;  // the profile's position code is the quantization
     ms.torque_noise = o.torque_noise;
@@ -133,6 +136,7 @@ void run(SimCanOptions o) {
             writer.set_time_ns(kEpoch + static_cast<std::int64_t>(std::llround(static_cast<double>(k++) * period_ns)));
             player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
         });
+        writer.close();
         if (!o.quiet) fmt::print(stderr, "sim-can: {} samples, {} frames written to {}\n", player.counters().samples, player.counters().frames_sent, o.candump);
         if (player.counters().send_failures) throw InputError(fmt::format("{}: {} frames could not be written", o.candump, player.counters().send_failures));
         return;

@@ -13,6 +13,7 @@
 #include "cli/output_file.hpp"
 #include "cli/simulation_options.hpp"
 #include "robot/robot_description.hpp"
+#include "robot/simulated_parameters.hpp"
 #include "sim/augmented_model.hpp"
 #include "sim/effect_spec.hpp"
 #include "sim/simulator.hpp"
@@ -44,8 +45,12 @@ public:
         if (!file_) throw InputError(fmt::format("{}: cannot open for writing", path));
         buffer_.append(header.data(), header.data() + header.size());
     }
+    // Without close() the run failed half-way (a diverging simulation, a full disk): the file is removed,
+    // so that no partial log is left as if it were complete.
     ~CsvWriter() {
-        if (file_) std::fclose(file_);
+        if (!file_) return;
+        std::fclose(file_);
+        std::remove(path_.c_str());
     }
     fmt::memory_buffer& buffer() { return buffer_; }
     void row_done() {
@@ -55,7 +60,8 @@ public:
         flush();
         if (std::fclose(file_) != 0) {
             file_ = nullptr;
-            throw InputError(fmt::format("{}: write failed", path_));
+            std::remove(path_.c_str());
+            throw InputError(fmt::format("{}: write failed (disk full?)", path_));
         }
         file_ = nullptr;
     }
@@ -78,11 +84,13 @@ std::string stem(const std::string& path) {
 }
 
 void run(SimulateOptions o) {
+    check_outputs({{"--out", o.out}, {"--truth", o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth}, {"--states", o.states}},
+                  {{"--robot", o.robot}, {"--effects", o.effects_file}, {"--trajectory", o.trajectory}});
     const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
     // Truth: the model's reference values (Table II for planar2r) unless the description lists parameters.
-    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
+    const Eigen::VectorXd x = robot::simulated_parameters(robot, *model);
 
     sim::MeasurementSettings ms = measurement_settings(o, n);
     apply_controller(robot, o);

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "identify/least_squares.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "core/errors.hpp"
 #include "identify/residual_correlation.hpp"
 #include "identify/running_qr.hpp"
 
@@ -267,6 +270,15 @@ EssentialResult essential_parameters(const JointFactors& factors, const std::vec
     }
     result.solution = s;
     return result;
+}
+
+void require_finite_solution(const LsSolution& solution, const std::string& source) {
+    for (Eigen::Index c = 0; c < solution.x.size(); ++c) {
+        const auto i = static_cast<std::size_t>(c);
+        if (!solution.identified[i] || std::isfinite(solution.x[c])) continue;
+        throw InputError(fmt::format("{}: the identified {} is not finite (values in the log too large for the least squares; look for an outlier)",
+                                     source, solution.names[i]));
+    }
 }
 
 }  // namespace jacobid::identify

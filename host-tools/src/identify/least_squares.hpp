@@ -87,6 +87,10 @@ Eigen::MatrixXd stacked_factor(const JointFactors& factors, const std::vector<do
 // Solves the (weighted) LS problem for the active columns of the per-joint factors.
 LsSolution solve_least_squares(const JointFactors& factors, const std::vector<std::string>& names, const SolveOptions& options = {});
 
+// InputError naming `source` and the first identified parameter whose value is not finite: such
+// a result is never written (the log held values whose squares overflowed the solve).
+void require_finite_solution(const LsSolution& solution, const std::string& source);
+
 struct EssentialStep {
     std::string removed;           // parameter removed at this step ("" for the full model)
     double removed_rel_std = 0.0;  // its %sigma_r before removal

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "robot/urdf_export.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::identify {
 namespace {
@@ -47,13 +48,7 @@ void check_path(const char* option, const std::string& path, const std::string& 
     if (!fs::is_directory(parent, ec)) throw InputError(fmt::format("{} {}: directory '{}' does not exist", option, path, parent.string()));
 }
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("{}: cannot open URDF", path));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
-}
+std::string read_text(const std::string& path) { return yaml::read_input_file<InputError>(path, "URDF"); }
 
 std::vector<double> joint_alphas(const robot::RobotDescription& description, const MethodResult& result) {
     if (result.coulomb_smoothing) return result.coulomb_smoothing->alphas();

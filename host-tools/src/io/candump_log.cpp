@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::io {
 namespace {
@@ -193,11 +194,7 @@ std::vector<CandumpRecord> parse_candump_log(const std::string& text, const std:
 }
 
 std::vector<CandumpRecord> read_candump_log(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open the candump log", path));
-    std::stringstream s;
-    s << in.rdbuf();
-    return parse_candump_log(s.str(), path);
+    return parse_candump_log(yaml::read_input_file<InputError>(path, "the candump log"), path);
 }
 
 }  // namespace jacobid::io

@@ -3,6 +3,8 @@
 
 #include <fmt/core.h>
 
+#include <cstdio>
+
 #include "core/errors.hpp"
 #include "io/candump_joints.hpp"
 
@@ -14,7 +16,18 @@ CandumpWriter::CandumpWriter(const std::string& path, std::string interface) : p
 }
 
 CandumpWriter::~CandumpWriter() {
-    if (file_) std::fclose(file_);
+    if (!file_) return;
+    std::fclose(file_);
+    std::remove(path_.c_str());
+}
+
+void CandumpWriter::close() {
+    std::FILE* file = file_;
+    file_ = nullptr;
+    if (std::fclose(file) != 0) {
+        std::remove(path_.c_str());
+        throw InputError(fmt::format("{}: write failed (disk full?)", path_));
+    }
 }
 
 hal::CanStatus CandumpWriter::send(const hal::CanFrame& frame) noexcept {

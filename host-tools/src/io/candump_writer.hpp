@@ -15,11 +15,14 @@ class CandumpWriter final : public hal::CanTransport {
 public:
     // Opens `path` for writing; InputError naming it when it cannot.
     CandumpWriter(const std::string& path, std::string interface);
+    // Without close() (the run failed half-way) the file is removed: no partial capture looks complete.
     ~CandumpWriter() override;
     CandumpWriter(const CandumpWriter&) = delete;
     CandumpWriter& operator=(const CandumpWriter&) = delete;
 
     void set_time_ns(std::int64_t t) { now_ns_ = t; }
+    // Flushes and closes the capture; InputError naming the file when that fails (a full disk).
+    void close();
 
     hal::CanStatus send(const hal::CanFrame& frame) noexcept override;
     hal::CanStatus receive(hal::CanFrame&) noexcept override { return hal::CanStatus::Empty; }

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "core/errors.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::io {
 namespace {
@@ -108,9 +109,10 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
                 throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", source, line, header[c],
                                              printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
             }
-            if (!std::isfinite(value)) {
-                throw InputError(fmt::format("{}:{}: column '{}': value '{}' is not finite (NaN or Inf)", source, line, header[c],
-                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
+            if (!std::isfinite(value) || beyond_log_range(value)) {
+                throw InputError(fmt::format("{}:{}: column '{}': value '{}' {}", source, line, header[c],
+                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p)))),
+                                             std::isfinite(value) ? kBeyondLogRange : "is not finite (NaN or Inf)"));
             }
             table.mutable_column(c).push_back(value);
             if (c + 1 < width) {
@@ -127,13 +129,7 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
     return table;
 }
 
-std::string read_text_file(const std::string& path, const std::string& what) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
-}
+std::string read_text_file(const std::string& path, const std::string& what) { return yaml::read_input_file<InputError>(path, what); }
 
 CsvTable read_csv(const std::string& path) { return parse_csv(read_text_file(path, "file"), path); }
 

@@ -2,6 +2,7 @@
 #pragma once
 // Numeric CSV logs: a header row of column names, then one row per sample, every cell a finite number.
 // Anything else is an InputError naming the file, line and column; nothing is skipped or guessed.
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -48,6 +49,14 @@ private:
     const std::string& text_;
     std::size_t pos_ = 0, line_ = 0;
 };
+
+// The largest magnitude a log value may have: far beyond any measurement (nanosecond time stamps are ~1e18),
+// and small enough that the sums of squares of its derivatives the identification forms cannot overflow
+// (one torque cell of 1e200 made every identified value nan).
+constexpr double kMaxLogValue = 1e30;
+inline bool beyond_log_range(double v) { return std::abs(v) > kMaxLogValue; }
+// What a message says of such a value.
+constexpr const char* kBeyondLogRange = "is beyond +-1e30, which no measurement is (an outlier? its square would overflow the identification)";
 
 // The whole file; InputError("path: cannot open <what>") when it cannot be read.
 std::string read_text_file(const std::string& path, const std::string& what);

@@ -282,6 +282,9 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
                 bad_row(fmt::format("column {} ({}): {} times the gain or scale {} is not finite", uses[k].column + 1, uses[k].key, printable_cell(cell),
                                     uses[k].gain));
                 ok = false;
+            } else if (ok && k > 0 && beyond_log_range(values[k])) {  // the time has checks of its own (span, steps)
+                bad_row(fmt::format("column {} ({}): value {} {}", uses[k].column + 1, uses[k].key, values[k], kBeyondLogRange));
+                ok = false;
             }
         }
         if (!ok) continue;

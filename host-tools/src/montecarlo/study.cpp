@@ -15,6 +15,7 @@
 
 #include "core/errors.hpp"
 #include "identify/log_columns.hpp"
+#include "robot/simulated_parameters.hpp"
 
 namespace jacobid::montecarlo {
 namespace {
@@ -63,7 +64,7 @@ Study run_study(const StudySettings& s) {
     Study study;
     study.model_name = model->model_name();
     study.names = model->parameter_names();
-    study.truth = robot::true_parameters(s.robot, *model);
+    study.truth = robot::simulated_parameters(s.robot, *model);
     study.threads = std::min(s.threads, s.runs);
 
     const auto runs = static_cast<std::size_t>(s.runs);

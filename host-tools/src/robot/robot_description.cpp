@@ -19,6 +19,7 @@
 #include "robot/serial_robot_model.hpp"
 #include "robot/urdf_chain.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::robot {
 namespace {
@@ -284,11 +285,7 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
 }
 
 RobotDescription load_robot_description(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("{}: cannot open robot description", path));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    return parse_robot_description(buffer.str(), path);
+    return parse_robot_description(yaml::read_input_file<InputError>(path, "robot description"), path);
 }
 
 std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& d) {

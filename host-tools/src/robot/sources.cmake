@@ -12,6 +12,7 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/urdf_export.cpp
   ${CMAKE_CURRENT_LIST_DIR}/base_parameter_report.cpp
   ${CMAKE_CURRENT_LIST_DIR}/presliding_model.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/simulated_parameters.cpp
 )
 # urdfdom's headers are not warning-clean under -Wshadow/-Wconversion: include them as system headers.
 target_include_directories(jacobid_host SYSTEM PRIVATE ${urdfdom_INCLUDE_DIRS})

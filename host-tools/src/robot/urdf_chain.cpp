@@ -2,16 +2,19 @@
 #include "robot/urdf_chain.hpp"
 
 #include <fmt/core.h>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::robot {
 namespace {
@@ -150,9 +153,40 @@ private:
     std::vector<bool> has_dynamics_;
 };
 
+// Every number of a URDF <inertial> (mass, origin, inertia) read as a finite double: urdfdom stops at the
+// first one it cannot read ("nan"), prints its own message and keeps the link with what it had read so far
+// (e.g. a mass without its inertia), so such a link would be simulated and identified wrongly.
+bool finite_numbers(const char* text) {
+    std::istringstream in(text);
+    std::string token;
+    while (in >> token) {
+        char* end = nullptr;
+        const double v = std::strtod(token.c_str(), &end);
+        if (end != token.c_str() + token.size() || !std::isfinite(v)) return false;
+    }
+    return true;
+}
+
+void require_finite_inertials(const std::string& xml, const std::string& source) {
+    TiXmlDocument doc;
+    doc.Parse(xml.c_str());
+    const TiXmlElement* robot = doc.FirstChildElement("robot");
+    for (const TiXmlElement* link = robot ? robot->FirstChildElement("link") : nullptr; link; link = link->NextSiblingElement("link")) {
+        const TiXmlElement* inertial = link->FirstChildElement("inertial");
+        for (const TiXmlElement* e = inertial ? inertial->FirstChildElement() : nullptr; e; e = e->NextSiblingElement()) {
+            for (const TiXmlAttribute* a = e->FirstAttribute(); a; a = a->Next()) {
+                if (finite_numbers(a->Value())) continue;
+                throw InputError(fmt::format("{}: element <link name='{}'>: <inertial> <{} {}='{}'>: expected finite numbers", source,
+                                             link->Attribute("name") ? link->Attribute("name") : "", e->Value(), a->Name(), a->Value()));
+            }
+        }
+    }
+}
+
 }  // namespace
 
 UrdfChain parse_urdf_chain(const std::string& xml, const std::string& source) {
+    require_finite_inertials(xml, source);
     urdf::ModelInterfaceSharedPtr model;
     try {
         model = urdf::parseURDF(xml);
@@ -168,11 +202,7 @@ UrdfChain parse_urdf_chain(const std::string& xml, const std::string& source) {
 }
 
 UrdfChain load_urdf_chain(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("{}: cannot open URDF", path));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    return parse_urdf_chain(buffer.str(), path);
+    return parse_urdf_chain(yaml::read_input_file<InputError>(path, "URDF"), path);
 }
 
 }  // namespace jacobid::robot

@@ -1,12 +1,23 @@
 // SPDX-License-Identifier: MIT
 #include "sim/closed_loop.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/errors.hpp"
 
 namespace jacobid::sim {
+
+void require_finite_state(double t, std::initializer_list<std::pair<const char*, const Eigen::VectorXd*>> state, const char* cause) {
+    for (const auto& [what, values] : state) {
+        for (Eigen::Index j = 0; j < values->size(); ++j) {
+            if (!std::isfinite((*values)[j])) throw InputError(fmt::format("simulation at t = {:.6g} s: joint {}'s {} is not finite ({})", t, j + 1, what, cause));
+        }
+    }
+}
 
 PdGains bandwidth_gains(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0, double omega, double damping) {
     const Eigen::MatrixXd M0 = dynamics.inertia(q0.data());
@@ -30,6 +41,11 @@ PdGains described_gains(const robot::ControllerDescription& c, robot::ForwardDyn
     return g;
 }
 
+namespace {
+constexpr const char* kDivergence =
+    "the simulation diverged: parameters no robot can have, or an integration step too long for them; check the description and --substeps";
+}  // namespace
+
 void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0, const Eigen::VectorXd& qd0, const PdGains& gains,
                      const ClosedLoopSettings& settings, const ReferenceFunction& reference, const std::string& failure,
                      const std::function<void(const ClosedLoopSample&)>& sink, HeldFriction* friction) {
@@ -47,8 +63,12 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
         const double s = std::clamp((t - control_time) / control_period, 0.0, 1.0);
         out = u_prev + s * (u_cur - u_prev);
     };
-    auto accelerations = [&](const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, const Eigen::VectorXd& u, Eigen::VectorXd& qdd) {
+    // A state that is no longer finite ends the run here, at its time and joint, before the model sees it
+    // (no nan rows, no internal error from the dynamics).
+    auto accelerations = [&](double t, const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, const Eigen::VectorXd& u, Eigen::VectorXd& qdd) {
+        require_finite_state(t, {{"position", &qs}, {"velocity", &qds}, {"torque", &u}}, kDivergence);
         if (!dynamics.accelerations(qs.data(), qds.data(), u.data(), qdd.data())) throw InputError(failure);
+        require_finite_state(t, {{"acceleration", &qdd}}, kDivergence);
     };
     Eigen::VectorXd k_q[4], k_qd[4];
     for (int i = 0; i < 4; ++i) {
@@ -61,7 +81,7 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
         torque_at(t, tau_stage);
         tau_stage -= held;
         dq = qds;
-        accelerations(qs, qds, tau_stage, dqd);
+        accelerations(t, qs, qds, tau_stage, dqd);
     };
 
     ClosedLoopSample sample;
@@ -83,7 +103,7 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
         }
         if (step % settings.steps_per_output == 0) {
             torque_at(t, tau);
-            accelerations(q, qd, tau - held, qdd);
+            accelerations(t, q, qd, tau - held, qdd);
             sample.index = step / settings.steps_per_output;
             sample.t = t;
             sink(sample);

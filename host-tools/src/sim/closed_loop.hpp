@@ -12,6 +12,8 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <functional>
+#include <initializer_list>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -65,6 +67,10 @@ public:
 
 // Reference at control instant t (t never decreases between calls).
 using ReferenceFunction = std::function<void(double t, ReferenceSample& out)>;
+
+// InputError "simulation at t = ... s: joint j's <what> is not finite (<cause>)" for the first
+// entry of `state` (what, values) that is not finite; nothing when all are.
+void require_finite_state(double t, std::initializer_list<std::pair<const char*, const Eigen::VectorXd*>> state, const char* cause);
 
 // Integrates the loop from rest state (q0, qd0). `failure` is the InputError message when the dynamics
 // have no positive definite inertia matrix on the way (parameters no rigid body can have). `friction`, if

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::sim {
 namespace {
@@ -163,11 +164,7 @@ std::vector<EffectSpec> parse_effects_yaml(const std::string& text, const std::s
 }
 
 std::vector<EffectSpec> load_effects_file(const std::string& path, int joints) {
-    std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("--effects {}: cannot open file", path));
-    std::stringstream text;
-    text << in.rdbuf();
-    return parse_effects_yaml(text.str(), path, joints);
+    return parse_effects_yaml(yaml::read_input_file<InputError>(path, "--effects file"), path, joints);
 }
 
 EffectTerm term_of(const EffectSpec& spec) { return {spec.kind, spec.joint, spec.velocity, spec.order}; }

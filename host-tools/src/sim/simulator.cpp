@@ -130,6 +130,8 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
                 sample.q_ref[j] = s.reference->q[js];
                 sample.qd_ref[j] = s.reference->qd[js];
             }
+            require_finite_state(s.t, {{"measured position", &sample.q_measured}, {"measured torque", &sample.tau_measured}},
+                                 "--position-noise, --torque-noise, --ripple or an injected effect beyond what a double holds");
             sink(sample);
         },
         dahl.get());

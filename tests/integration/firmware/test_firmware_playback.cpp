@@ -249,7 +249,7 @@ TEST(FirmwarePlayback, ConfigNamesTheMissingLimitAndTheBadTableLine) {
     EXPECT_NE(error_of(bad_table).find(":3:1: t = 0.002 s, expected 0.001 s"), std::string::npos) << error_of(bad_table);
     const std::string device = "trajectory:\n  file: /dev/zero\n  joints:\n    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n"
                                "    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n";
-    EXPECT_EQ(error_of(device), "/dev/zero: not a regular file (expected the trajectory table's CSV)");
+    EXPECT_EQ(error_of(device), "/dev/zero: cannot read the trajectory table: not a regular file (a device, FIFO or socket)");
     // A row beyond a limit is refused at start-up by the cycle, naming the table, the joint and the row.
     firmware::FirmwareConfig c = test::chain_config(playback_yaml());
     c.trajectory.rows[10].q[1] = 2.5;

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The one place jacobid reads an input file (logs, robot descriptions, URDFs, effects, truth files, candump
+// captures, firmware configs). Only a regular file of bounded size is read: a device (/dev/zero), a FIFO or
+// a directory would otherwise be read forever or look like an "empty file", and a file of many gigabytes
+// would exhaust the memory before any parser could refuse it. The error is thrown as `Error` (the
+// firmware's ConfigError, the host tools' InputError), one line naming the file. Header-only, shared by
+// firmware/ and host-tools/ like yaml_section.hpp.
+#include <fmt/core.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace jacobid::yaml {
+
+// Far above any real log (a 1-hour 1 kHz log of 6 joints is ~400 MB) and below what would make the
+// in-memory parse the machine's problem.
+constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{2} << 30;
+
+// The whole file at `path`; `what` says what it was meant to be ("robot description", "file", ...).
+template <typename Error>
+std::string read_input_file(const std::string& path, const std::string& what) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (ec || !fs::exists(status)) throw Error(fmt::format("{}: cannot open {}", path, what));
+    if (fs::is_directory(status)) throw Error(fmt::format("{}: cannot read {}: it is a directory, not a file", path, what));
+    if (!fs::is_regular_file(status)) {
+        throw Error(fmt::format("{}: cannot read {}: not a regular file (a device, FIFO or socket)", path, what));
+    }
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec) throw Error(fmt::format("{}: cannot open {}: {}", path, what, ec.message()));
+    if (size > kMaxInputFileBytes) {
+        throw Error(fmt::format("{}: cannot read {}: {} MB is more than the {} MB an input file may have", path, what, size >> 20,
+                                kMaxInputFileBytes >> 20));
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(fmt::format("{}: cannot open {}", path, what));
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw Error(fmt::format("{}: read error in {}", path, what));
+    return buffer.str();
+}
+
+}  // namespace jacobid::yaml
