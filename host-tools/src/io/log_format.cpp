@@ -226,17 +226,12 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         }
         table_names.push_back(names.tau[j]);
     }
-    for (std::size_t a = 0; a < table_names.size(); ++a) {
-        for (std::size_t b = a + 1; b < table_names.size(); ++b) {
-            if (table_names[a] == table_names[b]) throw InputError(fmt::format("{}: two columns would both be named '{}'", source, table_names[a]));
-        }
-    }
     for (const Use& u : uses) {
         if (format.header && u.column >= width) {
             throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the header has {} columns", source, header_line, u.key, u.column + 1, width));
         }
     }
-    RawLog raw{CsvTable(source, table_names), {}};
+    RawLog raw{CsvTable(source, table_names), {}};  // refuses two columns of one name
     std::vector<double> values(uses.size());
     double last_time = 0.0;
     std::size_t last_line = 0;
