@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string_view>
+#include <unordered_map>
 
 #include "core/errors.hpp"
 #include "io/resample.hpp"
@@ -225,6 +226,15 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             zero_torque.push_back(table_names.size());
         }
         table_names.push_back(names.tau[j]);
+    }
+    // Each signal from its own raw column: `positions: [t, q2]` read the time as joint 1's position.
+    std::unordered_map<std::size_t, const Use*> reader_of;
+    for (const Use& u : uses) {
+        const auto [it, fresh] = reader_of.emplace(u.column, &u);
+        if (!fresh) {
+            throw InputError(fmt::format("{}: '{}' reads raw column {}, which '{}' also reads; give each signal its own column", source, u.key,
+                                         u.column + 1, it->second->key));
+        }
     }
     for (const Use& u : uses) {
         if (format.header && u.column >= width) {

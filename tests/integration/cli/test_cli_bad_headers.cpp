@@ -80,6 +80,12 @@ TEST(CliBadHeaders, TwoJointsOnOneColumnAreRefused) {
                    {"joint 2 (j2)'s torque reads column 'tau1', which is also joint 1 (j1)'s torque"});
 }
 
+TEST(CliBadHeaders, LogFormatReadingTheTimeAsAPositionIsRefused) {
+    const std::string format = write("time_format.yaml", "header: true\ntime: {column: t}\npositions: [t, q2]\ntorques: [tau1, tau2]\n");
+    expect_refused(jacobid("identify --log-format " + format + " --in " + planar_log()),
+                   {"'positions[0]' reads raw column 1, which 'time' also reads"});
+}
+
 // 400 000 column names were checked for duplicates pairwise (8e10 comparisons: minutes).
 TEST(CliBadHeaders, WideHeaderIsReadInLinearTime) {
     std::string header = "t,q1,q2,tau1,tau2", row = "0,0,0,0,0";
