@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_refusal.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -37,18 +38,12 @@ const std::string& planar_log() {
     return path;
 }
 
-std::string read(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+const auto read = jacobid::test::read_text;
 
+// Refused (exit 2, one line with the key words), and nothing else on stderr.
 void expect_refused(const jacobid::test::CommandResult& r, std::initializer_list<std::string> words) {
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find(": error: "), std::string::npos) << r.err;
+    jacobid::test::expect_refused(r, words);
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
-    for (const auto& w : words) EXPECT_NE(r.err.find(w), std::string::npos) << "missing '" << w << "' in: " << r.err;
 }
 
 std::string robot_with_joints(const std::string& name, const std::string& j1, const std::string& j2) {
