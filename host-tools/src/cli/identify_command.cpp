@@ -118,15 +118,11 @@ LogSegments read_log(const std::string& path, const robot::RobotDescription& rob
                                      robot.joints.size()));
     }
     std::vector<hal::ProfileConfig> decoders;
-    std::vector<std::string> positions, torques;
-    for (std::size_t j = 0; j < fw.joints.size(); ++j) {
-        decoders.push_back(fw.joints[j].decoder);
-        positions.push_back(robot.joints[j].position_column);
-        torques.push_back(robot.joints[j].torque_column);
-    }
+    for (const auto& joint : fw.joints) decoders.push_back(joint.decoder);
+    const io::LogColumnNames names = robot_column_names(robot, o.time_column);
     io::CandumpJointCounts counts;
     LogSegments table;
-    table.tables.push_back(io::candump_joint_table(io::read_candump_log(path), decoders, positions, torques, o.time_column, path, &counts));
+    table.tables.push_back(io::candump_joint_table(io::read_candump_log(path), decoders, names.q, names.tau, o.time_column, path, &counts));
     if (!o.quiet) {
         fmt::print(stderr, "{}: {} samples from {} decoded frames ({} frames of other ids and {} error frames skipped)\n", path, counts.samples,
                    counts.frames_decoded, counts.frames_other_ids, counts.error_frames);

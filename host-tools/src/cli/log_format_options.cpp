@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <unordered_map>
+
 #include "cli/option_checks.hpp"
 #include "core/errors.hpp"
 
@@ -90,7 +92,20 @@ LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o
 io::LogColumnNames robot_column_names(const robot::RobotDescription& robot, const std::string& time_column) {
     io::LogColumnNames names;
     names.time = time_column;
+    // Each signal reads its own column: two joints on one column (or a joint on the time column) would
+    // identify from a copied or a time signal without a word.
+    std::unordered_map<std::string, std::string> user_of{{time_column, "the time column (--time-column)"}};
+    const auto claim = [&](const std::string& column, const std::string& user) {
+        const auto [it, fresh] = user_of.emplace(column, user);
+        if (!fresh) {
+            throw InputError(fmt::format("{}: {} reads column '{}', which is also {}; give each signal its own column", robot.source, user,
+                                         column, it->second));
+        }
+    };
     for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+        const std::string joint = fmt::format("joint {} ({})", j + 1, robot.joints[j].name);
+        claim(robot.joints[j].position_column, joint + "'s position");
+        claim(robot.joints[j].torque_column, joint + "'s torque");
         names.q.push_back(robot.joints[j].position_column);
         names.qd.push_back(fmt::format("qd{}", j + 1));
         names.tau.push_back(robot.joints[j].torque_column);

@@ -12,6 +12,31 @@ namespace {
 // the multi-joint set does not report.
 using OneJoint = hal::JointDecoderSet<1>;
 
+// Where one sample's frames lie in the capture: a sample whose frames spread over more than half the time
+// to its neighbour sample joined two controller cycles, which is what a lost frame of the joint that
+// came first does (the joint's next-cycle frame completes the cycle, every later sample is shifted).
+struct SampleSpan {
+    std::int64_t first_ns = 0, last_ns = 0;
+    std::size_t first_line = 0, last_line = 0;
+    std::size_t last_joint = 0;  // the joint whose frame came last (the one whose previous frame is missing)
+};
+
+void require_one_cycle_per_sample(const std::vector<SampleSpan>& spans, const std::string& source) {
+    if (spans.size() < 2) return;
+    for (std::size_t k = 0; k < spans.size(); ++k) {
+        const SampleSpan& s = spans[k];
+        const std::int64_t to_neighbour = k + 1 < spans.size() ? spans[k + 1].first_ns - s.first_ns : s.first_ns - spans[k - 1].first_ns;
+        const std::int64_t spread = s.last_ns - s.first_ns;
+        if (spread > 0 && 2 * spread > (to_neighbour < 0 ? -to_neighbour : to_neighbour)) {
+            throw InputError(fmt::format("{}:{}: the frame of joint {} is {:g} ms after the cycle that began on line {}, and the next cycle "
+                                         "begins {:g} ms after that one: joint {}'s frame of the cycle of line {} was lost (the following "
+                                         "samples would be shifted by a cycle)",
+                                         source, s.last_line, s.last_joint + 1, static_cast<double>(spread) * 1e-6, s.first_line,
+                                         static_cast<double>(to_neighbour) * 1e-6, s.last_joint + 1, s.first_line));
+        }
+    }
+}
+
 }  // namespace
 
 CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const std::vector<hal::ProfileConfig>& joints,
@@ -38,6 +63,8 @@ CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const st
     std::size_t complete = 0;
     std::int64_t cycle_time = 0, first_time = 0;
     bool cycle_open = false;
+    SampleSpan span;
+    std::vector<SampleSpan> spans;
     for (const CandumpRecord& rec : records) {
         if (rec.frame.error()) {
             ++c.error_frames;
@@ -72,7 +99,9 @@ CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const st
             if (!cycle_open) {
                 cycle_open = true;
                 cycle_time = rec.frame.timestamp_ns;
+                span = SampleSpan{cycle_time, cycle_time, rec.line, rec.line, j};
             }
+            if (rec.frame.timestamp_ns >= span.last_ns) span = SampleSpan{span.first_ns, rec.frame.timestamp_ns, span.first_line, rec.line, j};
             if (!has_position[j] && !has_torque[j]) first_line[j] = rec.line;
             has_position[j] = has_position[j] || position_now;
             has_torque[j] = has_torque[j] || torque_now;
@@ -94,8 +123,10 @@ CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const st
             has_position[j] = has_torque[j] = false;
         }
         cycle_open = false;
+        spans.push_back(span);
         ++c.samples;
     }
+    require_one_cycle_per_sample(spans, source);
     if (cycle_open) {
         // An incomplete last cycle (the capture stopped mid-cycle) is reported, not turned into a sample.
         fmt::print(stderr, "{}: the last cycle is incomplete ({} of {} joints) and is not used\n", source, complete, n);

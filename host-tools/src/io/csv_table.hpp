@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace jacobid::io {
@@ -33,6 +34,7 @@ private:
     std::string source_;
     std::vector<std::string> header_;
     std::vector<std::vector<double>> columns_;  // column-major: what the numerics consume
+    std::unordered_map<std::string, std::size_t> index_;  // name -> column
 };
 
 // The lines of a text one at a time, numbered from 1 (a final line without '\n' counts; a '\r' before the

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string_view>
+#include <unordered_map>
 
 #include "core/errors.hpp"
 #include "io/resample.hpp"
@@ -226,9 +227,13 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         }
         table_names.push_back(names.tau[j]);
     }
-    for (std::size_t a = 0; a < table_names.size(); ++a) {
-        for (std::size_t b = a + 1; b < table_names.size(); ++b) {
-            if (table_names[a] == table_names[b]) throw InputError(fmt::format("{}: two columns would both be named '{}'", source, table_names[a]));
+    // Each signal from its own raw column: `positions: [t, q2]` read the time as joint 1's position.
+    std::unordered_map<std::size_t, const Use*> reader_of;
+    for (const Use& u : uses) {
+        const auto [it, fresh] = reader_of.emplace(u.column, &u);
+        if (!fresh) {
+            throw InputError(fmt::format("{}: '{}' reads raw column {}, which '{}' also reads; give each signal its own column", source, u.key,
+                                         u.column + 1, it->second->key));
         }
     }
     for (const Use& u : uses) {
@@ -236,7 +241,7 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the header has {} columns", source, header_line, u.key, u.column + 1, width));
         }
     }
-    RawLog raw{CsvTable(source, table_names), {}};
+    RawLog raw{CsvTable(source, table_names), {}};  // refuses two columns of one name
     std::vector<double> values(uses.size());
     double last_time = 0.0;
     std::size_t last_line = 0;

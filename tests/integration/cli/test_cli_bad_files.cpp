@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_refusal.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -35,20 +36,8 @@ std::string write(const std::string& name, const std::string& text) {
     return p.string();
 }
 
-std::string read(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// Exit status 2, one line "jacobid <command>: error: ..." holding every key word.
-void expect_refused(const jacobid::test::CommandResult& r, std::initializer_list<std::string> words) {
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find(": error: "), std::string::npos) << r.err;
-    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
-    for (const auto& w : words) EXPECT_NE(r.err.find(w), std::string::npos) << "missing '" << w << "' in: " << r.err;
-}
+const auto read = jacobid::test::read_text;
+using jacobid::test::expect_refused;
 
 // A short valid log of the planar 2R (t, q1, q2, tau1, tau2, ...), made once.
 const std::string& planar_log() {

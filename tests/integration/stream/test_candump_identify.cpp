@@ -5,6 +5,7 @@
 // truth; lost and corrupt frames are errors naming the line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -117,6 +118,40 @@ TEST_F(CandumpIdentify, LostCorruptAndForeignFramesAreHandledExplicitly) {
     r = run_command(identify(path("foreign.log"), "--format json"));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("10 frames of other ids"), std::string::npos) << r.err;
+}
+
+// Issue 20: losing the frame of the joint that comes first in a cycle used to pair the other joint's frame
+// with the first joint's frame of the next cycle, shifting that joint by a cycle for the rest of the
+// capture (exit 0, only a warning about the last cycle).
+TEST_F(CandumpIdentify, LostFirstFrameOfACycleIsAnErrorNotAShift) {
+    auto lines = lines_of(path("capture.log"));
+    ASSERT_GT(lines.size(), 2000u);
+    lines.erase(lines.begin() + 1000);  // motor 1's reply of sample 500 (line 1001)
+    write_lines(path("lost_first.log"), lines);
+    const auto r = run_command(identify(path("lost_first.log")));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("lost_first.log:1002: the frame of joint 1 is 1 ms after the cycle that began on line 1001"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("joint 1's frame of the cycle of line 1001 was lost"), std::string::npos) << r.err;
+}
+
+// Issue 20: two joints on one motor id were accepted; the first joint then took both motors' frames and
+// a capture read as "a frame was lost".
+TEST_F(CandumpIdentify, TwoJointsOnOneMotorIdAreRefusedWhenTheConfigIsRead) {
+    std::string config = kFirmwareConfig;
+    config.replace(config.find("motor_id: 2"), 11, "motor_id: 1");
+    std::ofstream(path("same_id.yaml")) << config;
+    for (const std::string& command :
+         {jacobid("identify --robot " + path("robot.yaml") + " --can-config " + path("same_id.yaml") + " --in " + path("capture.log")),
+          jacobid("sim-can --robot " + path("robot.yaml") + " --config " + path("same_id.yaml") + " --candump " + path("same_id.log") +
+                  " --duration 1 --quiet")}) {
+        const auto r = run_command(command);
+        EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.err;
+        EXPECT_NE(r.err.find("same_id.yaml:4:5: joints[0] (shoulder) and joints[1] (elbow) listen to the same device (CAN id 0x0; motor_id: 1 "
+                             "and motor_id: 1)"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
 }
 
 TEST_F(CandumpIdentify, SimCanNeedsExactlyOneOutput) {
