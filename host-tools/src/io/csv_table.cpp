@@ -81,6 +81,11 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
         const std::size_t comma = row.find(',', start);
         const std::string_view cell = trim_cell(row.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
         if (cell.empty()) throw InputError(fmt::format("{}:1: column {} has an empty name in the header", source, header.size() + 1));
+        // Anywhere else the mark is an invisible character inside a name: refused rather than kept (a
+        // name that prints alike but matches nothing) or dropped (the same file read twice would differ).
+        if (cell.find(kUtf8Bom) != std::string_view::npos) {
+            throw InputError(fmt::format("{}:1: column {}'s name holds an invisible byte order mark (U+FEFF) inside it", source, header.size() + 1));
+        }
         double dummy;
         const auto r = fast_float::from_chars(cell.data(), cell.data() + cell.size(), dummy);
         if (r.ec == std::errc() && r.ptr == cell.data() + cell.size()) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "stream/recorder.hpp"
 
+#include "io/csv_table.hpp"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -99,6 +101,19 @@ void Recorder::datagram(const std::vector<std::uint8_t>& data, std::size_t full_
     } else if (described_ && d.sample_period != sample_period_) {
         reason = "inconsistent";
         detail = fmt::format("sample period {} s differs from the stream's {} s", d.sample_period, sample_period_);
+    } else {
+        // Finite but beyond what any measurement is: identify would refuse the log this row went into
+        // (io::beyond_log_range), so the row is not written.
+        for (std::size_t j = 0; j < d.joint_count && reason.empty(); ++j) {
+            const stream::JointEstimate& e = d.joints[j];
+            for (double v : {e.q, e.tau, e.q_hat, e.qd_hat, e.qdd_hat}) {
+                if (io::beyond_log_range(v)) {
+                    reason = "out-of-range";
+                    detail = fmt::format("joint {}: value {} beyond +-{} (no measurement is)", j + 1, v, io::kMaxLogValue);
+                    break;
+                }
+            }
+        }
     }
     if (!reason.empty()) {
         ++malformed_total_;
