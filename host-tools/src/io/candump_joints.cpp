@@ -3,6 +3,8 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
+
 #include "core/errors.hpp"
 
 namespace jacobid::io {
@@ -25,14 +27,16 @@ void require_one_cycle_per_sample(const std::vector<SampleSpan>& spans, const st
     if (spans.size() < 2) return;
     for (std::size_t k = 0; k < spans.size(); ++k) {
         const SampleSpan& s = spans[k];
-        const std::int64_t to_neighbour = k + 1 < spans.size() ? spans[k + 1].first_ns - s.first_ns : s.first_ns - spans[k - 1].first_ns;
-        const std::int64_t spread = s.last_ns - s.first_ns;
-        if (spread > 0 && 2 * spread > (to_neighbour < 0 ? -to_neighbour : to_neighbour)) {
+        // In double: time stamps near the int64 range (a capture may hold any) would overflow the differences.
+        auto ns = [](std::int64_t t) { return static_cast<double>(t); };
+        const double to_neighbour =
+            std::abs(k + 1 < spans.size() ? ns(spans[k + 1].first_ns) - ns(s.first_ns) : ns(s.first_ns) - ns(spans[k - 1].first_ns));
+        const double spread = ns(s.last_ns) - ns(s.first_ns);
+        if (spread > 0 && 2 * spread > to_neighbour) {
             throw InputError(fmt::format("{}:{}: the frame of joint {} is {:g} ms after the cycle that began on line {}, and the next cycle "
                                          "begins {:g} ms after that one: joint {}'s frame of the cycle of line {} was lost (the following "
                                          "samples would be shifted by a cycle)",
-                                         source, s.last_line, s.last_joint + 1, static_cast<double>(spread) * 1e-6, s.first_line,
-                                         static_cast<double>(to_neighbour) * 1e-6, s.last_joint + 1, s.first_line));
+                                         source, s.last_line, s.last_joint + 1, spread * 1e-6, s.first_line, to_neighbour * 1e-6, s.last_joint + 1, s.first_line));
         }
     }
 }
