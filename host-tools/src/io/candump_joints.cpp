@@ -27,11 +27,16 @@ void require_one_cycle_per_sample(const std::vector<SampleSpan>& spans, const st
     if (spans.size() < 2) return;
     for (std::size_t k = 0; k < spans.size(); ++k) {
         const SampleSpan& s = spans[k];
-        // In double: time stamps near the int64 range (a capture may hold any) would overflow the differences.
-        auto ns = [](std::int64_t t) { return static_cast<double>(t); };
+        // Differences exact in int64 (a capture's epoch is ~1.7e18 ns, beyond a double's integers), infinite
+        // where time stamps near the int64 range (a capture may hold any) would overflow them.
+        auto ns_between = [](std::int64_t later, std::int64_t earlier) {
+            std::int64_t d = 0;
+            if (__builtin_sub_overflow(later, earlier, &d)) return later > earlier ? HUGE_VAL : -HUGE_VAL;
+            return static_cast<double>(d);
+        };
         const double to_neighbour =
-            std::abs(k + 1 < spans.size() ? ns(spans[k + 1].first_ns) - ns(s.first_ns) : ns(s.first_ns) - ns(spans[k - 1].first_ns));
-        const double spread = ns(s.last_ns) - ns(s.first_ns);
+            std::abs(k + 1 < spans.size() ? ns_between(spans[k + 1].first_ns, s.first_ns) : ns_between(s.first_ns, spans[k - 1].first_ns));
+        const double spread = ns_between(s.last_ns, s.first_ns);
         if (spread > 0 && 2 * spread > to_neighbour) {
             throw InputError(fmt::format("{}:{}: the frame of joint {} is {:g} ms after the cycle that began on line {}, and the next cycle "
                                          "begins {:g} ms after that one: joint {}'s frame of the cycle of line {} was lost (the following "
