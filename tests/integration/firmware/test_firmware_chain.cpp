@@ -45,47 +45,61 @@ struct ChainResult {
     sim::CanPlayerCounters player;
 };
 
+// The chain's pieces on the virtual bus: the MIT 2R firmware (`config`, e.g. with a trajectory:), its GPIO
+// released, and the simulated drives' telemetry (CanPlayer, the core of `jacobid sim-can`) on the other end.
+struct ChainBench {
+    test::TestBus bus;
+    test::TestBus::Endpoint* fw_end = bus.attach();
+    test::TestBus::Endpoint* sim_end = bus.attach();
+    test::FakeInput estop;
+    test::FakeOutput enable, sync;
+    hal::SafetyIo safety{estop, enable, sync};
+    std::unique_ptr<firmware::FirmwareCycle> cycle;
+    sim::CanPlayer player;
+    const robot::RobotDescription robot = robot::default_planar2r_description();
+    const std::unique_ptr<robot::RobotModel> model = robot::make_robot_model(robot);
+    std::uint64_t samples = 0;
+
+    ChainBench(firmware::Publisher& publisher, const firmware::FirmwareConfig& config)
+        : cycle(std::make_unique<firmware::FirmwareCycle>(*fw_end, publisher, &safety)), player(*sim_end, test::profiles_of(config)) {
+        EXPECT_EQ(cycle->configure(config), "");
+        EXPECT_TRUE(cycle->reset_estop());
+    }
+
+    // The Table II robot simulated with `settings` (torque noise 0.05 / 0.01 N.m; the MIT position code is the
+    // encoder), each sample sent as telemetry and followed by one firmware cycle at 1 kHz simulated time;
+    // `pace_hz` > 0 sleeps so that the datagrams leave at that rate in wall time.
+    void simulate(const sim::SimulationSettings& settings, double pace_hz = 0.0) {
+        sim::MeasurementSettings ms;
+        ms.encoder_counts_per_rev = 0.0;
+        ms.torque_noise = {0.05, 0.01};
+        ms.seed = 8;
+        sim::MeasurementModel measurement(ms);
+        const auto start = std::chrono::steady_clock::now();
+        sim::simulate(*model, table2(*model), robot.joints, settings, measurement, [&](const sim::SimulatedSample& s) {
+            const auto now = static_cast<std::int64_t>(samples) * 1'000'000;
+            bus.set_time_ns(now);
+            player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
+            cycle->step(now);
+            ++samples;
+            if (pace_hz > 0.0) std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(samples) / pace_hz));
+        });
+    }
+};
+
 // Runs `seconds` of the simulated robot through the chain; every datagram goes to `publish`.
 // `pace` sleeps so that the datagrams leave at the given rate in wall time (0: as fast as possible).
 ChainResult run_chain(double seconds, firmware::Publisher& publisher, double pace_hz = 0.0) {
-    const robot::RobotDescription robot = robot::default_planar2r_description();
-    const auto model = robot::make_robot_model(robot);
+    ChainBench bench(publisher, test::chain_config());
     sim::SimulationSettings settings;
     settings.duration = seconds;
     settings.seed = 7;
-    sim::MeasurementSettings ms;
-    ms.encoder_counts_per_rev = 0.0;  // the MIT position code is the encoder here
-    ms.torque_noise = {0.05, 0.01};
-    ms.seed = 8;
-    sim::MeasurementModel measurement(ms);
-
-    test::TestBus bus;
-    auto* fw_end = bus.attach();
-    auto* sim_end = bus.attach();
-    test::FakeInput estop;
-    test::FakeOutput enable, sync;
-    hal::SafetyIo safety(estop, enable, sync);
-    const firmware::FirmwareConfig config = test::chain_config();
-    auto cycle = std::make_unique<firmware::FirmwareCycle>(*fw_end, publisher, &safety);
-    EXPECT_EQ(cycle->configure(config), "");
-    EXPECT_TRUE(cycle->reset_estop());
-    sim::CanPlayer player(*sim_end, test::profiles_of(config));
-
+    bench.simulate(settings, pace_hz);
     ChainResult result;
-    const auto start = std::chrono::steady_clock::now();
-    sim::simulate(*model, table2(*model), robot.joints, settings, measurement, [&](const sim::SimulatedSample& s) {
-        const auto now = static_cast<std::int64_t>(result.samples) * 1'000'000;
-        bus.set_time_ns(now);
-        player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
-        cycle->step(now);
-        ++result.samples;
-        if (pace_hz > 0.0) {
-            std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(result.samples) / pace_hz));
-        }
-    });
-    result.counters = cycle->counters();
-    result.delay = cycle->delay_samples();
-    result.player = player.counters();
+    result.samples = bench.samples;
+    result.counters = bench.cycle->counters();
+    result.delay = bench.cycle->delay_samples();
+    result.player = bench.player.counters();
     return result;
 }
 
@@ -181,42 +195,19 @@ TEST(Chain, PlaybackLoopSimulatedRobotFollowsAndIdentifies) {
     const std::string log = path("loop.csv");
     stream::Recorder recorder({log, stream::GapPolicy::Error, true, 32});
     RecorderPublisher publisher(recorder);
-    const robot::RobotDescription robot = robot::default_planar2r_description();
-    const auto model = robot::make_robot_model(robot);
-
-    test::TestBus bus;
-    auto* fw_end = bus.attach();
-    auto* sim_end = bus.attach();
-    test::FakeInput estop;
-    test::FakeOutput enable, sync;
-    hal::SafetyIo safety(estop, enable, sync);
     const firmware::FirmwareConfig config = test::chain_config(
         "trajectory:\n  file: " + write_excitation_table() + "\n  ramp_time: 1\n  repeat: 3\n  joints:\n"
         "    - {position: [-3, 3], velocity: 5, torque: 120, following_error: 0.2, kp: 40, kd: 1}\n"
         "    - {position: [-3, 3], velocity: 5, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}\n");
-    auto cycle = std::make_unique<firmware::FirmwareCycle>(*fw_end, publisher, &safety);
-    ASSERT_EQ(cycle->configure(config), "");
-    EXPECT_TRUE(cycle->reset_estop());
-    sim::CanPlayer player(*sim_end, test::profiles_of(config));
-    sim::CommandFollower follower(*sim_end, test::profiles_of(config), {0.0, 0.0});
-
+    ChainBench bench(publisher, config);
+    sim::CommandFollower follower(*bench.sim_end, test::profiles_of(config), {0.0, 0.0});
     sim::SimulationSettings settings;
     settings.duration = 1.0 + 3 * 10.0 + 0.5;
     settings.reference = [&follower](double t, sim::ReferenceSample& out) { follower.reference(t, out); };
     settings.reference_start = {0.0, 0.0};
-    sim::MeasurementSettings ms;
-    ms.encoder_counts_per_rev = 0.0;
-    ms.torque_noise = {0.05, 0.01};
-    ms.seed = 8;
-    sim::MeasurementModel measurement(ms);
-    std::uint64_t samples = 0;
-    sim::simulate(*model, table2(*model), robot.joints, settings, measurement, [&](const sim::SimulatedSample& s) {
-        const auto now = static_cast<std::int64_t>(samples++) * 1'000'000;
-        bus.set_time_ns(now);
-        player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
-        cycle->step(now);
-    });
+    bench.simulate(settings);
     recorder.finish();
+    const auto& cycle = bench.cycle;
     const firmware::TrajectoryPlayer& p = cycle->player();
     EXPECT_EQ(p.phase(), firmware::PlaybackPhase::Finished) << firmware::to_string(p.stop_reason()) << " joint " << p.stop_joint() + 1 << " at cycle " << p.cycles() << ", row " << p.row() << ", command " << p.commands()[1].position;
     EXPECT_EQ(cycle->counters().command_failures, 0u);
