@@ -78,6 +78,17 @@ private:
     hal::CanTransport& inner_;
 };
 
+// The firmware's surroundings in a test: a virtual bus with the firmware's end and the drives' end, and the
+// safety I/O on fake lines (e-stop released).
+struct BenchWiring {
+    TestBus bus;
+    TestBus::Endpoint* fw_end = bus.attach();
+    TestBus::Endpoint* sim_end = bus.attach();
+    FakeInput estop;
+    FakeOutput enable, sync;
+    hal::SafetyIo safety{estop, enable, sync};
+};
+
 // The chain's firmware configuration: MIT actuators behind a 4:1 reducer; joint 1 a big actuator
 // (+-30 N.m motor side = +-120 N.m on the link, the 2R robot needs up to ~113), joint 2 a small one
 // (+-2 N.m = +-8 N.m link, it needs ~5.5). One position code = 25 / 65535 / 4 = 9.5e-5 rad on the link,

@@ -47,13 +47,7 @@ struct ChainResult {
 
 // The chain's pieces on the virtual bus: the MIT 2R firmware (`config`, e.g. with a trajectory:), its GPIO
 // released, and the simulated drives' telemetry (CanPlayer, the core of `jacobid sim-can`) on the other end.
-struct ChainBench {
-    test::TestBus bus;
-    test::TestBus::Endpoint* fw_end = bus.attach();
-    test::TestBus::Endpoint* sim_end = bus.attach();
-    test::FakeInput estop;
-    test::FakeOutput enable, sync;
-    hal::SafetyIo safety{estop, enable, sync};
+struct ChainBench : test::BenchWiring {
     std::unique_ptr<firmware::FirmwareCycle> cycle;
     sim::CanPlayer player;
     const robot::RobotDescription robot = robot::default_planar2r_description();

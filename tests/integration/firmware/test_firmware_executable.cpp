@@ -39,7 +39,7 @@ TEST(FirmwareExecutable, ConfigErrorExitsTwoNamingKeyAndLine) {
 // deadline in nanoseconds; CLI11's own errors exited 105-109 on two lines. All are one-line exit-2 errors now.
 TEST(FirmwareExecutable, InvalidDurationAndParseErrorsExitTwoOnOneLine) {
     std::ofstream(path("ok.yaml")) << test::chain_config_yaml();
-    for (const std::string& value : {"-1", "nan", "inf", "1e12", "abc"}) {
+    for (const std::string value : {"-1", "nan", "inf", "1e12", "abc"}) {
         const auto r = run_command("timeout 5 " + fw("--config " + path("ok.yaml") + " --no-realtime --duration " + value));
         EXPECT_EQ(r.exit_code, 2) << value << ": " << r.err;
         EXPECT_EQ(r.err.rfind("jacobid-fw: error: --duration: expected a number of seconds in [0, 1e9]", 0), 0u) << value << ": " << r.err;

@@ -61,18 +61,12 @@ struct MemoryCommandLog final : firmware::CommandLog {
     }
 };
 
-struct PlaybackRig {
-    test::TestBus bus;
-    test::TestBus::Endpoint* fw = bus.attach();
-    test::TestBus::Endpoint* drive = bus.attach();
-    test::FakeInput estop;
-    test::FakeOutput enable, sync;
-    hal::SafetyIo safety{estop, enable, sync};
+struct PlaybackRig : test::BenchWiring {
     test::MemoryPublisher publisher;
     firmware::FirmwareConfig config = test::chain_config(playback_yaml());
     std::vector<hal::ProfileConfig> profiles = test::profiles_of(config);
-    std::unique_ptr<firmware::FirmwareCycle> cycle = std::make_unique<firmware::FirmwareCycle>(*fw, publisher, &safety);
-    sim::CanPlayer telemetry{*drive, profiles};
+    std::unique_ptr<firmware::FirmwareCycle> cycle = std::make_unique<firmware::FirmwareCycle>(*fw_end, publisher, &safety);
+    sim::CanPlayer telemetry{*sim_end, profiles};
     double q[2] = {0.05, -0.1};  // where the robot stands before playback
     double reported[2] = {0.0, 0.0};  // the last position each drive sent
     std::vector<std::array<hal::JointCommand, 2>> received;  // per cycle, what the drives read
@@ -93,7 +87,7 @@ struct PlaybackRig {
         std::array<hal::JointCommand, 2> got{};
         std::array<bool, 2> seen{};
         hal::CanFrame f;
-        while (drive->receive(f) == hal::CanStatus::Ok) {
+        while (sim_end->receive(f) == hal::CanStatus::Ok) {
             for (std::size_t j = 0; j < 2; ++j) {
                 hal::JointCommand c;
                 if (hal::decode_command(profiles[j], hal::CommandMode::Position, f, c) == hal::DecodeStatus::Ok) {
@@ -117,7 +111,7 @@ struct PlaybackRig {
             const std::size_t n = telemetry.encode(j, q[j], qd[j], tau[j], frames);
             for (std::size_t i = 0; i < n; ++i) {
                 if (j == 1 && drive_fault) frames[i].data[7] = 0x01;  // MIT byte 7: the drive's error code
-                drive->send(frames[i]);
+                sim_end->send(frames[i]);
             }
         }
         const std::uint64_t before = test::allocation_count();
