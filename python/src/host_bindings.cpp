@@ -238,21 +238,11 @@ py::dict identify(const Robot& r, const py::object& source, const py::object& va
     ctx.joint_names = joint_field(r, &robot::JointDescription::name);
     if (!truth.is_none()) ctx.truth = truth.cast<std::map<std::string, double>>();
 
-    std::vector<identify::Method> methods;
-    if (o.method == "jacobi" || o.method == "both") methods.push_back(identify::Method::Jacobi);
-    if (o.method == "butterworth" || o.method == "both") methods.push_back(identify::Method::Butterworth);
     std::vector<identify::MethodResult> results;
     {
         py::gil_scoped_release unlocked;
-        for (const identify::Method m : methods) {
-            identify::PipelineSettings settings = o.pipeline;
-            settings.method = m;
-            settings.measured_velocity = o.velocity == "measured";
-            if (!o.velocity.empty() && !settings.measured_velocity && o.velocity != identify::to_string(m)) {
-                throw InputError(fmt::format("--velocity {} with --method {}: a differentiated velocity comes from the method's own differentiator "
-                                             "(use --velocity measured, or --method {})",
-                                             o.velocity, o.method, o.velocity));
-            }
+        for (const identify::Method m : cli::methods_of(o.method)) {
+            const identify::PipelineSettings settings = cli::method_pipeline(o.pipeline, m, o.velocity, o.method);
             const identify::IdentifySettings resolved = cli::identify_settings(o, m);
             identify::IdentifiedLog fit = identify::identify_log(r.description, model, log, {settings, resolved.solve, cli::given_torque_delay(o), resolved.estimator});
             identify::MethodResult& result = fit.result;
