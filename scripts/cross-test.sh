@@ -35,7 +35,7 @@ linux_target() {  # $1 = aarch64 | armhf
   cmake -S "$root" -B "$b" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$tc" -DCMAKE_BUILD_TYPE=Release \
     -DJACOBID_TARGET_SYSROOT="$sysroots/$debarch" -DGTest_DIR="$gtest_dir" \
     -DJACOBID_BUILD_HOST_TOOLS=OFF -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_FIRMWARE=OFF \
-    -DJACOBID_VM_TESTS=ON ${JACOBID_CROSS_CMAKE_ARGS:-} >/dev/null
+    -DJACOBID_VM_TESTS=ON -DJACOBID_PYTHON=OFF ${JACOBID_CROSS_CMAKE_ARGS:-} >/dev/null
   cmake --build "$b" -j "$jobs"
   if [ -n "$build_only" ]; then
     timing+=("$name build: $(( $(now) - start )) s")

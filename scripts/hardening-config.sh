@@ -24,7 +24,7 @@ configure_hardening() {
     -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only" -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
-    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON >/dev/null
+    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_PYTHON=OFF >/dev/null
 }
 
 # Leaks inside system libraries we cannot fix (urdfdom on a cyclic URDF), each documented in the file.

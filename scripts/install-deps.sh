@@ -11,6 +11,7 @@ packages=(
   clang libclang-rt-14-dev                        # sanitizer build and libFuzzer targets (scripts/sanitize-test.sh, fuzz/)
   libnlopt-cxx-dev                                # host-tools/: jacobid excite (SLSQP)
   libgtest-dev libgmock-dev libbenchmark-dev valgrind python3-scipy python3-numpy python3-can  # tests, benchmarks, references
+  python3-dev python3-pybind11 python3-pytest    # python/: the Python module and its tests (tests/python)
 )
 missing=()
 for p in "${packages[@]}"; do

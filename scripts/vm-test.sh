@@ -34,12 +34,12 @@ for arch in "${arches[@]}"; do
       if [ "${JACOBID_VM_CHAIN:-0}" = "1" ]; then
         cmake -S "$root" -B "$b" -G Ninja -DCMAKE_BUILD_TYPE=Release -DJACOBID_BUILD_HOST_TOOLS=ON \
           -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_FIRMWARE=ON -DJACOBID_VM_TESTS=ON -DJACOBID_MARCH= \
-          -DJACOBID_BUILD_TESTS=OFF >/dev/null
+          -DJACOBID_BUILD_TESTS=OFF -DJACOBID_PYTHON=OFF >/dev/null
         cmake --build "$b" -j "$jobs" --target jacobid-vcan-link test_hal_vcan jacobid jacobid-fw
         ctest --test-dir "$b" -L 'vcan|chain' --output-on-failure
       else
         cmake -S "$root" -B "$b" -G Ninja -DCMAKE_BUILD_TYPE=Release -DJACOBID_BUILD_HOST_TOOLS=OFF \
-          -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_FIRMWARE=OFF -DJACOBID_VM_TESTS=ON -DJACOBID_BUILD_TESTS=OFF >/dev/null
+          -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_FIRMWARE=OFF -DJACOBID_VM_TESTS=ON -DJACOBID_BUILD_TESTS=OFF -DJACOBID_PYTHON=OFF >/dev/null
         cmake --build "$b" -j "$jobs" --target jacobid-vcan-link test_hal_vcan
         ctest --test-dir "$b" -L vcan -LE chain --output-on-failure
       fi
@@ -55,7 +55,7 @@ for arch in "${arches[@]}"; do
       cmake -S "$root" -B "$b" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$root/toolchains/aarch64-linux-gnu.cmake" \
         -DCMAKE_BUILD_TYPE=Release -DJACOBID_TARGET_SYSROOT="${JACOBID_CROSS_SYSROOTS:-$root/build-cross-sysroot}/arm64-board" \
         -DGTest_DIR="$gtest_dir" -DJACOBID_BUILD_HOST_TOOLS=ON -DJACOBID_BUILD_FIRMWARE=ON -DJACOBID_BUILD_BENCHMARKS=OFF \
-        -DJACOBID_BUILD_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON \
+        -DJACOBID_BUILD_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_PYTHON=OFF \
         -DJACOBID_VM_TESTS=ON >/dev/null
       step=$(now)
       cmake --build "$b" -j "$jobs" --target jacobid-vcan-link test_hal_vcan test_hal_gpio_chardev jacobid jacobid-fw

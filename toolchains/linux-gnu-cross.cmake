@@ -14,6 +14,8 @@
 # Tests run under qemu-user (package qemu-user-static) through CMAKE_CROSSCOMPILING_EMULATOR, so
 # ctest and gtest_discover_tests work unchanged; set JACOBID_CROSS_EMULATOR="" to disable.
 set(CMAKE_SYSTEM_NAME Linux)
+# The Python module is for the build machine's interpreter, never cross-built (docs/python.md).
+set(JACOBID_PYTHON OFF CACHE BOOL "")
 set(CMAKE_LIBRARY_ARCHITECTURE ${JACOBID_TARGET_TRIPLE})
 
 set(CMAKE_C_COMPILER ${JACOBID_TARGET_TRIPLE}-gcc)

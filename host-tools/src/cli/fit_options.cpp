@@ -113,4 +113,24 @@ identify::IdentifySettings identify_settings(const FitOptions& o, identify::Meth
     return s;
 }
 
+std::vector<identify::Method> methods_of(const std::string& method_option) {
+    std::vector<identify::Method> methods;
+    if (method_option == "jacobi" || method_option == "both") methods.push_back(identify::Method::Jacobi);
+    if (method_option == "butterworth" || method_option == "both") methods.push_back(identify::Method::Butterworth);
+    return methods;
+}
+
+identify::PipelineSettings method_pipeline(const identify::PipelineSettings& common, identify::Method method, const std::string& velocity,
+                                           const std::string& method_option) {
+    identify::PipelineSettings settings = common;
+    settings.method = method;
+    settings.measured_velocity = velocity == "measured";
+    if (!velocity.empty() && !settings.measured_velocity && velocity != identify::to_string(method)) {
+        throw InputError(fmt::format("--velocity {} with --method {}: a differentiated velocity comes from the method's own differentiator "
+                                     "(use --velocity measured, or --method {})",
+                                     velocity, method_option, velocity));
+    }
+    return settings;
+}
+
 }  // namespace jacobid::cli

@@ -5,6 +5,7 @@
 // takes the very options identify takes.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "identify/identify_run.hpp"
 #include "identify/pipeline.hpp"
@@ -41,5 +42,13 @@ std::optional<double> given_torque_delay(const FitOptions& o);
 // The settings of identify::identify_log for `method` (--discretization, the estimator and the weighting resolved, --torque-delay
 // parsed; InputError for contradicting options).
 identify::IdentifySettings identify_settings(const FitOptions& o, identify::Method method);
+
+// The methods of --method (jacobi, butterworth or both, in that order).
+std::vector<identify::Method> methods_of(const std::string& method_option);
+
+// The pipeline of one method: `common` with the method and --velocity applied (empty: the method's own
+// differentiated velocity). InputError for a differentiated velocity of another method than `method`.
+identify::PipelineSettings method_pipeline(const identify::PipelineSettings& common, identify::Method method, const std::string& velocity,
+                                           const std::string& method_option);
 
 }  // namespace jacobid::cli

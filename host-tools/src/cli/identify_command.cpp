@@ -250,19 +250,9 @@ void run(IdentifyOptions o) {
     if (!o.truth.empty()) ctx.truth = read_truth(o.truth);
     if (periodic) ctx.warnings.insert(ctx.warnings.end(), periodic->warnings.begin(), periodic->warnings.end());
 
-    std::vector<identify::Method> methods;
-    if (o.method == "jacobi" || o.method == "both") methods.push_back(identify::Method::Jacobi);
-    if (o.method == "butterworth" || o.method == "both") methods.push_back(identify::Method::Butterworth);
     std::vector<identify::MethodResult> results;
-    for (const identify::Method m : methods) {
-        identify::PipelineSettings settings = o.pipeline;
-        settings.method = m;
-        settings.measured_velocity = o.velocity == "measured";
-        if (!o.velocity.empty() && !settings.measured_velocity && o.velocity != identify::to_string(m)) {
-            throw InputError(fmt::format("--velocity {} with --method {}: a differentiated velocity comes from the method's own differentiator "
-                                         "(use --velocity measured, or --method {})",
-                                         o.velocity, o.method, o.velocity));
-        }
+    for (const identify::Method m : methods_of(o.method)) {
+        identify::PipelineSettings settings = method_pipeline(o.pipeline, m, o.velocity, o.method);
         const identify::IdentifySettings resolved = identify_settings(o, m);
         identify::SolveOptions solve = resolved.solve;
         if (periodic) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/kernel_description.hpp"
 #include "cli/kernel_options.hpp"
 #include "cli/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
@@ -59,27 +60,6 @@ std::string as_csv(const std::vector<double>& w) {
     std::string s;
     for (double v : w) s += fmt::format("{:.17g}\n", v);
     return s;
-}
-
-nlohmann::json describe_kernel(const KernelParams& p, const std::vector<double>& w) {
-    const Cutoff cutoff = find_cutoff(Span<const double>(w), p.sample_period, p.order);
-    nlohmann::json j;
-    j["parameters"] = {{"order", p.order},
-                       {"kappa", p.kappa},
-                       {"mu", p.mu},
-                       {"q", p.q},
-                       {"window", p.window},
-                       {"ts", p.sample_period},
-                       {"xi", p.xi},
-                       {"discretization", p.discretization == Discretization::Exact ? "exact" : "trapezoidal"}};
-    j["taps"] = w.size();
-    j["effective_window"] = static_cast<double>(w.size() - 1) * p.sample_period;
-    j["delay_samples"] = delay_samples(p);
-    j["delay_seconds"] = delay_samples(p) * p.sample_period;
-    j["cutoff_hz"] = cutoff.found ? nlohmann::json(cutoff.frequency) : nlohmann::json(nullptr);
-    j["weights_order"] = "oldest sample first";
-    j["weights"] = w;
-    return j;
 }
 
 std::string as_header(const KernelParams& p, const std::vector<double>& w, const std::string& name) {

@@ -11,5 +11,7 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/horizon_simulation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/diagnosis.cpp
   ${CMAKE_CURRENT_LIST_DIR}/diagnosis_report.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/diagnose_log.cpp
 )
 target_sources(jacobid PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/diagnose_command.cpp)
+target_sources(jacobid_cli_support PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/diagnose_options.cpp)

@@ -23,13 +23,17 @@ Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& 
 
 Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& weights, const std::vector<double>& x,
                          const std::string& what) {
+    return jacobi_estimate(params, weights, Span<const double>(x), what);
+}
+
+Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& weights, Span<const double> x, const std::string& what) {
     if (x.size() < weights.size()) {
         throw InputError(fmt::format("{}: {} samples, shorter than the differentiator window of {} taps ({} s)", what, x.size(),
                                           weights.size(), static_cast<double>(weights.size() - 1) * params.sample_period));
     }
     Estimate e;
     e.values.resize(batch_output_size(x.size(), weights.size()));
-    const BatchStatus bs = differentiate_batch(Span<const double>(weights), Span<const double>(x), Span<double>(e.values));
+    const BatchStatus bs = differentiate_batch(Span<const double>(weights), x, Span<double>(e.values));
     if (bs != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", what, describe(bs)));
     e.first_index = batch_offset_samples(weights.size(), params.xi);
     return e;

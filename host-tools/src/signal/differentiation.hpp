@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "jacobid/kernel_params.hpp"
+#include "jacobid/span.hpp"
 #include "signal/baseline_response.hpp"
 
 namespace jacobid::signal {
@@ -23,6 +24,8 @@ Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& 
 // The same with weights already designed from `params` (oldest sample first).
 Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& weights, const std::vector<double>& x,
                          const std::string& what);
+// The same on samples held elsewhere (e.g. a numpy array in the Python module): read in place, not copied.
+Estimate jacobi_estimate(const KernelParams& params, const std::vector<double>& weights, Span<const double> x, const std::string& what);
 
 // Forward-backward Butterworth, then the central Euler difference of `order` (0, 1 or 2). The first and
 // last `crop` samples (the filter's end transients) and the ends without a central difference are dropped.

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+#include "diagnose/diagnose_log.hpp"
+
+#include "identify/coulomb_smoothing.hpp"
+#include "sim/effect_terms.hpp"
+
+namespace jacobid::diagnose {
+
+Diagnosis diagnose_log(const robot::RobotDescription& robot, const robot::RobotModel& model, const identify::LogColumns& log,
+                       const identify::LogColumns* validation, const DiagnoseSettings& settings,
+                       const std::function<void(const std::string&)>& progress) {
+    // friction alpha: auto is chosen on the identification log, as identify does, before the search.
+    const identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, model, log, settings.pipeline, false);
+    robot::RobotDescription fitted = robot;
+    std::vector<std::string> names;
+    for (const auto& j : robot.joints) names.push_back(j.name);
+    if (smoothed.choice) fitted.coulomb_alpha = smoothed.choice->alphas();
+    const sim::EffectContext context{model.model_name(), model.joint_count(), fitted.coulomb, robot::joint_coulomb_signs(fitted)};
+    Diagnosis d = run_diagnosis(smoothed.get(model), context, log, validation, settings, progress);
+    d.joint_names = names;
+    if (smoothed.choice) d.notes.push_back(identify::describe(*smoothed.choice, names));
+    return d;
+}
+
+}  // namespace jacobid::diagnose

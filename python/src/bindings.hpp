@@ -1,0 +1,13 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The module's two areas, each adding its functions and classes to the extension module.
+#include <pybind11/pybind11.h>
+
+namespace jacobid::python {
+
+// lib/: kernels, frequency response, batch differentiation, the streaming bank, the Butterworth + Euler baseline.
+void bind_core(pybind11::module_& m);
+// jacobid::host: robot descriptions, simulation, identification (+ validation), diagnosis.
+void bind_host(pybind11::module_& m);
+
+}  // namespace jacobid::python

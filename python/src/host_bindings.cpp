@@ -1,0 +1,329 @@
+// SPDX-License-Identifier: MIT
+// jacobid::host: the library calls of `jacobid simulate`, `identify` and `diagnose` on one continuous log, with
+// their options given as keywords and parsed by the command line's own definitions (cli/*_options), and their
+// results converted from the host library's JSON producers, so the names and values are the CLI's.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "bindings.hpp"
+#include "cli/diagnose_options.hpp"
+#include "cli/fit_options.hpp"
+#include "cli/log_format_options.hpp"
+#include "cli/output_file.hpp"
+#include "cli/simulation_options.hpp"
+#include "cli_arguments.hpp"
+#include "core/errors.hpp"
+#include "diagnose/diagnose_log.hpp"
+#include "diagnose/diagnosis_report.hpp"
+#include "identify/identify_run.hpp"
+#include "identify/least_squares.hpp"
+#include "identify/log_columns.hpp"
+#include "identify/report.hpp"
+#include "identify/static_validation.hpp"
+#include "identify/torque_delay.hpp"
+#include "identify/validation.hpp"
+#include "io/csv_table.hpp"
+#include "io/time_axis.hpp"
+#include "json_to_python.hpp"
+#include "numpy_views.hpp"
+#include "robot/base_parameter_report.hpp"
+#include "robot/robot_description.hpp"
+#include "robot/simulated_parameters.hpp"
+#include "sim/measurement.hpp"
+#include "sim/simulator.hpp"
+
+namespace py = pybind11;
+
+namespace jacobid::python {
+namespace {
+
+// A robot description and its model (robot/robot_description.hpp), as `--robot FILE` loads them.
+struct Robot {
+    robot::RobotDescription description;
+    std::shared_ptr<const robot::RobotModel> model;
+};
+
+Robot load_robot(const py::object& path) {
+    Robot r;
+    if (path.is_none()) {
+        r.description = robot::default_planar2r_description();
+    } else {
+        const std::string file = py::str(path).cast<std::string>();
+        cli::check_outputs({}, {{"--robot", file}});
+        r.description = robot::load_robot_description(file);
+    }
+    r.model = robot::make_robot_model(r.description);
+    return r;
+}
+
+std::vector<std::string> joint_field(const Robot& r, std::string robot::JointDescription::*field) {
+    std::vector<std::string> names;
+    for (const auto& j : r.description.joints) names.push_back(j.*field);
+    return names;
+}
+
+// --- simulate ---------------------------------------------------------------------------------------------
+
+py::dict simulate(const Robot& r, const py::kwargs& keywords) {
+    cli::SimulationOptions o;
+    CLI::App app("simulate");
+    cli::add_simulation_options(&app, o);
+    parse_keywords(app, keywords);
+    const robot::RobotModel& model = *r.model;
+    const int n = model.joint_count();
+    const Eigen::VectorXd x = robot::simulated_parameters(r.description, model);
+    // In the order of `jacobid simulate`: the sensors, the description's controller, then the checked settings.
+    const sim::MeasurementSettings ms = cli::measurement_settings(o, n);
+    cli::apply_controller(r.description, o);
+    o.settings = cli::simulation_settings(o);
+    cli::refuse_oversized_simulation(o.settings, 8.0 * (1.0 + 6.0 * n));  // t + q, tau, q_ref, qd_ref per joint, doubles
+    sim::MeasurementModel measurement(ms);
+    const std::size_t total = sim::simulated_sample_count(o.settings);
+    const auto joints = static_cast<std::size_t>(n);
+    py::array_t<double> t(total);
+    py::array_t<double> q = new_matrix(total, joints), tau = new_matrix(total, joints), q_ref = new_matrix(total, joints),
+                        qd_ref = new_matrix(total, joints);
+    double* columns[] = {q.mutable_data(), tau.mutable_data(), q_ref.mutable_data(), qd_ref.mutable_data()};
+    double* time = t.mutable_data();
+    std::size_t emitted = 0;
+    const double period = 1.0 / o.settings.output_rate;
+    {
+        py::gil_scoped_release unlocked;
+        sim::simulate(model, x, r.description.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
+            if (emitted >= total) return;
+            // The time from the sample index, as the CLI writes it (an exactly uniform axis).
+            time[emitted] = static_cast<double>(emitted) * period;
+            const Eigen::VectorXd* rows[] = {&s.q_measured, &s.tau_measured, &s.q_ref, &s.qd_ref};
+            for (int k = 0; k < 4; ++k) {
+                for (std::size_t j = 0; j < joints; ++j) columns[k][emitted * joints + j] = (*rows[k])[static_cast<Eigen::Index>(j)];
+            }
+            ++emitted;
+        });
+    }
+    py::dict d;
+    d["t"] = t;
+    d["q"] = q;
+    d["tau"] = tau;
+    d["q_ref"] = q_ref;
+    d["qd_ref"] = qd_ref;
+    // The truth, named as in `jacobid simulate --truth`'s JSON.
+    py::dict parameters;
+    for (int c = 0; c < model.parameter_count(); ++c) parameters[py::str(model.parameter_names()[static_cast<std::size_t>(c)])] = x[c];
+    d["model"] = r.description.model;
+    d["parameters"] = parameters;
+    d["parameter_order"] = model.parameter_names();
+    d["samples"] = emitted;
+    return d;
+}
+
+// --- logs: a file read as the CLI reads --in, or numpy arrays t, q, tau -------------------------------------
+
+struct LogKeywords {
+    cli::LogFormatOptions log_format;
+    std::string time_column = "t";
+    double time_tolerance = io::kDefaultTimeTolerance;
+    bool quiet = false;
+};
+
+void add_log_keywords(CLI::App& app, LogKeywords& o) {
+    cli::add_log_format_options(&app, o.log_format);
+    cli::add_time_tolerance_option(&app, o.time_tolerance);
+    app.add_option("--time-column", o.time_column, "name of the time column (s)");
+    app.add_flag("--quiet", o.quiet, "no progress messages on stderr");
+}
+
+// The table of a log given as (t, q, tau): q and tau samples x joints, in the robot's column names.
+io::CsvTable table_of_arrays(const Robot& r, const py::tuple& arrays, const std::string& time_column, const std::string& what) {
+    if (arrays.size() != 3) throw InputError(fmt::format("{}: expected a path or a tuple (t, q, tau), got {} items", what, arrays.size()));
+    const DoubleArray t_array = arrays[0].cast<DoubleArray>(), q_array = arrays[1].cast<DoubleArray>(), tau_array = arrays[2].cast<DoubleArray>();
+    const Span<const double> t = samples_of(t_array, what + " t");
+    const Matrix q = matrix_of(q_array, what + " q"), tau = matrix_of(tau_array, what + " tau");
+    const std::size_t joints = r.description.joints.size();
+    for (const auto& [name, m] : {std::pair<const char*, const Matrix&>{"q", q}, {"tau", tau}}) {
+        if (m.rows != t.size() || m.columns != joints) {
+            throw InputError(fmt::format("{} {}: {} x {} samples, expected {} x {} (t's samples x the robot's joints)", what, name, m.rows,
+                                         m.columns, t.size(), joints));
+        }
+    }
+    std::vector<std::string> header{time_column};
+    for (const auto& j : r.description.joints) header.push_back(j.position_column);
+    for (const auto& j : r.description.joints) header.push_back(j.torque_column);
+    io::CsvTable table(what, header);
+    auto fill = [&](std::size_t column, const std::string& name, auto value_at) {
+        std::vector<double>& c = table.mutable_column(column);
+        c.resize(t.size());
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            c[i] = value_at(i);
+            // What the CSV reader refuses, refused here too (never identified from).
+            if (!std::isfinite(c[i]) || io::beyond_log_range(c[i])) {
+                throw InputError(fmt::format("{} {}: sample {} is {}; expected a finite number", what, name, i, c[i]));
+            }
+        }
+    };
+    fill(0, "t", [&](std::size_t i) { return t[i]; });
+    for (std::size_t j = 0; j < joints; ++j) {
+        fill(1 + j, fmt::format("q[:, {}]", j), [&](std::size_t i) { return q.at(i, j); });
+        fill(1 + joints + j, fmt::format("tau[:, {}]", j), [&](std::size_t i) { return tau.at(i, j); });
+    }
+    return table;
+}
+
+bool is_path(const py::handle& source) { return py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__"); }
+
+std::string source_name(const py::handle& source, const std::string& option) {
+    return is_path(source) ? py::str(source).cast<std::string>() : option;
+}
+
+// `option` names the source in messages ("--in", "--validate"), as the command line does.
+io::CsvTable read_log(const Robot& r, const py::handle& source, const LogKeywords& o, const std::string& option, double period = 0.0) {
+    if (!is_path(source)) {
+        if (!py::isinstance<py::tuple>(source)) throw InputError(fmt::format("{}: expected a path or a tuple (t, q, tau)", option));
+        return table_of_arrays(r, source.cast<py::tuple>(), o.time_column, option);
+    }
+    const std::string path = py::str(source).cast<std::string>();
+    cli::check_outputs({}, {{option, path}, {"--log-format", o.log_format.file}});
+    return cli::read_log_table(path, o.log_format, cli::robot_column_names(r.description, o.time_column), o.quiet, period);
+}
+
+// --- identify -----------------------------------------------------------------------------------------------
+
+struct IdentifyKeywords : cli::FitOptions {
+    LogKeywords log;
+    std::string method = "jacobi";
+    std::string velocity;  // measured | jacobi | butterworth; empty: the method's own
+};
+
+// --validate: the gravity check on a log that holds a pose, else the torques predicted through the
+// identification's filters with its torque delay applied (as `jacobid identify --validate` on one log).
+void validate(const robot::RobotModel& fitted, const identify::LogColumns& log, const identify::PipelineSettings& settings,
+              const IdentifyKeywords& o, identify::MethodResult& r) {
+    if (identify::is_static(log, o.pipeline.min_joint_motion)) {
+        r.static_validation = identify::validate_static(fitted, log, r.solution.x);
+        return;
+    }
+    const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
+    r.validation = identify::validate_prediction(fitted, aligned.log, identify::validation_settings(settings, r.info), r.solution.x);
+}
+
+py::dict identify(const Robot& r, const py::object& source, const py::object& validation, const py::object& truth, const py::kwargs& keywords) {
+    IdentifyKeywords o;
+    CLI::App app("identify");
+    cli::add_fit_options(&app, o);
+    add_log_keywords(app, o.log);
+    app.add_option("--method", o.method)->check(CLI::IsMember({"jacobi", "butterworth", "both"}));
+    app.add_option("--velocity", o.velocity)->check(CLI::IsMember({"measured", "jacobi", "butterworth"}));
+    parse_keywords(app, keywords);
+    o.pipeline.exact_discretization = o.discretization == "exact";
+    // One continuous log (--on-gap split, --period, --physical, --essential: the command line).
+    cli::refuse_split(o.log.log_format, "the Python module's identify");
+    const robot::RobotModel& model = *r.model;
+    const auto parse_start = std::chrono::steady_clock::now();
+    const io::CsvTable table = read_log(r, source, o.log, "--in");
+    const identify::LogColumns log = identify::log_columns(table, r.description, o.log.time_column, o.log.time_tolerance);
+    const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - parse_start).count();
+    std::unique_ptr<io::CsvTable> validation_table;
+    identify::LogColumns validation_log;
+    if (!validation.is_none()) {
+        validation_table = std::make_unique<io::CsvTable>(read_log(r, validation, o.log, "--validate"));
+        validation_log = identify::log_columns(*validation_table, r.description, o.log.time_column, o.log.time_tolerance);
+    }
+    identify::ReportContext ctx;
+    ctx.log_source = source_name(source, "--in");
+    ctx.model_name = model.model_name();
+    ctx.joint_names = joint_field(r, &robot::JointDescription::name);
+    if (!truth.is_none()) ctx.truth = truth.cast<std::map<std::string, double>>();
+
+    std::vector<identify::MethodResult> results;
+    {
+        py::gil_scoped_release unlocked;
+        for (const identify::Method m : cli::methods_of(o.method)) {
+            const identify::PipelineSettings settings = cli::method_pipeline(o.pipeline, m, o.velocity, o.method);
+            const identify::IdentifySettings resolved = cli::identify_settings(o, m);
+            identify::IdentifiedLog fit = identify::identify_log(r.description, model, log, {settings, resolved.solve, cli::given_torque_delay(o), resolved.estimator});
+            identify::MethodResult& result = fit.result;
+            if (!validation.is_none()) validate(fit.smoothed.get(model), validation_log, settings, o, result);
+            results.push_back(std::move(result));
+        }
+    }
+    for (const auto& result : results) identify::require_finite_solution(result.solution, ctx.log_source);
+    // The layout of `jacobid identify --format json`: the first method at the top level, every method under "methods".
+    nlohmann::json j = identify::to_json(results.front(), ctx);
+    for (const auto& result : results) j["methods"][identify::to_string(result.info.method)] = identify::to_json(result, ctx);
+    j["log"] = ctx.log_source;
+    j["model"] = model.model_name();
+    j["parse_seconds"] = parse_seconds;
+    return to_python(j);
+}
+
+// --- diagnose -----------------------------------------------------------------------------------------------
+
+py::dict diagnose(const Robot& r, const py::object& source, const py::object& validation, const py::kwargs& keywords) {
+    diagnose::DiagnoseSettings settings;
+    bool no_delay = false;
+    LogKeywords o;
+    CLI::App app("diagnose");
+    cli::add_diagnose_search_options(&app, settings, no_delay);
+    add_log_keywords(app, o);
+    parse_keywords(app, keywords);
+    cli::refuse_split(o.log_format, "diagnose");
+    const robot::RobotModel& model = *r.model;
+    const io::CsvTable table = read_log(r, source, o, "--in");
+    const identify::LogColumns log = identify::log_columns(table, r.description, o.time_column, o.time_tolerance);
+    cli::refuse_oversized_search(settings, log, model);
+    std::unique_ptr<io::CsvTable> validation_table;
+    identify::LogColumns validation_log;
+    if (!validation.is_none()) {
+        validation_table = std::make_unique<io::CsvTable>(read_log(r, validation, o, "--validate", log.sample_period));
+        validation_log = identify::log_columns(*validation_table, r.description, o.time_column, o.time_tolerance);
+        if (std::abs(validation_log.sample_period - log.sample_period) > 1e-9 * log.sample_period) {
+            throw InputError(fmt::format("--validate {}: sample period {} s differs from {} s of --in", source_name(validation, "--validate"),
+                                         validation_log.sample_period, log.sample_period));
+        }
+    }
+    settings.selection.search_delay = !no_delay;
+    settings.catalogue.torque_delay = !no_delay;
+    nlohmann::json j;
+    {
+        py::gil_scoped_release unlocked;
+        const auto progress = [&](const std::string& line) {
+            if (!o.quiet) fmt::print(stderr, "diagnose: {}\n", line);
+        };
+        j = diagnose::to_json(diagnose::diagnose_log(r.description, model, log, validation.is_none() ? nullptr : &validation_log, settings, progress));
+    }
+    return to_python(j);
+}
+
+}  // namespace
+
+void bind_host(py::module_& m) {
+    py::class_<Robot>(m, "Robot", "A robot description (YAML: planar2r, an MDH table or a URDF file; docs/robots.md) and its model.")
+        .def_property_readonly("model", [](const Robot& r) { return r.model->model_name(); }, "the model's name (planar2r, mdh, urdf)")
+        .def_property_readonly("source", [](const Robot& r) { return r.description.source; }, "the description's file")
+        .def_property_readonly("joint_names", [](const Robot& r) { return joint_field(r, &robot::JointDescription::name); })
+        .def_property_readonly("position_columns", [](const Robot& r) { return joint_field(r, &robot::JointDescription::position_column); },
+                               "the log's position column of each joint")
+        .def_property_readonly("torque_columns", [](const Robot& r) { return joint_field(r, &robot::JointDescription::torque_column); },
+                               "the log's torque column of each joint")
+        .def_property_readonly("parameter_names", [](const Robot& r) { return r.model->parameter_names(); }, "the base parameters, in order")
+        .def("base_parameters", [](const Robot& r) { return to_python(robot::base_parameter_json(r.description, *r.model)); },
+             "The base parameters with their regrouping relations and true values, as `jacobid identify --print-base --format json`.")
+        .def("__repr__", [](const Robot& r) { return fmt::format("Robot(model={}, joints={}, source={})", r.model->model_name(), r.model->joint_count(), r.description.source); });
+    m.def("load_robot", &load_robot, py::arg("path") = py::none(),
+          "load_robot(path=None) -> Robot\n\nReads a robot description as `--robot` does; None: the paper's planar 2R (Table II).");
+    m.def("simulate", &simulate, py::arg("robot"),
+          "simulate(robot, *, duration=..., rate=..., seed=..., torque_noise=..., ...) -> dict\n\n"
+          "A closed-loop simulated log as `jacobid simulate` writes it (the keywords are its simulation options: duration, "
+          "rate, control_rate, substeps, omega_dyn, damping, seed, move_duration, dwell, encoder_counts, position_noise, "
+          "torque_noise, ripple, ripple_periods, noise_seed; a sequence for per-joint values). Returns t (s), q, tau, q_ref, "
+          "qd_ref (samples x joints numpy arrays) and the truth as simulate's --truth JSON names it: model, parameters, "
+          "parameter_order, samples.");
+    m.def("_identify", &identify, py::arg("robot"), py::arg("log"), py::arg("validate") = py::none(), py::arg("truth") = py::none());
+    m.def("_diagnose", &diagnose, py::arg("robot"), py::arg("log"), py::arg("validate") = py::none());
+}
+
+}  // namespace jacobid::python
