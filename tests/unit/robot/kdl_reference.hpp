@@ -10,6 +10,7 @@
 #include <array>
 #include <vector>
 
+#include "kdl_vector_copy.hpp"
 #include "robot/serial_robot_model.hpp"
 
 namespace jacobid::test {
@@ -47,7 +48,7 @@ inline Eigen::VectorXd kdl_torques(const KDL::Chain& chain, const Eigen::Vector3
     KDL::JntArray tau(chain.getNrOfJoints());
     const int status = solver.CartToJnt(q, qd, qdd, KDL::Wrenches(chain.getNrOfSegments(), KDL::Wrench::Zero()), tau);
     if (status < 0) throw std::runtime_error("KDL ChainIdSolver_RNE failed");
-    return tau.data;
+    return from_kdl(tau);
 }
 
 }  // namespace jacobid::test

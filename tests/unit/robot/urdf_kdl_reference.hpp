@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "jacobid/robot/coulomb_sign.hpp"
+#include "kdl_vector_copy.hpp"
 #include "robot/serial_robot_model.hpp"
 
 namespace jacobid::test {
@@ -63,15 +64,13 @@ public:
     Eigen::VectorXd torques(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd, const Eigen::Vector3d& gravity,
                             const JointTerms& terms) const {
         const unsigned n = chain_.getNrOfJoints();
-        KDL::JntArray kq(n), kqd(n), kqdd(n), tau(n);
-        kq.data = q;
-        kqd.data = qd;
-        kqdd.data = qdd;
+        const KDL::JntArray kq = to_kdl(q), kqd = to_kdl(qd), kqdd = to_kdl(qdd);
+        KDL::JntArray tau(n);
         KDL::ChainIdSolver_RNE solver(chain_, KDL::Vector(gravity.x(), gravity.y(), gravity.z()));
         if (solver.CartToJnt(kq, kqd, kqdd, KDL::Wrenches(chain_.getNrOfSegments(), KDL::Wrench::Zero()), tau) < 0) {
             throw std::runtime_error("KDL ChainIdSolver_RNE failed");
         }
-        Eigen::VectorXd t = tau.data;
+        Eigen::VectorXd t = from_kdl(tau);
         for (Eigen::Index j = 0; j < t.size(); ++j) {
             const auto k = static_cast<std::size_t>(j);
             t[j] += terms.ia[k] * qdd[j] + damping[k] * qd[j] + friction[k] * terms.coulomb[k](qd[j]) + terms.foff[k];
