@@ -24,9 +24,7 @@
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
 #include "identify/report.hpp"
-#include "identify/static_validation.hpp"
-#include "identify/torque_delay.hpp"
-#include "identify/validation.hpp"
+#include "identify/validate_log.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "json_to_python.hpp"
@@ -198,18 +196,6 @@ struct IdentifyKeywords : cli::FitOptions {
     std::string velocity;  // measured | jacobi | butterworth; empty: the method's own
 };
 
-// --validate: the gravity check on a log that holds a pose, else the torques predicted through the
-// identification's filters with its torque delay applied (as `jacobid identify --validate` on one log).
-void validate(const robot::RobotModel& fitted, const identify::LogColumns& log, const identify::PipelineSettings& settings,
-              const IdentifyKeywords& o, identify::MethodResult& r) {
-    if (identify::is_static(log, o.pipeline.min_joint_motion)) {
-        r.static_validation = identify::validate_static(fitted, log, r.solution.x);
-        return;
-    }
-    const identify::ShiftedTorques aligned = identify::shift_torques(log, r.torque_delay.applied());
-    r.validation = identify::validate_prediction(fitted, aligned.log, identify::validation_settings(settings, r.info), r.solution.x);
-}
-
 py::dict identify(const Robot& r, const py::object& source, const py::object& validation, const py::object& truth, const py::kwargs& keywords) {
     IdentifyKeywords o;
     CLI::App app("identify");
@@ -246,7 +232,7 @@ py::dict identify(const Robot& r, const py::object& source, const py::object& va
             const identify::IdentifySettings resolved = cli::identify_settings(o, m);
             identify::IdentifiedLog fit = identify::identify_log(r.description, model, log, {settings, resolved.solve, cli::given_torque_delay(o), resolved.estimator});
             identify::MethodResult& result = fit.result;
-            if (!validation.is_none()) validate(fit.smoothed.get(model), validation_log, settings, o, result);
+            if (!validation.is_none()) identify::validate_log(fit.smoothed.get(model), validation_log, settings, o.pipeline.min_joint_motion, result);
             results.push_back(std::move(result));
         }
     }

@@ -33,6 +33,7 @@
 #include "identify/segmented_validation.hpp"
 #include "identify/static_validation.hpp"
 #include "identify/torque_delay.hpp"
+#include "identify/validate_log.hpp"
 #include "identify/validation.hpp"
 #include "io/candump_joints.hpp"
 #include "io/csv_table.hpp"
@@ -171,8 +172,8 @@ std::vector<identify::SegmentReport> segment_reports(const std::vector<io::LogSe
     return reports;
 }
 
-// --validate: the gravity check on a log that holds a pose (static_validation.hpp), else the torques
-// predicted through the identification's filters, pooled over the segments with --on-gap split.
+// --validate: one log (or a log that holds a pose) as identify::validate_log does it; with --on-gap split, the
+// torques predicted through the identification's filters, pooled over the segments.
 void validate(const robot::RobotModel& model, const LogSegments& input, const std::vector<identify::LogColumns>& logs,
               const identify::PipelineSettings& settings, const IdentifyOptions& o, identify::MethodResult& r) {
     const bool holds_pose = std::any_of(logs.begin(), logs.end(), [&](const auto& l) { return identify::is_static(l, o.pipeline.min_joint_motion); });
@@ -180,8 +181,8 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
         throw InputError(fmt::format("--validate {}: --on-gap split cut a log that holds a pose into {} segments; the static check needs one "
                                      "(use --on-gap interpolate)", o.validate, logs.size()));
     }
-    if (holds_pose) {
-        r.static_validation = identify::validate_static(model, logs.front(), r.solution.x);
+    if (holds_pose || !input.split) {
+        identify::validate_log(model, logs.front(), settings, o.pipeline.min_joint_motion, r);
         return;
     }
     // The same hardware, the same offset between its channels.
@@ -190,10 +191,6 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
     std::vector<identify::LogColumns> views;
     for (const auto& l : logs) views.push_back(aligned.emplace_back(identify::shift_torques(l, r.torque_delay.applied())).log);
     const identify::PipelineSettings v = identify::validation_settings(settings, r.info);
-    if (!input.split) {
-        r.validation = identify::validate_prediction(model, views.front(), v, r.solution.x);
-        return;
-    }
     identify::SegmentedValidation pooled = identify::validate_segments(model, views, v, r.solution.x, o.validate);
     r.validation = std::move(pooled.result);
     r.validation_segments = segment_reports(input.segments, pooled.used, pooled.why, identify::to_string(r.info.method), o.validate);
