@@ -10,6 +10,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "identify/drive_gains.hpp"
@@ -186,8 +188,18 @@ TEST(DriveGains, BadInputIsRefusedWithOneLine) {
     }
 }
 
+// The six jointwise validation logs (joint n moves in the n-th); only the first with
+// JACOBID_REALDATA_ONE_PER_FAMILY=1 (the sanitizer run: the same code paths, a sixth of the runs).
+std::vector<fs::path> jointwise_logs() {
+    std::vector<fs::path> logs;
+    for (int n = 1; n <= 6; ++n) {
+        logs.push_back(jacobid::test::realdata_dir() / "ur10e" / "validation" / ("ur-20_01_22-joint_" + std::to_string(n) + ".csv"));
+    }
+    return jacobid::test::every_or_first(logs);
+}
+
 // The moving joint's filtered RMS error over its RMS torque (free of the gain's scale) on each jointwise log,
-// identified on 14harm50sec with the log format's gains replaced by `gains`; the mean over the six logs.
+// identified on 14harm50sec with the log format's gains replaced by `gains`; the mean over the logs.
 double mean_moving_nrmse(const std::string& robot, const fs::path& dir, const std::string& name, const std::vector<double>& gains) {
     const fs::path data = jacobid::test::realdata_dir() / "ur10e";
     std::ifstream shipped(jacobid::test::log_formats_dir() / "ur10e.yaml");
@@ -201,18 +213,17 @@ double mean_moving_nrmse(const std::string& robot, const fs::path& dir, const st
     format << "]\n";
     const std::string format_file = (dir / ("format_" + name + ".yaml")).string();
     std::ofstream(format_file) << format.str();
+    const std::vector<fs::path> logs = jointwise_logs();
     double sum = 0.0;
-    for (int n = 1; n <= 6; ++n) {
+    for (std::size_t k = 0; k < logs.size(); ++k) {  // log k: joint k + 1 moves
         const auto r = run_command(kJacobid + " identify --quiet --format json --robot " + robot + " --log-format " + format_file + " --in " +
-                                   (data / "identification" / "ur-20_02_19_14harm50sec.csv").string() + " --validate " +
-                                   (data / "validation" / ("ur-20_01_22-joint_" + std::to_string(n) + ".csv")).string());
+                                   (data / "identification" / "ur-20_02_19_14harm50sec.csv").string() + " --validate " + logs[k].string());
         EXPECT_EQ(r.exit_code, 0) << r.err;
         if (r.exit_code != 0) return NAN;
         const nlohmann::json v = nlohmann::json::parse(r.out)["methods"]["jacobi"]["validation"];
-        const auto k = static_cast<std::size_t>(n - 1);
         sum += v["rms_error"][k].get<double>() / v["rms_torque"][k].get<double>();
     }
-    return sum / 6.0;
+    return sum / static_cast<double>(logs.size());
 }
 
 TEST(DriveGains, SharedUr10ePairValidatesAtLeastAsWellAsTheSourceGains) {
@@ -246,7 +257,11 @@ TEST(DriveGains, SharedUr10ePairValidatesAtLeastAsWellAsTheSourceGains) {
     }
     EXPECT_EQ(d["gains_line"].get<std::string>().rfind("gains: [", 0), 0u);
     const double with_ours = mean_moving_nrmse(robot, dir, "ours", ours), with_source = mean_moving_nrmse(robot, dir, "source", source);
-    EXPECT_LE(with_ours, with_source) << "mean moving-joint NRMSE with our gains " << with_ours << ", with the source's " << with_source;
+    EXPECT_TRUE(std::isfinite(with_ours) && std::isfinite(with_source));
+    // The bar is the mean over the six logs; on one log alone (the sanitizer run) it need not hold.
+    if (jointwise_logs().size() == 6) {
+        EXPECT_LE(with_ours, with_source) << "mean moving-joint NRMSE with our gains " << with_ours << ", with the source's " << with_source;
+    }
 }
 
 }  // namespace
