@@ -224,6 +224,22 @@ TEST(ExciteCli, TheWorkspaceBoxHoldsAtEveryRowAndChangesTheTrajectory) {
     EXPECT_NEAR(w["margin"].get<double>(), margin, 1e-9);
 }
 
+TEST(ExciteCli, AFaceCrossedBetweenTheOptimizersSamplesIsTightenedUntilEveryRowIsInside) {
+    // 6 samples per period for 3 harmonics: the optimizer misses the point's peaks between its samples, the
+    // control-rate check finds them and the tightening rounds move the faces in.
+    const std::string csv = scratch("sparse.csv"), json = scratch("sparse.json");
+    const auto r = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " --duration 10 --harmonics 3 --base-frequency 0.1 --starts 1 " +
+                               "--time-limit 10 --samples 6 --workspace-frame tool --workspace-point 0.4,0,0 --workspace-box 0.6,0.95,-0.25,0.25,-1,1 -o " +
+                               csv + " --json " + json);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_GE(nlohmann::json::parse(std::ifstream(json))["tightening_rounds"].get<int>(), 1);
+    const io::CsvTable t = io::read_csv(csv);
+    for (std::size_t i = 0; i < t.rows(); ++i) {
+        const Eigen::Vector2d p = tip(t.column("q1")[i], t.column("q2")[i]);
+        ASSERT_TRUE(p.x() >= 0.6 && p.x() <= 0.95 && p.y() >= -0.25 && p.y() <= 0.25) << "row " << i << ": " << p.transpose();
+    }
+}
+
 TEST(ExciteCli, BadWorkspaceInputIsOneLineNamingTheOption) {
     std::ofstream(scratch("urdf2r.yaml")) << "model: urdf\nurdf: " << JACOBID_SOURCE_DIR << "/examples/robots/planar2r.urdf\n";
     struct Case {
