@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <thread>
 #include <nlohmann/json.hpp>
 
@@ -41,6 +42,9 @@ struct ExciteOptions {
     double time_limit = 60.0;
     std::uint64_t seed = 1;
     bool quiet = false;
+    // Optional workspace box (excite/workspace_box.hpp): all three or none (the point defaults to the origin).
+    std::string workspace_frame;
+    std::vector<double> workspace_point, workspace_box;
 };
 
 // One value for every joint, or one per joint; `what` names the option in errors.
@@ -91,12 +95,23 @@ void check(const ExciteOptions& o) {
     if (o.samples < 0) throw InputError(fmt::format("--samples {}: expected >= 0 (0: automatic)", o.samples));
 }
 
+// The workspace options given together, or none; the workspace they describe (null: none).
+std::optional<excite::Workspace> workspace(const robot::RobotDescription& robot, const Eigen::VectorXd& pose, const ExciteOptions& o) {
+    const bool frame = !o.workspace_frame.empty(), box = !o.workspace_box.empty(), point = !o.workspace_point.empty();
+    if (!frame && !box && !point) return std::nullopt;
+    if (!frame) throw InputError(fmt::format("{}: needs --workspace-frame (the frame whose point the box holds)", box ? "--workspace-box" : "--workspace-point"));
+    if (!box) throw InputError("--workspace-frame: needs --workspace-box xmin,xmax,ymin,ymax,zmin,zmax (m, base frame)");
+    return excite::make_workspace(robot, o.workspace_frame, point ? o.workspace_point : std::vector<double>{0.0, 0.0, 0.0}, o.workspace_box, pose);
+}
+
 struct Sampled {
     std::vector<double> t;
     std::vector<std::vector<double>> q, qd, qdd, tau;  // per joint
+    std::vector<std::vector<double>> point;            // x, y, z of the workspace point (empty: no workspace)
 };
 
-Sampled sample(const excite::FourierTrajectory& trajectory, const robot::RobotModel& model, const Eigen::VectorXd& x, double duration, double rate) {
+Sampled sample(const excite::FourierTrajectory& trajectory, const robot::RobotModel& model, const Eigen::VectorXd& x, double duration, double rate,
+               const std::optional<excite::Workspace>& workspace) {
     const int n = trajectory.joints();
     Sampled s;
     s.q.resize(static_cast<std::size_t>(n)), s.qd.resize(static_cast<std::size_t>(n)), s.qdd.resize(static_cast<std::size_t>(n)),
@@ -104,9 +119,14 @@ Sampled sample(const excite::FourierTrajectory& trajectory, const robot::RobotMo
     const auto count = static_cast<std::size_t>(std::llround(duration * rate));
     Eigen::VectorXd q(n), qd(n), qdd(n);
     Eigen::MatrixXd Y(n, model.parameter_count());
+    if (workspace) s.point.resize(3);
     for (std::size_t i = 0; i <= count; ++i) {
         const double t = static_cast<double>(i) / rate;
         trajectory.evaluate(t, q, qd, qdd);
+        if (workspace) {
+            const Eigen::Vector3d p = workspace->frame.point(q, nullptr);
+            for (std::size_t a = 0; a < 3; ++a) s.point[a].push_back(p[static_cast<Eigen::Index>(a)]);
+        }
         model.regressor(q.data(), qd.data(), qdd.data(), Y);
         const Eigen::VectorXd tau = Y * x;
         s.t.push_back(t);
@@ -135,13 +155,27 @@ std::string csv(const Sampled& s) {
     return out;
 }
 
-void plot(const std::string& path, const Sampled& s) {
+void plot(const std::string& path, const Sampled& s, const std::optional<excite::Workspace>& workspace) {
     std::vector<plot::Panel> panels;
     const char* titles[3] = {"position (rad)", "velocity (rad/s)", "motor torque of the model (N.m)"};
     const std::vector<std::vector<double>>* values[3] = {&s.q, &s.qd, &s.tau};
     for (int p = 0; p < 3; ++p) {
         plot::Panel panel{titles[p], "t (s)", titles[p], false, false, {}, ""};
         for (std::size_t j = 0; j < s.q.size(); ++j) panel.series.push_back({fmt::format("joint {}", j + 1), s.t, (*values[p])[j], "lines"});
+        panels.push_back(std::move(panel));
+    }
+    if (workspace) {
+        // The point's coordinates with the box's faces as dashed lines of the same colour.
+        plot::Panel panel{fmt::format("workspace point of frame {} (base frame, m) and the box", workspace->frame_name), "t (s)", "m", false, false, {}, ""};
+        const std::vector<double> ends = {s.t.front(), s.t.back()};
+        for (int a = 0; a < 3; ++a) {
+            const char axis = "xyz"[a];
+            const auto k = static_cast<std::size_t>(a);
+            panel.series.push_back({std::string(1, axis), s.t, s.point[k], fmt::format("lines lc {}", a + 1)});
+            for (const double bound : {workspace->box.lower[a], workspace->box.upper[a]}) {
+                panel.series.push_back({fmt::format("{} = {:g}", axis, bound), ends, {bound, bound}, fmt::format("lines lc {} dt 2", a + 1)});
+            }
+        }
         panels.push_back(std::move(panel));
     }
     plot::render_png(path, panels);
@@ -164,10 +198,12 @@ void run(const ExciteOptions& o) {
         pose[j] = std::isnan(given_pose[static_cast<std::size_t>(j)]) ? 0.5 * (jd.lower_limit + jd.upper_limit) : given_pose[static_cast<std::size_t>(j)];
     }
     const std::vector<excite::JointLimits> limits = joint_limits(robot, pose, o);
+    const std::optional<excite::Workspace> box = workspace(robot, pose, o);
     excite::ProblemSettings ps;
     ps.criterion = o.criterion == "cond" ? excite::Criterion::Cond : excite::Criterion::LogDet;
     ps.samples = o.samples;
     excite::ExcitationProblem problem(*model, x, excite::FourierBasis(1.0 / o.base_frequency, o.harmonics, o.base_frequency), pose, limits, ps);
+    problem.set_workspace(box);
     if (!o.quiet) {
         fmt::print(stderr, "excite: {} joints x {} harmonics = {} coefficients, {} base parameters, {} samples per {} s period; {} starts, {} s limit\n", n,
                    o.harmonics, problem.variables(), model->parameter_count(), problem.samples(), 1.0 / o.base_frequency, o.starts, o.time_limit);
@@ -181,7 +217,15 @@ void run(const ExciteOptions& o) {
     if (!o.quiet) ds.progress = [](const std::string& line) { fmt::print(stderr, "excite: {}\n", line); };
     const excite::Design d = excite::design_excitation(problem, *model, x, limits, ds);
     const excite::FourierTrajectory trajectory = problem.trajectory(d.coefficients);
-    const Sampled s = sample(trajectory, *model, x, o.duration, o.rate);
+    const Sampled s = sample(trajectory, *model, x, o.duration, o.rate, box);
+    // The smallest distance from the point to a face over the trajectory (m), and that face.
+    double margin = std::numeric_limits<double>::infinity();
+    int closest = 0;
+    for (int f = 0; box && f < excite::kBoxFaces; ++f) {
+        const int a = f / 2;
+        const double distance = f % 2 == 0 ? box->box.upper[a] - d.workspace->max[a] : d.workspace->min[a] - box->box.lower[a];
+        if (distance < margin) margin = distance, closest = f;
+    }
     write_output(o.output, csv(s));
     if (!o.json.empty()) {
         nlohmann::json j;
@@ -220,13 +264,28 @@ void run(const ExciteOptions& o) {
                                              {"torque", d.check.ratio(k, 4)}}}});
         }
         j["joints"] = joints;
+        if (box) {
+            auto vec = [](const Eigen::Vector3d& v) { return std::vector<double>{v.x(), v.y(), v.z()}; };
+            j["workspace"] = {{"frame", box->frame_name},
+                              {"point", vec(box->frame.point_in_frame())},
+                              {"box", o.workspace_box},
+                              {"start", vec(box->start)},
+                              {"min", vec(d.workspace->min)},
+                              {"max", vec(d.workspace->max)},
+                              {"margin", margin}};
+        }
         write_output(o.json, j.dump(2) + "\n");
     }
-    if (!o.plot.empty()) plot(o.plot, s);
+    if (!o.plot.empty()) plot(o.plot, s, box);
     if (!o.quiet) {
         fmt::print(stderr, "excite: {} {:.6g}, cond {:.4g} in {:.1f} s ({} evaluations); largest limit use {:.3f} (joint {} {})\n",
                    o.criterion == "cond" ? "log cond" : "-log det", d.criterion,
                    d.cond, d.seconds, d.evaluations, d.check.worst, d.check.worst_joint + 1, excite::to_string(d.check.worst_kind));
+        if (box) {
+            fmt::print(stderr, "excite: workspace point of frame {}: x [{:.4f}, {:.4f}], y [{:.4f}, {:.4f}], z [{:.4f}, {:.4f}] m; closest to the box: {:.4f} m ({} face)\n",
+                       box->frame_name, d.workspace->min.x(), d.workspace->max.x(), d.workspace->min.y(), d.workspace->max.y(), d.workspace->min.z(),
+                       d.workspace->max.z(), margin, excite::face_name(closest));
+        }
     }
 }
 
@@ -265,6 +324,12 @@ void add_excite_command(CLI::App& app) {
     cmd->add_option("--time-limit", o->time_limit, "s for all starts together")->check(positive_number())->capture_default_str();
     cmd->add_option("--threads", o->threads, "starts optimized side by side (default: the machine's cores)")->check(whole_number_in(1, 4096))->capture_default_str();
     cmd->add_option("--seed", o->seed, "seed of the random starts")->check(whole_number_from(0))->capture_default_str();
+    cmd->add_option("--workspace-frame", o->workspace_frame,
+                    "keep a point of this frame inside --workspace-box: a joint number 1..n (the frame that moves with joint j's link), tool or last "
+                    "(joint n's), or a URDF link name");
+    cmd->add_option("--workspace-point", o->workspace_point, "m: x,y,z of the point in --workspace-frame (default 0,0,0)")->delimiter(',');
+    cmd->add_option("--workspace-box", o->workspace_box, "m, base frame: xmin,xmax,ymin,ymax,zmin,zmax; the point at --pose must be strictly inside")
+        ->delimiter(',');
     cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o] { run(*o); });
 }

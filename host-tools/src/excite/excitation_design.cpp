@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlopt.hpp>
 #include <random>
+#include <array>
 #include <atomic>
 #include <mutex>
 #include <thread>
@@ -61,10 +62,25 @@ Eigen::VectorXd random_start(ExcitationProblem& problem, std::mt19937_64& rng) {
     // g + 1 = value / room is linear in c for the kinematic kinds: scale to 0.5 of the worst.
     const Eigen::VectorXd g = problem.constraint_values(c, nullptr);
     double worst = 0.0;
-    for (Eigen::Index r = 0; r < g.size(); ++r) {
+    for (Eigen::Index r = 0; r < problem.workspace_row(); ++r) {
         if (r % kLimitKinds != static_cast<int>(LimitKind::Torque) && g[r] > -1.0) worst = std::max(worst, g[r] + 1.0);
     }
-    return worst > 0.0 ? Eigen::VectorXd(c * (0.5 / worst)) : c;
+    if (worst > 0.0) c *= 0.5 / worst;
+    // The workspace faces are not linear in c, but c = 0 (at rest at the pose) is strictly inside the box:
+    // halve the motion until the point keeps half of every face's room (at most 10 times).
+    for (int halving = 0; problem.workspace() && halving < 10; ++halving) {
+        if (problem.constraint_values(c, nullptr).tail(kBoxFaces).maxCoeff() <= -0.5) break;
+        c *= 0.5;
+    }
+    return c;
+}
+
+// Every face's room scaled by `factor(face)`: the user's box seen by the optimizer.
+template <typename Factor>
+WorkspaceBox scaled_box(const Workspace& workspace, const WorkspaceBox& box, Factor factor) {
+    std::array<double, kBoxFaces> factors{};
+    for (int f = 0; f < kBoxFaces; ++f) factors[static_cast<std::size_t>(f)] = factor(f);
+    return shrink_toward(box, workspace.start, factors);
 }
 
 struct LocalResult {
@@ -120,6 +136,9 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
         l.velocity *= kMargin, l.acceleration *= kMargin, l.torque *= kMargin;
     }
     problem.set_limits(tightened);
+    // The workspace box (if any) with the same margin; `box` is the user's.
+    const std::optional<WorkspaceBox> box = problem.workspace() ? std::optional<WorkspaceBox>(problem.workspace()->box) : std::nullopt;
+    if (box) problem.set_workspace_box(scaled_box(*problem.workspace(), *box, [](int) { return kMargin; }));
     // The starts on `threads` workers, each with its own copy of the problem (its caches are per instance; the
     // model's regressor is const). Start s draws from seed + s, so the result does not depend on the threads.
     const int workers = std::max(1, std::min(settings.threads, settings.starts));
@@ -167,12 +186,32 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
     }
     // Every control sample: a limit missed between the optimizer's samples tightens that limit by the
     // overshoot (plus 1 %) and re-optimizes from the best point.
+    // The workspace point too, against the user's box.
+    auto check_workspace_box = [&]() -> double {
+        if (!box) return 0.0;
+        Workspace user = *problem.workspace();
+        user.box = *box;
+        d.workspace = check_workspace(user, problem.trajectory(best.c), settings.control_rate);
+        return d.workspace->worst;
+    };
     for (;;) {
         d.check = check_limits(model, parameters, problem.trajectory(best.c), limits, settings.control_rate);
-        if (d.check.worst <= 1.0 || d.rounds >= kMaxRounds) break;
+        const double box_worst = check_workspace_box();
+        if ((d.check.worst <= 1.0 && box_worst <= 1.0) || d.rounds >= kMaxRounds) break;
         ++d.rounds;
-        say(fmt::format("round {}: joint {} {} at {:.4g} of its limit between the optimizer's samples; tightened, re-optimizing", d.rounds,
-                        d.check.worst_joint + 1, to_string(d.check.worst_kind), d.check.worst));
+        if (box_worst > d.check.worst) {
+            say(fmt::format("round {}: the workspace point at {:.4g} of the box's {} face between the optimizer's samples; tightened, re-optimizing", d.rounds,
+                            box_worst, face_name(d.workspace->worst_face)));
+        } else {
+            say(fmt::format("round {}: joint {} {} at {:.4g} of its limit between the optimizer's samples; tightened, re-optimizing", d.rounds,
+                            d.check.worst_joint + 1, to_string(d.check.worst_kind), d.check.worst));
+        }
+        if (box) {
+            const WorkspaceBox seen = problem.workspace()->box;
+            problem.set_workspace_box(scaled_box(*problem.workspace(), seen, [&](int f) {
+                return 1.0 / (1.01 * std::max(1.0, d.workspace->ratio[static_cast<std::size_t>(f)]));
+            }));
+        }
         for (std::size_t j = 0; j < tightened.size(); ++j) {
             JointLimits& l = tightened[j];
             const double pose = problem.pose()[static_cast<Eigen::Index>(j)];
@@ -187,6 +226,12 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
         const double left = std::max(2.0, (settings.time_limit - elapsed()) / (kMaxRounds - d.rounds + 1));
         const LocalResult r = local_run(problem, best.c, left, settings.max_evaluations, d.evaluations);
         if (r.violation <= kFeasible) best = r;
+    }
+    if (box) problem.set_workspace_box(*box);
+    if (d.workspace && d.workspace->worst > 1.0) {
+        throw InputError(fmt::format("excite: the workspace point reaches {:.4g} of the box's {} face at t = {:.4g} s between the optimizer's samples (use more --samples)",
+                                     d.workspace->worst, face_name(d.workspace->worst_face),
+                                     static_cast<double>(d.workspace->worst_sample) / settings.control_rate));
     }
     if (d.check.worst > 1.0) {
         throw InputError(fmt::format("excite: joint {} {} reaches {:.4g} of its limit at t = {:.4g} s between the optimizer's samples (use more --samples)",

@@ -6,6 +6,7 @@
 // is tightened by the overshoot and the best result re-optimized (at most a few rounds).
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,7 @@ struct Design {
     double criterion = 0.0;
     double cond = 0.0;
     LimitCheck check;
+    std::optional<WorkspaceCheck> workspace;  // with the problem's workspace box: the point at every control sample
     int evaluations = 0;
     int starts_run = 0;
     int rounds = 0;  // tightening rounds after the first check
@@ -35,7 +37,8 @@ struct Design {
     std::vector<double> start_criteria;  // the final criterion of each start (NaN: infeasible)
 };
 
-// InputError when no start meets the limits (e.g. the pose's gravity torque already above a torque limit).
+// The problem's workspace box (if any) is the user's: it is tightened like the limits while optimizing and
+// restored before returning. InputError when no start meets the limits (e.g. the pose's gravity torque already above a torque limit).
 Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& model, const Eigen::VectorXd& parameters,
                          const std::vector<JointLimits>& limits, const DesignSettings& settings);
 

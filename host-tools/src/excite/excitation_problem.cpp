@@ -15,6 +15,18 @@ constexpr double kStep = 1e-6;  // central-difference step in q (rad) and qd (ra
 // 1 / ||w_k|| per column of W (the scaling of both criteria and of cond).
 Eigen::VectorXd column_scales(const Eigen::MatrixXd& W) { return W.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse(); }
 
+// The Kreisselmeier-Steinhauser aggregate of `terms` (a smooth upper bound of their maximum); when `row` is not
+// null, its gradient (the softmax weights times each term's slope, `slopes` one per term) added to jacobian's `row`.
+double ks_aggregate(const std::vector<double>& terms, const std::vector<Eigen::VectorXd>& slopes, double rho, Eigen::MatrixXd* jacobian, int row) {
+    const double top = *std::max_element(terms.begin(), terms.end());
+    double sum = 0.0;
+    for (const double t : terms) sum += std::exp(rho * (t - top));
+    if (jacobian) {
+        for (std::size_t t = 0; t < terms.size(); ++t) jacobian->row(row) += std::exp(rho * (terms[t] - top)) / sum * slopes[t].transpose();
+    }
+    return top + std::log(sum) / rho;
+}
+
 }  // namespace
 
 const char* to_string(Criterion c) { return c == Criterion::Cond ? "cond" : "logdet"; }
@@ -51,6 +63,17 @@ ExcitationProblem::ExcitationProblem(const robot::RobotModel& model, Eigen::Vect
 void ExcitationProblem::set_limits(std::vector<JointLimits> limits) {
     if (static_cast<int>(limits.size()) != joints_) throw std::invalid_argument("ExcitationProblem::set_limits: one limit per joint");
     limits_ = std::move(limits);
+}
+
+void ExcitationProblem::set_workspace(std::optional<Workspace> workspace) {
+    if (workspace && workspace->frame.joints() != joints_) throw std::invalid_argument("ExcitationProblem::set_workspace: the frame's chain does not match the model");
+    workspace_ = std::move(workspace);
+    prepared_for_.resize(0);  // the points are prepared with the rest
+}
+
+void ExcitationProblem::set_workspace_box(const WorkspaceBox& box) {
+    if (!workspace_) throw std::invalid_argument("ExcitationProblem::set_workspace_box: no workspace");
+    workspace_->box = box;
 }
 
 double ExcitationProblem::limit(int joint, LimitKind kind) const {
@@ -102,6 +125,11 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
             qdd[j] -= 1.0;
             d.middleCols(static_cast<Eigen::Index>(2 * joints_ + j) * columns_, columns_) = plus - Y;
         }
+    }
+    if (workspace_) {
+        points_.resize(3, samples_);
+        point_jacobians_.resize(static_cast<std::size_t>(samples_));
+        for (int i = 0; i < samples_; ++i) points_.col(i) = workspace_->frame.point(q_.col(i), &point_jacobians_[static_cast<std::size_t>(i)]);
     }
     prepared_for_ = c;
 }
@@ -215,15 +243,26 @@ Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, E
                     if (jacobian) slopes.push_back(sign * slope / room);
                 }
             }
-            const double top = *std::max_element(terms.begin(), terms.end());
-            double sum = 0.0;
-            for (const double t : terms) sum += std::exp(settings_.ks_rho * (t - top));
-            g[row] = top + std::log(sum) / settings_.ks_rho;
-            if (jacobian) {
-                for (std::size_t t = 0; t < terms.size(); ++t) {
-                    jacobian->row(row) += std::exp(settings_.ks_rho * (terms[t] - top)) / sum * slopes[t].transpose();
-                }
+            g[row] = ks_aggregate(terms, slopes, settings_.ks_rho, jacobian, row);
+        }
+    }
+    if (workspace_) {
+        // Face f: the point's excursion from its start toward the face over the face's room, minus 1; its
+        // slope J_v(a, k) psi / room in joint k's coefficients (q_k = pose_k + c_k psi).
+        for (int f = 0; f < kBoxFaces; ++f) {
+            const int axis = f / 2, row = workspace_row() + f;
+            const double sign = f % 2 == 0 ? 1.0 : -1.0, room = face_room(workspace_->box, workspace_->start, f);
+            terms.clear();
+            slopes.clear();
+            for (int i = 0; i < samples_; ++i) {
+                terms.push_back(sign * (points_(axis, i) - workspace_->start[axis]) / room - 1.0);
+                if (!jacobian) continue;
+                Eigen::VectorXd slope(variables());
+                const Eigen::Matrix3Xd& J = point_jacobians_[static_cast<std::size_t>(i)];
+                for (int k = 0; k < joints_; ++k) slope.segment(static_cast<Eigen::Index>(k) * m, m) = (sign * J(axis, k) / room) * psi_.col(i);
+                slopes.push_back(std::move(slope));
             }
+            g[row] = ks_aggregate(terms, slopes, settings_.ks_rho, jacobian, row);
         }
     }
     return g;

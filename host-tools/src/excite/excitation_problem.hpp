@@ -17,12 +17,17 @@
 //    function KS(g) = max g + log(sum exp(rho (g - max g))) / rho >= max g (smooth, conservative); the
 //    torque is Y(q, qd, qdd) x with x the description's parameters (the model's torque). The limits are also
 //    checked at every control sample afterwards (check_limits).
+//  - Optional workspace box (workspace_box.hpp): per face of the box, the normalized excursion of a frame's
+//    point from its start toward the face, aggregated the same way; its gradient is exact:
+//    dp/dc = J_v(q) dq/dc, J_v the point's translational Jacobian (frame_kinematics.hpp).
 #include <Eigen/Core>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "excite/fourier_trajectory.hpp"
+#include "excite/workspace_box.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::excite {
@@ -55,7 +60,9 @@ public:
                       std::vector<JointLimits> limits, ProblemSettings settings);
 
     int variables() const { return joints_ * basis_.size(); }
-    int constraints() const { return joints_ * kLimitKinds; }
+    int constraints() const { return joints_ * kLimitKinds + (workspace_ ? kBoxFaces : 0); }
+    // The first constraint of the workspace box (its faces follow, face_name order), when there is one.
+    int workspace_row() const { return joints_ * kLimitKinds; }
     int samples() const { return samples_; }
     const FourierBasis& basis() const { return basis_; }
     const Eigen::VectorXd& pose() const { return pose_; }
@@ -65,7 +72,8 @@ public:
     // `gradient` is not null.
     double criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient);
     // The constraint values (<= 0 when met; constraint index j * kLimitKinds + kind), their Jacobian
-    // (constraints x variables) when `jacobian` is not null. A kind whose limit is infinite gives -1.
+    // (constraints x variables) when `jacobian` is not null. A kind whose limit is infinite gives -1. With a
+    // workspace, rows workspace_row() + face.
     Eigen::VectorXd constraint_values(const Eigen::VectorXd& c, Eigen::MatrixXd* jacobian);
     // cond(W_s) at c (whatever the criterion).
     double condition_number(const Eigen::VectorXd& c);
@@ -73,6 +81,11 @@ public:
     FourierTrajectory trajectory(const Eigen::VectorXd& c) const;
     // New limits for the constraints (the optimizer's tightening rounds); same joint count.
     void set_limits(std::vector<JointLimits> limits);
+    // The workspace box constraint (none: no box); its start must be the point at pose().
+    void set_workspace(std::optional<Workspace> workspace);
+    const std::optional<Workspace>& workspace() const { return workspace_; }
+    // A new box for the same point (the optimizer's margin and tightening rounds).
+    void set_workspace_box(const WorkspaceBox& box);
 
 private:
     void prepare(const Eigen::VectorXd& c);  // per-sample regressors and derivatives at c (cached)
@@ -90,6 +103,9 @@ private:
     Eigen::MatrixXd q_, qd_, qdd_, tau_;
     Eigen::MatrixXd W_;                 // (samples * joints) x columns
     std::vector<Eigen::MatrixXd> dY_;   // per sample, 3 * joints blocks (joints x columns): d/dq_j, d/dqd_j, d/dqdd_j
+    std::optional<Workspace> workspace_;
+    Eigen::Matrix3Xd points_;                      // the workspace point at every sample (base frame)
+    std::vector<Eigen::Matrix3Xd> point_jacobians_;  // per sample, dp/dq (3 x joints)
     Eigen::VectorXd prepared_for_;
 };
 

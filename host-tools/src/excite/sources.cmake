@@ -6,6 +6,8 @@ add_library(jacobid_excite STATIC
   ${CMAKE_CURRENT_LIST_DIR}/fourier_trajectory.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_problem.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_design.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/frame_kinematics.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/workspace_box.cpp
 )
 target_link_libraries(jacobid_excite PUBLIC jacobid_host PRIVATE NLopt::nlopt_cxx)
 jacobid_set_warnings(jacobid_excite)

@@ -84,6 +84,7 @@ private:
     // `link` belongs to the moving body `body` (-1: base); `body_to_link` maps link coordinates to body coordinates.
     void visit(const urdf::Link& link, int body, const Transform& body_to_link) {
         visited_.insert(&link);
+        chain_.links.push_back({link.name, body, body_to_link.R, body_to_link.p});
         add_inertial(body, link, body_to_link);
         for (const auto& joint_ptr : link.child_joints) {
             const urdf::Joint& joint = *joint_ptr;

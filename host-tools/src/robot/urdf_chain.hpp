@@ -15,6 +15,15 @@
 
 namespace jacobid::robot {
 
+// A URDF link's frame: the moving body that carries it (index into joints, -1: fixed to the base) and the
+// link frame in that body's frame (the origins of the fixed joints between them; identity for the body link).
+struct UrdfLinkFrame {
+    std::string name;
+    int body = -1;
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+};
+
 struct UrdfChain {
     std::vector<ChainJoint> joints;   // moving joints in topological order
     std::vector<std::string> names;   // URDF joint names
@@ -24,6 +33,7 @@ struct UrdfChain {
     // links fixed to that body whose <inertial> was merged into the body's standard parameters.
     std::vector<std::string> body_links;
     std::vector<std::vector<std::string>> merged_links;
+    std::vector<UrdfLinkFrame> links;  // every link, in the order visited from the root
 };
 
 // xml: the URDF text; source names it in error messages (the file path, or e.g. "<fuzz>").

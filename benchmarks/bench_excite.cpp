@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// One evaluation of `jacobid excite`'s optimizer (docs/excite.md, "Workspace box"): the criterion with its
+// gradient and the constraints with their Jacobian at a new point (what SLSQP asks per iteration), on the
+// PUMA 560 and the UR5-like arm, 5 harmonics at 0.1 Hz (100 samples per period), without (/0) and with (/1)
+// a workspace box on the last frame's point; and the box's share alone, the point and its Jacobian per sample.
+// Run: build/benchmarks/bench_excite --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include "excite/excitation_problem.hpp"
+#include "robot/robot_description.hpp"
+
+namespace {
+
+using namespace jacobid;
+
+void evaluation(benchmark::State& state, const char* robot_file) {
+    const robot::RobotDescription robot = robot::load_robot_description(std::string(JACOBID_EXAMPLES_DIR "/robots/") + robot_file);
+    const auto model = robot::make_robot_model(robot);
+    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
+    const int n = model->joint_count();
+    std::vector<excite::JointLimits> limits(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) limits[static_cast<std::size_t>(j)].lower = robot.joints[static_cast<std::size_t>(j)].lower_limit,
+                                limits[static_cast<std::size_t>(j)].upper = robot.joints[static_cast<std::size_t>(j)].upper_limit;
+    const Eigen::VectorXd pose = Eigen::VectorXd::Zero(n);
+    excite::ExcitationProblem problem(*model, x, excite::FourierBasis(10.0, 5, 0.1), pose, limits, {});
+    if (state.range(0) == 1) {
+        const std::vector<double> box = {-2, 2, -2, 2, -2, 2};
+        problem.set_workspace(excite::make_workspace(robot, "tool", {0.0, 0.0, 0.1}, box, pose));
+    }
+    Eigen::VectorXd c = 0.05 * Eigen::VectorXd::Random(problem.variables()), g;
+    Eigen::MatrixXd J;
+    double step = 1e-9;
+    for (auto _ : state) {
+        c[0] += step, step = -step;  // a new point every time: nothing cached
+        benchmark::DoNotOptimize(problem.criterion(c, &g));
+        benchmark::DoNotOptimize(problem.constraint_values(c, &J).data());
+    }
+    state.counters["samples"] = problem.samples();
+}
+
+void BM_ExciteEvaluationPuma560(benchmark::State& state) { evaluation(state, "puma560.yaml"); }
+void BM_ExciteEvaluationUr5Like(benchmark::State& state) { evaluation(state, "ur5_like.yaml"); }
+// The box's own share: the point and its Jacobian at one sample (prepare() does this per sample).
+void BM_WorkspacePointAndJacobianPuma560(benchmark::State& state) {
+    const robot::RobotDescription robot = robot::load_robot_description(JACOBID_EXAMPLES_DIR "/robots/puma560.yaml");
+    const excite::FrameKinematics frame(robot.chain, 5, {}, Eigen::Vector3d(0, 0, 0.1));
+    Eigen::VectorXd q = Eigen::VectorXd::Constant(6, 0.3);
+    Eigen::Matrix3Xd J;
+    for (auto _ : state) {
+        q[0] += 1e-9;
+        benchmark::DoNotOptimize(frame.point(q, &J).data());
+        benchmark::DoNotOptimize(J.data());
+    }
+}
+BENCHMARK(BM_WorkspacePointAndJacobianPuma560);
+BENCHMARK(BM_ExciteEvaluationPuma560)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExciteEvaluationUr5Like)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
