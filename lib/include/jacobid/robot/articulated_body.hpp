@@ -121,6 +121,20 @@ private:
         return r;
     }
 
+    // R M R^T, written out: GCC leaves Eigen's 3x3 products out of line in a function this size, and the
+    // calls cost as much as the arithmetic (callgrind on `jacobid simulate`).
+    static Eigen::Matrix3d congruence(const Eigen::Matrix3d& R, const Eigen::Matrix3d& M) noexcept {
+        double t[3][3];  // M R^T
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) t[r][c] = M(r, 0) * R(c, 0) + M(r, 1) * R(c, 1) + M(r, 2) * R(c, 2);
+        }
+        Eigen::Matrix3d out;
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) out(r, c) = R(r, 0) * t[0][c] + R(r, 1) * t[1][c] + R(r, 2) * t[2][c];
+        }
+        return out;
+    }
+
     static Eigen::Matrix3d skew(const Eigen::Vector3d& v) noexcept {
         Eigen::Matrix3d s;
         s << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
@@ -137,7 +151,13 @@ private:
             Eigen::Matrix3d& R = d.R[js];
             Eigen::Vector3d& p = d.p[js];
             p = joint.position;
-            if (revolute(joint)) {
+            if (revolute(joint) && joint.axis == Eigen::Vector3d::UnitZ()) {
+                // The MDH case (every MDH joint turns about z): R = R_fixed Rot(z, q), two columns mixed.
+                const double c = std::cos(q[j]), s = std::sin(q[j]);
+                R.col(0) = c * joint.rotation.col(0) + s * joint.rotation.col(1);
+                R.col(1) = c * joint.rotation.col(1) - s * joint.rotation.col(0);
+                R.col(2) = joint.rotation.col(2);
+            } else if (revolute(joint)) {
                 R.noalias() = joint.rotation * rotation(joint.axis, q[j]);
             } else {
                 R = joint.rotation;
@@ -210,9 +230,9 @@ private:
             // ... then in the antecedent's frame and about its origin: rotate by R, shift by p.
             const auto a = static_cast<std::size_t>(joint.antecedent);
             const Eigen::Matrix3d& R = d.R[js];
-            const Eigen::Matrix3d Ar = R * A * R.transpose();
-            const Eigen::Matrix3d Br = R * B * R.transpose();
-            const Eigen::Matrix3d Cr = R * C * R.transpose();
+            const Eigen::Matrix3d Ar = congruence(R, A);
+            const Eigen::Matrix3d Br = congruence(R, B);
+            const Eigen::Matrix3d Cr = congruence(R, C);
             const Eigen::Matrix3d P = skew(d.p[js]);
             const Eigen::Matrix3d PC = P * Cr;
             const Eigen::Matrix3d PBt = P * Br.transpose();
