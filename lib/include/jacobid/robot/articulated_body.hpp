@@ -122,7 +122,9 @@ private:
     }
 
     // R M R^T, written out: GCC leaves Eigen's 3x3 products out of line in a function this size, and the
-    // calls cost as much as the arithmetic (callgrind on `jacobid simulate`).
+    // calls cost as much as the arithmetic (callgrind on `jacobid simulate`). A symmetric M gives a
+    // symmetric result: its upper triangle is computed and mirrored.
+    template <bool Symmetric>
     static Eigen::Matrix3d congruence(const Eigen::Matrix3d& R, const Eigen::Matrix3d& M) noexcept {
         double t[3][3];  // M R^T
         for (int r = 0; r < 3; ++r) {
@@ -130,7 +132,19 @@ private:
         }
         Eigen::Matrix3d out;
         for (int r = 0; r < 3; ++r) {
-            for (int c = 0; c < 3; ++c) out(r, c) = R(r, 0) * t[0][c] + R(r, 1) * t[1][c] + R(r, 2) * t[2][c];
+            for (int c = Symmetric ? r : 0; c < 3; ++c) out(r, c) = R(r, 0) * t[0][c] + R(r, 1) * t[1][c] + R(r, 2) * t[2][c];
+        }
+        if (Symmetric) out(1, 0) = out(0, 1), out(2, 0) = out(0, 2), out(2, 1) = out(1, 2);
+        return out;
+    }
+
+    // S(p) M, column by column: p x m_c.
+    static Eigen::Matrix3d cross_columns(const Eigen::Vector3d& p, const Eigen::Matrix3d& M) noexcept {
+        Eigen::Matrix3d out;
+        for (int c = 0; c < 3; ++c) {
+            out(0, c) = p.y() * M(2, c) - p.z() * M(1, c);
+            out(1, c) = p.z() * M(0, c) - p.x() * M(2, c);
+            out(2, c) = p.x() * M(1, c) - p.y() * M(0, c);
         }
         return out;
     }
@@ -230,14 +244,15 @@ private:
             // ... then in the antecedent's frame and about its origin: rotate by R, shift by p.
             const auto a = static_cast<std::size_t>(joint.antecedent);
             const Eigen::Matrix3d& R = d.R[js];
-            const Eigen::Matrix3d Ar = congruence(R, A);
-            const Eigen::Matrix3d Br = congruence(R, B);
-            const Eigen::Matrix3d Cr = congruence(R, C);
-            const Eigen::Matrix3d P = skew(d.p[js]);
-            const Eigen::Matrix3d PC = P * Cr;
-            const Eigen::Matrix3d PBt = P * Br.transpose();
-            // A_O = A' + P B'^T - B' P - P C' P (P^T = -P), B_O = B' + P C', C_O = C'.
-            d.A[a] += Ar + PBt + PBt.transpose() - PC * P;
+            const Eigen::Matrix3d Ar = congruence<true>(R, A);
+            const Eigen::Matrix3d Br = congruence<false>(R, B);
+            const Eigen::Matrix3d Cr = congruence<true>(R, C);
+            const Eigen::Vector3d& p = d.p[js];
+            const Eigen::Matrix3d PC = cross_columns(p, Cr);
+            const Eigen::Matrix3d PBt = cross_columns(p, Br.transpose());
+            // A_O = A' + P B'^T - B' P - P C' P with P = S(p) (P^T = -P, so that X P = -(P X^T)^T),
+            // B_O = B' + P C', C_O = C'.
+            d.A[a] += Ar + PBt + PBt.transpose() + cross_columns(p, PC.transpose()).transpose();
             d.B[a] += Br + PC;
             d.C[a] += Cr;
             const Eigen::Vector3d f = R * pf;
