@@ -12,7 +12,7 @@ int RobotModel::parameter_index(const std::string& name) const {
     return it == names.end() ? -1 : static_cast<int>(it - names.begin());
 }
 
-ForwardDynamics::ForwardDynamics(const RobotModel& model, Eigen::VectorXd parameters)
+ForwardDynamics::ForwardDynamics(const RobotModel& model, Eigen::VectorXd parameters, ForwardDynamicsSolver solver)
     : model_(model),
       parameters_(std::move(parameters)),
       D_(model.joint_count(), model.parameter_count()),
@@ -22,7 +22,9 @@ ForwardDynamics::ForwardDynamics(const RobotModel& model, Eigen::VectorXd parame
       bias_(model.joint_count()),
       rhs_(model.joint_count()),
       base_(model.joint_count()),
-      llt_(model.joint_count()) {}
+      llt_(model.joint_count()) {
+    if (solver == ForwardDynamicsSolver::articulated_body) direct_ = model_.articulated_body(parameters_);
+}
 
 void ForwardDynamics::evaluate(const double* q, const double* qd, const double* qdd, Eigen::VectorXd& out) {
     if (model_.inverse_dynamics(q, qd, qdd, parameters_, out.data())) return;
@@ -43,6 +45,7 @@ const Eigen::MatrixXd& ForwardDynamics::inertia(const double* q) {
 }
 
 bool ForwardDynamics::accelerations(const double* q, const double* qd, const double* tau, double* qdd) {
+    if (direct_) return direct_->accelerations(q, qd, tau, qdd);
     const Eigen::Index n = model_.joint_count();
     inertia(q);
     evaluate(q, qd, zero_.data(), bias_);

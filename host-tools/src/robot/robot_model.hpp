@@ -11,6 +11,20 @@
 
 namespace jacobid::robot {
 
+// How ForwardDynamics solves for qdd: the model's own O(n) articulated-body algorithm (serial robots,
+// lib/include/jacobid/robot/articulated_body.hpp), or the inertia matrix M(q) by columns and a Cholesky
+// solve, which every model has and which stays the reference. A model without the first uses the second.
+enum class ForwardDynamicsSolver { articulated_body, inertia_matrix };
+
+// A model's direct forward dynamics with its parameters bound once (RobotModel::articulated_body).
+class DirectForwardDynamics {
+public:
+    virtual ~DirectForwardDynamics() = default;
+    // qdd for the motor torque tau (friction included in the model) at (q, qd); false (qdd untouched) when
+    // the inertia matrix at q is not positive definite. Does not allocate.
+    virtual bool accelerations(const double* q, const double* qd, const double* tau, double* qdd) = 0;
+};
+
 class RobotModel {
 public:
     virtual ~RobotModel() = default;
@@ -26,6 +40,13 @@ public:
     virtual bool inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const {
         (void)q, (void)qd, (void)qdd, (void)X, (void)tau;
         return false;
+    }
+
+    // The articulated-body forward dynamics for the parameters X, if the model has one; the default has
+    // none (nullptr), and ForwardDynamics uses the inertia matrix.
+    virtual std::unique_ptr<DirectForwardDynamics> articulated_body(const Eigen::VectorXd& X) const {
+        (void)X;
+        return nullptr;
     }
 
     // Index of a parameter by name, -1 if the model has none of that name.
@@ -48,11 +69,15 @@ public:
 //   h(q, qd) = D(q, qd, 0) X,  M(q) e_j = D(q, 0, e_j) X - D(q, 0, 0) X,  qdd = M^-1 (tau - h).
 // The column trick needs no model-specific code, so a new model is simulated as soon as its regressor
 // exists; a model with a direct inverse dynamics (RobotModel::inverse_dynamics) is evaluated through it
-// instead, the same n + 2 evaluations at a fraction of the cost. Workspace is preallocated in the
+// instead, the same n + 2 evaluations at a fraction of the cost. A model with an articulated-body route
+// (RobotModel::articulated_body) skips M(q) altogether in accelerations() unless `solver` asks for the
+// inertia matrix; inertia() and torques() are the same either way. Workspace is preallocated in the
 // constructor; accelerations() does not allocate.
 class ForwardDynamics {
 public:
-    ForwardDynamics(const RobotModel& model, Eigen::VectorXd parameters);
+    ForwardDynamics(const RobotModel& model, Eigen::VectorXd parameters, ForwardDynamicsSolver solver = ForwardDynamicsSolver::articulated_body);
+    // The solver accelerations() uses (inertia_matrix when the model has no articulated-body route).
+    ForwardDynamicsSolver solver() const { return direct_ ? ForwardDynamicsSolver::articulated_body : ForwardDynamicsSolver::inertia_matrix; }
     const Eigen::VectorXd& parameters() const { return parameters_; }
     // Inertia matrix at q.
     const Eigen::MatrixXd& inertia(const double* q);
@@ -72,6 +97,7 @@ private:
     Eigen::MatrixXd M_;
     Eigen::VectorXd zero_, unit_, bias_, rhs_, base_;
     Eigen::LLT<Eigen::MatrixXd> llt_;
+    std::unique_ptr<DirectForwardDynamics> direct_;
 };
 
 }  // namespace jacobid::robot

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "jacobid/robot/articulated_body.hpp"
 #include "jacobid/robot/rnea_regressor.hpp"
 
 namespace jacobid::robot {
@@ -20,9 +21,52 @@ public:
     // tau = W_standard X* with X*[base_columns[b]] = X[b], all other standard entries 0.
     virtual void torques(const double* q, const double* qd, const double* qdd, const std::vector<int>& base_columns, const Eigen::VectorXd& X,
                          double* tau) const = 0;
+    // The articulated-body forward dynamics of the same standard vector X*.
+    virtual std::unique_ptr<DirectForwardDynamics> articulated_body(const std::vector<int>& base_columns, const Eigen::VectorXd& X) const = 0;
 };
 
 namespace {
+
+// The articulated-body algorithm of N joints on the standard parameters X*: the rigid bodies from the
+// inertial and rotor columns, the friction columns (FV, FC, FOFF) subtracted from the motor torque first,
+// exactly as they enter tau = W X* on the inverse-dynamics side.
+template <int N>
+class ArticulatedBodyRoute final : public DirectForwardDynamics {
+public:
+    using Parameters = typename RneaRegressor<N>::Parameters;
+    ArticulatedBodyRoute(const RneaRegressor<N>& regressor, const Parameters& standard)
+        : regressor_(regressor), body_(regressor.chain(), regressor.gravity()), standard_(standard) {
+        body_.set_standard_parameters(regressor.layout(), standard);
+    }
+
+    bool accelerations(const double* q, const double* qd, const double* tau, double* qdd) override {
+        const int n = regressor_.joint_count();
+        const auto& layout = regressor_.layout();
+        vq_.setZero(), vqd_.setZero(), vtau_.setZero();
+        for (int j = 0; j < n; ++j) {
+            vq_[j] = q[j], vqd_[j] = qd[j];
+            double friction = standard_[layout.column(j, ParameterKind::FV)] * qd[j] +
+                              standard_[layout.column(j, ParameterKind::FC)] * regressor_.coulomb(j)(qd[j]);
+            const int offset = layout.column(j, ParameterKind::FOFF);
+            if (offset >= 0) friction += standard_[offset];
+            vtau_[j] = tau[j] - friction;
+        }
+        const ArticulatedBodyStatus status = body_.forward_dynamics(vq_, vqd_, vtau_, data_, vqdd_);
+        if (status == ArticulatedBodyStatus::NonFiniteInput) {
+            throw std::invalid_argument("robot forward dynamics: non-finite joint position, velocity or torque");
+        }
+        if (status != ArticulatedBodyStatus::Ok) return false;
+        for (int j = 0; j < n; ++j) qdd[j] = vqdd_[j];
+        return true;
+    }
+
+private:
+    const RneaRegressor<N>& regressor_;  // owned by the model, which outlives its forward dynamics
+    ArticulatedBody<N> body_;
+    Parameters standard_;
+    typename ArticulatedBody<N>::Data data_;
+    typename ArticulatedBody<N>::Joints vq_, vqd_, vtau_, vqdd_;
+};
 
 // The joint count is a template parameter of the lib regressor: one instantiation per count, so that a
 // 6-axis arm runs the 6 x 84 fixed-size code rather than a padded maximum.
@@ -55,15 +99,24 @@ public:
                  double* tau) const override {
         typename RneaRegressor<N>::Joints vq, vqd, vqdd, vtau;
         load(q, qd, qdd, vq, vqd, vqdd);
-        typename RneaRegressor<N>::Parameters standard = RneaRegressor<N>::Parameters::Zero();
-        for (std::size_t b = 0; b < base_columns.size(); ++b) standard[base_columns[b]] = X[static_cast<Eigen::Index>(b)];
-        if (regressor_.inverse_dynamics(vq, vqd, vqdd, standard, vtau) != RegressorStatus::Ok) {
+        if (regressor_.inverse_dynamics(vq, vqd, vqdd, standard_vector(base_columns, X), vtau) != RegressorStatus::Ok) {
             throw std::invalid_argument("robot inverse dynamics: non-finite joint position, velocity or acceleration");
         }
         for (int j = 0; j < regressor_.joint_count(); ++j) tau[j] = vtau[j];
     }
 
+    std::unique_ptr<DirectForwardDynamics> articulated_body(const std::vector<int>& base_columns, const Eigen::VectorXd& X) const override {
+        return std::make_unique<ArticulatedBodyRoute<N>>(regressor_, standard_vector(base_columns, X));
+    }
+
 private:
+    // X* with X*[base_columns[b]] = X[b], all other standard entries 0.
+    static typename RneaRegressor<N>::Parameters standard_vector(const std::vector<int>& base_columns, const Eigen::VectorXd& X) {
+        typename RneaRegressor<N>::Parameters standard = RneaRegressor<N>::Parameters::Zero();
+        for (std::size_t b = 0; b < base_columns.size(); ++b) standard[base_columns[b]] = X[static_cast<Eigen::Index>(b)];
+        return standard;
+    }
+
     void load(const double* q, const double* qd, const double* qdd, typename RneaRegressor<N>::Joints& vq, typename RneaRegressor<N>::Joints& vqd,
               typename RneaRegressor<N>::Joints& vqdd) const {
         vq.setZero(), vqd.setZero(), vqdd.setZero();
@@ -163,6 +216,10 @@ Eigen::VectorXd SerialRobotModel::base_values(const Eigen::VectorXd& standard) c
 bool SerialRobotModel::inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const {
     evaluator_->torques(q, qd, qdd, base_.base_columns, X, tau);
     return true;
+}
+
+std::unique_ptr<DirectForwardDynamics> SerialRobotModel::articulated_body(const Eigen::VectorXd& X) const {
+    return evaluator_->articulated_body(base_.base_columns, X);
 }
 
 }  // namespace jacobid::robot

@@ -42,6 +42,9 @@ public:
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
     // Newton-Euler with the base values placed on their standard columns (W_std X* = W_base X): exact, O(n).
     bool inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const override;
+    // Featherstone's articulated-body algorithm on the same standard vector (base values on their columns):
+    // the regrouped inertias give the same M(q) and hence the same qdd as the inertia-matrix route.
+    std::unique_ptr<DirectForwardDynamics> articulated_body(const Eigen::VectorXd& X) const override;
 
     const SerialRobotConfig& config() const { return config_; }
     int standard_parameter_count() const { return static_cast<int>(standard_names_.size()); }
