@@ -17,6 +17,7 @@
 #include "io/csv_table.hpp"
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
+#include "excite_test_support.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -25,14 +26,10 @@ namespace fs = std::filesystem;
 using jacobid::test::run_command;
 using namespace jacobid;
 
-const std::string kJacobid = JACOBID_EXECUTABLE;
-const std::string kTwoLink = std::string(JACOBID_SOURCE_DIR) + "/examples/robots/planar2r_mdh.yaml";
+using test::kJacobid;
+using test::kTwoLink;
 
-std::string scratch(const std::string& name) {
-    const fs::path dir = test::scratch_directory() / "excite";
-    fs::create_directories(dir);
-    return (dir / name).string();
-}
+std::string scratch(const std::string& name) { return test::excite_scratch("excite", name); }
 
 TEST(FourierBasis, EveryFunctionIsAtRestAtBothEndsAndItsDerivativesMatchFiniteDifferences) {
     const excite::FourierBasis basis(10.0, 4, 0.13);  // a period that is not a multiple of 1 / f: the correction does all

@@ -21,6 +21,7 @@
 #include "kdl_forward_kinematics.hpp"
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
+#include "excite_test_support.hpp"
 #include "scratch_directory.hpp"
 #include "serial_test_support.hpp"
 
@@ -30,14 +31,10 @@ namespace fs = std::filesystem;
 using jacobid::test::run_command;
 using namespace jacobid;
 
-const std::string kJacobid = JACOBID_EXECUTABLE;
-const std::string kTwoLink = std::string(JACOBID_SOURCE_DIR) + "/examples/robots/planar2r_mdh.yaml";
+using test::kJacobid;
+using test::kTwoLink;
 
-std::string scratch(const std::string& name) {
-    const fs::path dir = test::scratch_directory() / "excite_workspace";
-    fs::create_directories(dir);
-    return (dir / name).string();
-}
+std::string scratch(const std::string& name) { return test::excite_scratch("excite_workspace", name); }
 
 // Random joint positions within [-2.5, 2.5] (prismatic joints within [-0.15, 0]).
 std::vector<Eigen::VectorXd> random_poses(const robot::RobotDescription& robot, int count) {
