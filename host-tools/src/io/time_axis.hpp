@@ -2,6 +2,7 @@
 #pragma once
 // The time column of a log: strictly increasing and uniformly sampled within a stated tolerance.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "io/csv_table.hpp"
@@ -16,6 +17,13 @@ struct TimeAxis {
 
 // Default tolerance on each step: |t[i+1] - t[i] - Ts| <= tolerance * Ts.
 constexpr double kDefaultTimeTolerance = 0.01;
+
+// The sample periods a log may have: those of the estimate stream (1 ns to 1000 s). The time column is
+// exempt from the +-1e30 bound on log values (nanosecond epochs are ~1e18), so its steps are bounded here:
+// a log whose steps were 1e200 s ran into "too short for the window" after a window search of minutes.
+constexpr double kMinSamplePeriod = 1e-9, kMaxSamplePeriod = 1e3;
+// InputError "<where>: median time step ... s is not within 1e-09 .. 1000 s ..." unless the step is.
+void require_plausible_sample_period(double median_step, const std::string& where);
 
 // Checks `time` (column `column_name` of `table`) and returns its sample period. InputError names the line
 // of the first step that is not positive or deviates from the median step by more than the tolerance.
