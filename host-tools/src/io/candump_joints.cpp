@@ -84,11 +84,16 @@ void regrid_cycle_times(std::vector<double>& t, const std::vector<SampleSpan>& s
                                      at == widest ? fmt::format(", {:.4g} ms after the cycle on line {}", 1e3 * step, spans[at - 1].first_line) : "",
                                      kCycleJitterTolerance));
     }
-    c.cycle = cycle;
+    // The controller's nominal cycle: the fit rounded to candump's stamp resolution of 1 us when that moves
+    // it by less than 1e-4 (the fit of a 1 ms cycle under +-0.3 ms jitter is off by ~1 ns, which would scale
+    // inertias by ~2e-6); a cycle of no whole number of microseconds (333.33 us) keeps the fit.
+    const double rounded = std::round(cycle * 1e6) * 1e-6;
+    const double nominal = std::abs(rounded - cycle) < 1e-4 * cycle ? rounded : cycle;
+    c.cycle = nominal;
     c.max_jitter = max_jitter;
     c.regridded = max_jitter > 1e-3 * cycle;
     if (c.regridded) {
-        for (std::size_t k = 0; k < n; ++k) t[k] = cycle * static_cast<double>(k);
+        for (std::size_t k = 0; k < n; ++k) t[k] = nominal * static_cast<double>(k);
     }
 }
 

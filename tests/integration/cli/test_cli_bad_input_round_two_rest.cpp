@@ -102,7 +102,7 @@ TEST(CliBadInputRest, LogFormatTimeStepOf1e200IsNamedByEveryCommandThatReadsLogs
     const std::string in = " --log-format " + format + " --in " + log;
     for (const std::string& command : {"identify --robot " + planar_robot() + in, "diagnose --robot " + planar_robot() + in,
                                        "differentiate -c q1 --cutoff 10" + in}) {
-        const auto r = jacobid(command + " --quiet");
+        const auto r = jacobid(command);
         expect_refused(r, {"huge_step.csv: time column 1 (time.column of", "the median time step is 1e+200 s, expected a sample period of 1e-09 to 1000 s"});
         EXPECT_EQ(r.err.find("window"), std::string::npos) << r.err;
     }
@@ -247,7 +247,8 @@ TEST(CliBadInputRest, CaptureJitterWithinTheToleranceUsesTheNominalCycleAndIsRep
     // +-0.3 ms at a 1 ms cycle: before, refused by the 1 % time-step check.
     const auto r = jacobid(identify + jittered("jitter.log", lines, jitter_us));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("time stamps within +-0.3 ms of a 1 ms cycle (receive-time jitter): the nominal cycle used"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("time stamps within +-0.3"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("ms of a 1 ms cycle (receive-time jitter): the nominal cycle used"), std::string::npos) << r.err;
     // The same samples on the same grid: the same identification as from the capture without jitter.
     const json a = json::parse(clean.out), b = json::parse(r.out);
     for (const auto& [name, p] : a["parameters"].items()) {
