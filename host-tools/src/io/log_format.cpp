@@ -323,10 +323,10 @@ std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, cons
     // The median step is the nominal period (robust to the UR10e's 10/12 ms alternation and rare steps);
     // a step farther than half of it from it is irregular and named, a step beyond max_gap is a gap.
     report.median_step = median_step(t);
+    if (!std::isfinite(t.back() - t.front())) throw InputError(fmt::format("{}: the time span {} s to {} s is not finite", source, t.front(), t.back()));
     const std::string time_column = format.time.index > 0 ? std::to_string(format.time.index) : "'" + printable_cell(format.time.name) + "'";
     require_plausible_sample_period(report.median_step, fmt::format("{}: time column {} (time.column of {}, scale {:g} s per unit)", source,
                                                                     time_column, format.source, format.time_scale));
-    if (!std::isfinite(t.back() - t.front())) throw InputError(fmt::format("{}: the time span {} s to {} s is not finite", source, t.front(), t.back()));
     const double max_gap = settings.max_gap > 0.0 ? settings.max_gap : 3.0 * report.median_step;
     const UniformGrid grid = uniform_grid(t, max_gap, settings.period);
     // A grid far denser than the log (an imposed period, or steps of 1e-300 s) would exhaust memory. With

@@ -11,10 +11,10 @@
 namespace jacobid::io {
 
 void require_plausible_sample_period(double median_step, const std::string& where) {
-    if (median_step >= kMinSamplePeriod && median_step <= kMaxSamplePeriod) return;
-    throw InputError(fmt::format("{}: the median time step is {:.6g} s, expected a sample period of {:g} to {:g} s (is the time column in "
+    if (median_step <= kMaxSamplePeriod) return;
+    throw InputError(fmt::format("{}: the median time step is {:.6g} s, expected a sample period of at most {:g} s (is the time column in "
                                  "seconds? a log format's time.scale gives seconds per unit)",
-                                 where, median_step, kMinSamplePeriod, kMaxSamplePeriod));
+                                 where, median_step, kMaxSamplePeriod));
 }
 
 TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_name, double tolerance) {

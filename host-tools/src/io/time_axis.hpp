@@ -18,11 +18,12 @@ struct TimeAxis {
 // Default tolerance on each step: |t[i+1] - t[i] - Ts| <= tolerance * Ts.
 constexpr double kDefaultTimeTolerance = 0.01;
 
-// The sample periods a log may have: those of the estimate stream (1 ns to 1000 s). The time column is
-// exempt from the +-1e30 bound on log values (nanosecond epochs are ~1e18), so its steps are bounded here:
-// a log whose steps were 1e200 s ran into "too short for the window" after a window search of minutes.
-constexpr double kMinSamplePeriod = 1e-9, kMaxSamplePeriod = 1e3;
-// InputError "<where>: median time step ... s is not within 1e-09 .. 1000 s ..." unless the step is.
+// The longest sample period a log may have: the estimate stream's (1000 s). The time column is exempt from
+// the +-1e30 bound on log values (nanosecond epochs are ~1e18), so its steps are bounded here: a log whose
+// steps were 1e200 s ran into "too short for the window". (Periods below 1 ns are refused where a kernel or
+// a grid is made from them.)
+constexpr double kMaxSamplePeriod = 1e3;
+// InputError "<where>: the median time step is ... s, expected a sample period of at most 1000 s ..." beyond it.
 void require_plausible_sample_period(double median_step, const std::string& where);
 
 // Checks `time` (column `column_name` of `table`) and returns its sample period. InputError names the line

@@ -102,7 +102,7 @@ TEST(HalOdrive, FuzzRegressionOverflowingGearRatioIsOutOfRangeNotInfinite) {
     c.mapping.torque_constant = 0.083;
     // The fuzzer's gear ratio is now refused at configuration (issue 20: |N| within 1e-6..1e6); the largest
     // valid ratio with a torque constant near the double's limit still overflows the decoded torque.
-    EXPECT_EQ(odrive::validate(c), ConfigStatus::InvalidGearRatio);
+    EXPECT_EQ(odrive::validate(c), ConfigStatus::GearRatioOutOfRange);
     c.mapping.gear_ratio = -1e6;
     c.mapping.torque_constant = 1e300;
     odrive::JointDecoder d;
