@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/command.hpp"
+#include "io/printable_text.hpp"
 
 namespace {
 
@@ -16,7 +17,9 @@ int report_input_error(const CLI::App& app, std::string message) {
     std::replace(message.begin(), message.end(), '\n', ' ');
     const auto subcommands = app.get_subcommands();
     const std::string command = subcommands.empty() ? std::string() : " " + subcommands.front()->get_name();
-    fmt::print(stderr, "jacobid{}: error: {}\n", command, message);
+    // The last safety net for user text a message quotes without io::printable_cell: control and invisible
+    // characters escaped, a message of a huge token cut (io/printable_text.hpp).
+    fmt::print(stderr, "jacobid{}: error: {}\n", command, jacobid::io::printable_message(message));
     return jacobid::kExitInputError;
 }
 

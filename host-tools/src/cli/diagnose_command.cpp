@@ -39,6 +39,7 @@ struct DiagnoseOptions {
 
 void run(DiagnoseOptions o) {
     check_outputs({{"--output", o.output}}, {{"--robot", o.robot}, {"--in", o.in}, {"--validate", o.validate}, {"--log-format", o.log_format.file}});
+    check_output_directory({"--report", o.report});  // written after the work: checked before it
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);

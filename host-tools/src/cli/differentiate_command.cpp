@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <utility>
 
 #include "cli/command.hpp"
 #include "cli/kernel_options.hpp"
@@ -119,7 +121,32 @@ std::string estimate_rows(const io::CsvTable& table, const std::string& what, co
     return out;
 }
 
+// The entries (0-based) of the first value given twice, if any.
+template <typename T>
+std::optional<std::pair<std::size_t, std::size_t>> first_repeat(const std::vector<T>& values) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        for (std::size_t k = 0; k < i; ++k) {
+            if (values[k] == values[i]) return std::make_pair(k, i);
+        }
+    }
+    return std::nullopt;
+}
+
+// Each output column once: `-c q1,q1` or `--orders 1,1` wrote a header that jacobid's own CSV reader refuses.
+void require_distinct_outputs(const DifferentiateOptions& o) {
+    if (const auto r = first_repeat(o.columns)) {
+        throw InputError(fmt::format("--columns: '{}' is given twice (entries {} and {}), which would write its columns twice; give each column once",
+                                     io::printable_cell(o.columns[r->second]), r->first + 1, r->second + 1));
+    }
+    if (const auto r = first_repeat(o.orders)) {
+        const int n = o.orders[r->second];
+        throw InputError(fmt::format("--orders: order {} is given twice (entries {} and {}), which would write the column '{}' twice; give each order once",
+                                     n, r->first + 1, r->second + 1, io::printable_cell(channel_name(o.columns.front(), n))));
+    }
+}
+
 void run(const DifferentiateOptions& o) {
+    require_distinct_outputs(o);
     check_outputs({{"--out", o.output}}, {{"--in", o.input}, {"--log-format", o.log_format.file}});
     io::LogColumnNames names;  // q1.., qd1.., tau1.. from the log format's joints
     names.time = o.time_column;

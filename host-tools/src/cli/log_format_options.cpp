@@ -8,6 +8,7 @@
 
 #include "cli/option_checks.hpp"
 #include "core/errors.hpp"
+#include "identify/log_columns.hpp"
 
 namespace jacobid::cli {
 
@@ -109,6 +110,7 @@ io::LogColumnNames robot_column_names(const robot::RobotDescription& robot, cons
         names.q.push_back(robot.joints[j].position_column);
         names.qd.push_back(fmt::format("qd{}", j + 1));
         names.tau.push_back(robot.joints[j].torque_column);
+        names.q_bounds.push_back(identify::position_bounds(robot, j));
     }
     return names;
 }

@@ -72,6 +72,7 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
 
 void run(const MonteCarloOptions& o) {
     check_outputs({{"--output", o.output}}, {{"--robot", o.robot}});
+    check_output_directory({"--report", o.report});  // written after the work: checked before it
     montecarlo::StudySettings s;
     s.robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
     SimulationOptions simulation = o;  // the description's controller, if any

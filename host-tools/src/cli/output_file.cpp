@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "cli/command.hpp"
 
@@ -52,6 +53,38 @@ void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_li
         }
         check_writable(*out);
     }
+}
+
+void check_output_directory(const NamedPath& directory) {
+    if (directory.path.empty()) return;
+    std::error_code ec;
+    if (fs::exists(directory.path, ec) && !fs::is_directory(directory.path, ec)) {
+        throw InputError(fmt::format("{} {}: exists and is not a directory", directory.option, directory.path));
+    }
+    // The folders that do not exist yet, innermost first, to remove them again after the try.
+    std::vector<fs::path> created;
+    for (fs::path p = fs::absolute(directory.path, ec).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        created.push_back(p);
+        if (p == p.parent_path()) break;
+    }
+    auto remove_created = [&] {
+        for (const fs::path& p : created) fs::remove(p, ec);
+    };
+    fs::create_directories(directory.path, ec);
+    if (ec) {
+        const std::string why = ec.message();
+        remove_created();
+        throw InputError(fmt::format("{} {}: cannot create the directory: {}", directory.option, directory.path, why));
+    }
+    const fs::path probe = fs::path(directory.path) / ".jacobid-write-check";
+    std::FILE* f = std::fopen(probe.c_str(), "wb");
+    const int err = errno;
+    if (f) {
+        std::fclose(f);
+        fs::remove(probe, ec);
+    }
+    remove_created();
+    if (!f) throw InputError(fmt::format("{} {}: cannot write in the directory: {}", directory.option, directory.path, std::strerror(err)));
 }
 
 void prepare_output_directory(const NamedPath& directory) {

@@ -19,6 +19,11 @@ struct NamedPath {
 // the log it came from). InputError naming the option and the path otherwise.
 void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_list<NamedPath> inputs = {});
 
+// Checks, before any work is done, that an output folder (--report DIR) can be written: it is a directory
+// or can be created, and a file can be created in it. What the check created is removed again (the
+// folder is made when the report is written). InputError naming the option and the path otherwise.
+void check_output_directory(const NamedPath& directory);
+
 // Checks an output folder (paper-sines --out-dir): it exists as a directory or is created now.
 void prepare_output_directory(const NamedPath& directory);
 

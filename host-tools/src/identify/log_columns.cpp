@@ -4,9 +4,16 @@
 #include <fmt/core.h>
 
 #include "core/errors.hpp"
+#include "io/printable_text.hpp"
 #include "io/time_axis.hpp"
 
 namespace jacobid::identify {
+
+std::optional<io::PositionBounds> position_bounds(const robot::RobotDescription& robot, std::size_t j) {
+    const robot::JointDescription& joint = robot.joints[j];
+    if (!joint.limits_given || !(joint.upper_limit > joint.lower_limit)) return std::nullopt;
+    return io::PositionBounds{joint.lower_limit, joint.upper_limit, fmt::format("joint {} ({})", j + 1, joint.name)};
+}
 
 LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
                        double time_tolerance, double grid_period) {
@@ -22,9 +29,18 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
         log.sample_period = axis.sample_period;
         log.start_time = axis.start;
     }
-    for (const auto& j : robot.joints) {
-        log.q.push_back(&table.column(j.position_column));  // InputError names the file and the columns it has
-        log.q_names.push_back(j.position_column);
+    for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+        const std::string& column = robot.joints[j].position_column;
+        log.q.push_back(&table.column(column));  // InputError names the file and the columns it has
+        log.q_names.push_back(column);
+        if (const auto bounds = position_bounds(robot, j)) {
+            const std::vector<double>& q = *log.q.back();
+            for (std::size_t r = 0; r < q.size(); ++r) {
+                if (!bounds->holds(q[r])) {
+                    throw InputError(fmt::format("{}:{}: column '{}': {}", table.source(), table.line_of_row(r), io::printable_cell(column), bounds->refusal(q[r])));
+                }
+            }
+        }
     }
     for (const auto& j : robot.joints) {
         log.tau.push_back(&table.column(j.torque_column));

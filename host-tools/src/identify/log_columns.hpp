@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The joints' position and torque columns of a CSV log, as a robot description names them, with the
-// log's uniform time axis checked (shared by `jacobid identify` and `jacobid diagnose`).
+// log's uniform time axis checked and the positions within the joints' bounds (shared by `jacobid identify` and `jacobid diagnose`).
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "identify/pipeline.hpp"
 #include "io/csv_table.hpp"
+#include "io/position_bounds.hpp"
 #include "robot/robot_description.hpp"
 
 namespace jacobid::identify {
+
+// Where joint j's logged positions may be (io/position_bounds.hpp): nullopt when the description gives
+// no limits for it (the defaults are not checked).
+std::optional<io::PositionBounds> position_bounds(const robot::RobotDescription& robot, std::size_t j);
 
 // Pointers into `table` (which must outlive the result). InputError names the file and a missing column,
 // or the time column's first non-uniform step. grid_period > 0 (a segment of a split log, on that grid): a

@@ -46,6 +46,57 @@ void require_one_cycle_per_sample(const std::vector<SampleSpan>& spans, const st
     }
 }
 
+// The samples' times (s from the first) onto the uniform grid they jitter around, fitted by least squares
+// over the sample index; InputError naming the line where they are not increasing or stray too far.
+void regrid_cycle_times(std::vector<double>& t, const std::vector<SampleSpan>& spans, const std::string& source, CandumpJointCounts& c) {
+    const std::size_t n = t.size();
+    for (std::size_t k = 1; k < n; ++k) {
+        if (!(t[k] > t[k - 1])) {
+            throw InputError(fmt::format("{}:{}: the cycle beginning on this line is stamped {:.6f} s, not after {:.6f} s of the cycle on line {} "
+                                         "(time must increase)",
+                                         source, spans[k].first_line, t[k], t[k - 1], spans[k - 1].first_line));
+        }
+    }
+    if (n < 3) return;
+    double mean_k = 0.0, mean_t = 0.0;
+    for (std::size_t k = 0; k < n; ++k) mean_k += static_cast<double>(k), mean_t += t[k];
+    mean_k /= static_cast<double>(n), mean_t /= static_cast<double>(n);
+    double skt = 0.0, skk = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double dk = static_cast<double>(k) - mean_k;
+        skt += dk * (t[k] - mean_t), skk += dk * dk;
+    }
+    const double cycle = skt / skk, start = mean_t - cycle * mean_k;
+    std::size_t worst = 0;
+    double max_jitter = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double r = std::abs(t[k] - (start + cycle * static_cast<double>(k)));
+        if (r > max_jitter) max_jitter = r, worst = k;
+    }
+    if (max_jitter > kCycleJitterTolerance * cycle) {
+        std::size_t widest = 1;
+        for (std::size_t k = 2; k < n; ++k) widest = t[k] - t[k - 1] > t[widest] - t[widest - 1] ? k : widest;
+        const double step = t[widest] - t[widest - 1];
+        const std::size_t at = step > 1.5 * cycle ? widest : worst;
+        throw InputError(fmt::format("{}:{}: the cycle beginning on this line is {:.4g} ms off the uniform {:.4g} ms grid of the capture's "
+                                     "stamps{} (receive-time jitter up to +-{:g} cycle is accepted): a lost cycle, a gap or a clock jump",
+                                     source, spans[at].first_line, 1e3 * (t[at] - (start + cycle * static_cast<double>(at))), 1e3 * cycle,
+                                     at == widest ? fmt::format(", {:.4g} ms after the cycle on line {}", 1e3 * step, spans[at - 1].first_line) : "",
+                                     kCycleJitterTolerance));
+    }
+    // The controller's nominal cycle: the fit rounded to candump's stamp resolution of 1 us when that moves
+    // it by less than 1e-4 (the fit of a 1 ms cycle under +-0.3 ms jitter is off by ~1 ns, which would scale
+    // inertias by ~2e-6); a cycle of no whole number of microseconds (333.33 us) keeps the fit.
+    const double rounded = std::round(cycle * 1e6) * 1e-6;
+    const double nominal = std::abs(rounded - cycle) < 1e-4 * cycle ? rounded : cycle;
+    c.cycle = nominal;
+    c.max_jitter = max_jitter;
+    c.regridded = max_jitter > 1e-3 * cycle;
+    if (c.regridded) {
+        for (std::size_t k = 0; k < n; ++k) t[k] = nominal * static_cast<double>(k);
+    }
+}
+
 }  // namespace
 
 CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const std::vector<hal::ProfileConfig>& joints,
@@ -136,6 +187,7 @@ CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const st
         ++c.samples;
     }
     require_one_cycle_per_sample(spans, source);
+    regrid_cycle_times(table.mutable_column(0), spans, source, c);
     if (cycle_open) {
         // An incomplete last cycle (the capture stopped mid-cycle) is reported, not turned into a sample.
         fmt::print(stderr, "{}: the last cycle is incomplete ({} of {} joints) and is not used\n", source, complete, n);

@@ -24,10 +24,22 @@ struct CandumpJointCounts {
     std::size_t frames_decoded = 0;
     std::size_t frames_other_ids = 0;  // identifiers no joint listens to
     std::size_t error_frames = 0;
+    // The samples' times: a capture's stamps are the host's receive times, which jitter around the
+    // controller's cycle. Stamps within kCycleJitterTolerance cycles of a uniform grid are replaced by
+    // that grid (the nominal cycle), and the largest deviation is reported here.
+    double cycle = 0.0;       // s, the fitted cycle
+    double max_jitter = 0.0;  // s, the largest |stamp - grid|
+    bool regridded = false;   // the stamps were replaced by the grid (max_jitter above 1e-3 cycles)
 };
 
+// The receive-time jitter a capture's cycle stamps may have, in cycles: a lost cycle puts the stamps
+// around it half a cycle or more off the fitted grid, beyond it.
+constexpr double kCycleJitterTolerance = 0.4;
+
 // Returns a table with columns `time_column`, position_columns[j] and torque_columns[j] (joint order of
-// `joints`). Times are seconds from the first sample.
+// `joints`). Times are seconds from the first sample, on the capture's uniform grid when its stamps jitter
+// within kCycleJitterTolerance (counts->max_jitter); a stamp beyond it (a lost cycle, a gap, a clock jump)
+// or one that does not increase is an InputError naming the line.
 CsvTable candump_joint_table(const std::vector<CandumpRecord>& records, const std::vector<hal::ProfileConfig>& joints,
                              const std::vector<std::string>& position_columns, const std::vector<std::string>& torque_columns,
                              const std::string& time_column, const std::string& source, CandumpJointCounts* counts = nullptr);

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "core/errors.hpp"
+#include "io/printable_text.hpp"
 #include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::io {
@@ -36,9 +37,14 @@ std::string_view trim_cell(std::string_view s) {
     return s;
 }
 
-std::string printable_cell(std::string_view cell) {
-    std::string s(cell.substr(0, 40));
-    return cell.size() > 40 ? s + "..." : s;
+std::string printable_cell(std::string_view cell) { return printable_text(cell); }
+
+std::string describe_columns(const std::vector<std::string>& names) {
+    constexpr std::size_t kListed = 20;
+    std::string all;
+    for (std::size_t c = 0; c < names.size() && c < kListed; ++c) all += (c == 0 ? "" : ",") + printable_cell(names[c]);
+    if (names.size() > kListed) all += fmt::format(",... ({} columns in all)", names.size());
+    return all;
 }
 
 // The name index is built once (a header of 400 000 columns was checked for duplicates pairwise, minutes);
@@ -60,9 +66,7 @@ bool CsvTable::has_column(const std::string& name) const { return index_.count(n
 std::size_t CsvTable::column_index(const std::string& name) const {
     const auto it = index_.find(name);
     if (it == index_.end()) {
-        std::string available;
-        for (const auto& h : header_) available += (available.empty() ? "" : ",") + h;
-        throw InputError(fmt::format("{}: no column '{}' (columns: {})", source_, name, available));
+        throw InputError(fmt::format("{}: no column '{}' (columns: {})", source_, printable_cell(name), describe_columns(header_)));
     }
     return it->second;
 }

@@ -65,8 +65,11 @@ std::string read_text_file(const std::string& path, const std::string& what);
 
 // A cell without surrounding spaces, tabs and a trailing '\r'.
 std::string_view trim_cell(std::string_view s);
-// The first 40 characters of a cell for a message, "..." when cut.
+// A cell (or any user text) for a message: invisible and control characters escaped, the first 80
+// characters, "..." when cut (io/printable_text.hpp).
 std::string printable_cell(std::string_view cell);
+// A header's names for a message ("t,q1,q2"), each one printable, the first 20 and the count when longer.
+std::string describe_columns(const std::vector<std::string>& names);
 
 // Reads `path`. Accepts ',' separators, optional spaces around cells, '\n' or '\r\n' line ends, a final
 // line with or without '\n'; rejects empty files, empty or duplicate header names, rows with too few or

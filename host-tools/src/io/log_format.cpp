@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "io/resample.hpp"
+#include "io/time_axis.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 
 namespace jacobid::io {
@@ -184,14 +185,13 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             if (header[c] != ref.name) continue;
             if (found != header.size()) {
                 throw InputError(fmt::format("{}:{}: {}: column name '{}' appears twice in the header (columns {} and {})", source, header_line, key,
-                                             ref.name, found + 1, c + 1));
+                                             printable_cell(ref.name), found + 1, c + 1));
             }
             found = c;
         }
         if (found == header.size()) {
-            std::string all;
-            for (const auto& h : header) all += (all.empty() ? "" : ",") + h;
-            throw InputError(fmt::format("{}:{}: {}: no column '{}' in the header (columns: {})", source, header_line, key, ref.name, all));
+            throw InputError(fmt::format("{}:{}: {}: no column '{}' in the header (columns: {})", source, header_line, key, printable_cell(ref.name),
+                                         describe_columns(header)));
         }
         return found;
     };
@@ -290,6 +290,9 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             } else if (ok && k > 0 && beyond_log_range(values[k])) {  // the time has checks of its own (span, steps)
                 bad_row(fmt::format("column {} ({}): value {} {}", uses[k].column + 1, uses[k].key, values[k], kBeyondLogRange));
                 ok = false;
+            } else if (ok && k >= 1 && k <= joints && k <= names.q_bounds.size() && names.q_bounds[k - 1] && !names.q_bounds[k - 1]->holds(values[k])) {
+                bad_row(fmt::format("column {} ({}): {}", uses[k].column + 1, uses[k].key, names.q_bounds[k - 1]->refusal(values[k])));
+                ok = false;
             }
         }
         if (!ok) continue;
@@ -321,6 +324,9 @@ std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, cons
     // a step farther than half of it from it is irregular and named, a step beyond max_gap is a gap.
     report.median_step = median_step(t);
     if (!std::isfinite(t.back() - t.front())) throw InputError(fmt::format("{}: the time span {} s to {} s is not finite", source, t.front(), t.back()));
+    const std::string time_column = format.time.index > 0 ? std::to_string(format.time.index) : "'" + printable_cell(format.time.name) + "'";
+    require_plausible_sample_period(report.median_step, fmt::format("{}: time column {} (time.column of {}, scale {:g} s per unit)", source,
+                                                                    time_column, format.source, format.time_scale));
     const double max_gap = settings.max_gap > 0.0 ? settings.max_gap : 3.0 * report.median_step;
     const UniformGrid grid = uniform_grid(t, max_gap, settings.period);
     // A grid far denser than the log (an imposed period, or steps of 1e-300 s) would exhaust memory. With

@@ -9,10 +9,12 @@
 // Every problem is an InputError naming file:line (and column or key); with skip_bad_rows, malformed rows
 // and rows whose time does not increase are skipped and each one is reported instead.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/csv_table.hpp"
+#include "io/position_bounds.hpp"
 
 namespace jacobid::io {
 
@@ -90,6 +92,8 @@ struct LogReadReport {
 struct LogColumnNames {
     std::string time = "t";
     std::vector<std::string> q, qd, tau;
+    // Per joint (empty, or one per joint): where its positions may be; a raw row beyond is a bad row.
+    std::vector<std::optional<PositionBounds>> q_bounds;
     static LogColumnNames numbered(std::size_t joints, const std::string& time = "t");
 };
 

@@ -10,6 +10,13 @@
 
 namespace jacobid::io {
 
+void require_plausible_sample_period(double median_step, const std::string& where) {
+    if (median_step <= kMaxSamplePeriod) return;
+    throw InputError(fmt::format("{}: the median time step is {:.6g} s, expected a sample period of at most {:g} s (is the time column in "
+                                 "seconds? a log format's time.scale gives seconds per unit)",
+                                 where, median_step, kMaxSamplePeriod));
+}
+
 TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_name, double tolerance) {
     const std::vector<double>& t = table.column(column_name);
     if (t.size() < 2) {
@@ -30,6 +37,7 @@ TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_nam
     std::vector<double> sorted = steps;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
     const double median = sorted[sorted.size() / 2];
+    require_plausible_sample_period(median, fmt::format("{}: column '{}'", table.source(), column_name));
     for (std::size_t i = 0; i < steps.size(); ++i) {
         if (std::abs(steps[i] - median) > tolerance * median) {
             throw InputError(fmt::format(

@@ -48,6 +48,7 @@ bool read_joint_columns(Section& s, JointDescription& joint) {
     joint.lower_limit = s.number_element(limits[0], "limits", "rad or m");
     joint.upper_limit = s.number_element(limits[1], "limits", "rad or m");
     if (joint.lower_limit > joint.upper_limit) s.fail("limits", fmt::format("lower {} > upper {}", joint.lower_limit, joint.upper_limit));
+    joint.limits_given = true;
     return true;
 }
 
@@ -136,6 +137,7 @@ void parse_urdf(Section& top, RobotDescription& d) {
         joint.name = chain.names[static_cast<std::size_t>(j)];
         joint.lower_limit = chain.limits[static_cast<std::size_t>(j)].first;
         joint.upper_limit = chain.limits[static_cast<std::size_t>(j)].second;
+        joint.limits_given = chain.limits_given[static_cast<std::size_t>(j)];
     }
     read_joint_list(top, n, fmt::format("joint maps {{name, position, torque, limits}} (the movable joints of {})", d.urdf),
                     [&](const YAML::Node& node, int j, const std::string& path) {

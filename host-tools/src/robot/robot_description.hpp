@@ -53,6 +53,7 @@ struct JointDescription {
     std::string torque_column;
     double lower_limit = -2.5;  // rad, used by the simulator's random targets
     double upper_limit = 2.5;
+    bool limits_given = false;  // by the description's `limits:` or a URDF <limit> (not the defaults): logs are checked against them
 };
 
 struct RobotDescription {

@@ -116,9 +116,11 @@ private:
             if (!(c.axis.norm() > 1e-9)) throw InputError(fmt::format("{}: <axis xyz> must not be zero", element(joint)));
             c.axis.normalize();
             double lower = -M_PI, upper = M_PI;
+            bool given = false;
             if (joint.type != urdf::Joint::CONTINUOUS && joint.limits && joint.limits->upper > joint.limits->lower) {
                 lower = joint.limits->lower;
                 upper = joint.limits->upper;
+                given = true;
             } else if (joint.type == urdf::Joint::PRISMATIC) {
                 throw InputError(fmt::format("{}: a prismatic joint needs <limit lower upper> with lower < upper", element(joint)));
             }
@@ -126,6 +128,7 @@ private:
             chain_.joints.push_back(c);
             chain_.names.push_back(joint.name);
             chain_.limits.emplace_back(lower, upper);
+            chain_.limits_given.push_back(given);
             chain_.body_links.push_back(child->name);
             chain_.merged_links.emplace_back();
             inertials_.push_back({});

@@ -181,6 +181,14 @@ TEST(HalMit, ValidatesConfiguration) {
     EXPECT_EQ(mit::validate(c), ConfigStatus::InvalidCanId);
     c = ak80(1, 0.0);
     EXPECT_EQ(mit::validate(c), ConfigStatus::InvalidGearRatio);
+    // Issue 20: |N| within 1e-6..1e6, |offset| within 1e4 (a gear ratio of 1e308 was accepted).
+    for (const double ratio : {1e308, -1e308, 1.0000001e6, 9.9e-7}) EXPECT_EQ(mit::validate(ak80(1, ratio)), ConfigStatus::GearRatioOutOfRange) << ratio;
+    for (const double ratio : {1e6, -1e6, 1e-6, -1e-6}) EXPECT_EQ(mit::validate(ak80(1, ratio)), ConfigStatus::Ok) << ratio;
+    c = ak80(1);
+    c.mapping.position_offset = 1e308;
+    EXPECT_EQ(mit::validate(c), ConfigStatus::InvalidOffset);
+    c.mapping.position_offset = -1e4;
+    EXPECT_EQ(mit::validate(c), ConfigStatus::Ok);
     c = ak80(1);
     c.mapping.direction = 0.5;
     EXPECT_EQ(mit::validate(c), ConfigStatus::InvalidDirection);
@@ -188,9 +196,14 @@ TEST(HalMit, ValidatesConfiguration) {
 
 // Fuzzing (fuzz/targets/fuzz_profile_mit.cpp) found these; the frames are the fuzzer's bytes.
 TEST(HalMit, FuzzRegressionOverflowingScaleIsOutOfRangeNotInfinite) {
-    // Gear ratio -1.797e308 (finite, so valid) times 18 N.m is -inf: with the default infinite limits the
-    // old check |tau| <= inf let it through as a decoded torque.
-    mit::JointConfig c = ak80(0xFF, -1.7976930280580734e+308);
+    // The fuzzer's gear ratio -1.797e308 times 18 N.m was -inf: with the default infinite limits the old
+    // check |tau| <= inf let it through as a decoded torque. Such a ratio is now refused at configuration
+    // (issue 20: |N| within 1e-6..1e6); an effort range near the double's limit times the largest valid
+    // ratio still overflows, and must still be OutOfRange.
+    EXPECT_EQ(mit::validate(ak80(0xFF, -1.7976930280580734e+308)), ConfigStatus::GearRatioOutOfRange);
+    mit::JointConfig c = ak80(0xFF, -1e6);
+    c.ranges.t_min = -8e307;
+    c.ranges.t_max = 8e307;
     c.reply_can_id = 0x73B;
     c.extended_id = true;
     c.mapping.direction = -1.0;

@@ -100,6 +100,11 @@ TEST(HalOdrive, FuzzRegressionOverflowingGearRatioIsOutOfRangeNotInfinite) {
     odrive::JointConfig c = axis(21);  // Iq of node 21: 21 << 5 | 0x14 = 0x2B4
     c.mapping.gear_ratio = -4.2133432848332276e+307;
     c.mapping.torque_constant = 0.083;
+    // The fuzzer's gear ratio is now refused at configuration (issue 20: |N| within 1e-6..1e6); the largest
+    // valid ratio with a torque constant near the double's limit still overflows the decoded torque.
+    EXPECT_EQ(odrive::validate(c), ConfigStatus::GearRatioOutOfRange);
+    c.mapping.gear_ratio = -1e6;
+    c.mapping.torque_constant = 1e300;
     odrive::JointDecoder d;
     ASSERT_EQ(d.configure(c), ConfigStatus::Ok);
     JointState s;

@@ -45,6 +45,8 @@ inline const char* describe(DecodeStatus s) noexcept {
 enum class ConfigStatus {
     Ok,
     InvalidGearRatio,      // N must be finite and non-zero
+    GearRatioOutOfRange,   // |N| within kMinGearRatio..kMaxGearRatio
+    InvalidOffset,         // |position offset| within kMaxPositionOffset
     InvalidDirection,      // direction must be +1 or -1
     InvalidTorqueConstant, // Kt must be finite and > 0 where the device reports current
     InvalidLimits,         // plausibility limits must be > 0 (infinity disables)
@@ -60,6 +62,8 @@ inline const char* describe(ConfigStatus s) noexcept {
     switch (s) {
         case ConfigStatus::Ok: return "ok";
         case ConfigStatus::InvalidGearRatio: return "gear ratio must be finite and non-zero";
+        case ConfigStatus::GearRatioOutOfRange: return "gear ratio must be of magnitude 1e-06 to 1e+06 (motor turns per link turn)";
+        case ConfigStatus::InvalidOffset: return "position offset must be a finite number within +-10000 (rad or m, link side)";
         case ConfigStatus::InvalidDirection: return "direction must be +1 or -1";
         case ConfigStatus::InvalidTorqueConstant: return "torque constant Kt must be finite and > 0 when the device reports current";
         case ConfigStatus::InvalidLimits: return "plausibility limits must be > 0 (infinity disables them)";
@@ -87,10 +91,17 @@ struct JointMapping {
     double max_abs_torque = std::numeric_limits<double>::infinity();    // N.m
 };
 
+// Far beyond any reducer (harmonic drives ~160:1, lead screws in rad/m ~1e4) and any joint zero, and small
+// enough that the conversions below cannot overflow a decoded value: a gear ratio of 1e308 was accepted and
+// every frame read as out of range, an offset of 1e308 moved every position to -1e308 (issue 20).
+constexpr double kMinGearRatio = 1e-6, kMaxGearRatio = 1e6;
+constexpr double kMaxPositionOffset = 1e4;
+
 inline ConfigStatus validate(const JointMapping& m, EffortKind effort) noexcept {
     if (!std::isfinite(m.gear_ratio) || m.gear_ratio == 0.0) return ConfigStatus::InvalidGearRatio;
+    if (!(std::abs(m.gear_ratio) >= kMinGearRatio && std::abs(m.gear_ratio) <= kMaxGearRatio)) return ConfigStatus::GearRatioOutOfRange;
     if (m.direction != 1.0 && m.direction != -1.0) return ConfigStatus::InvalidDirection;
-    if (!std::isfinite(m.position_offset)) return ConfigStatus::InvalidGearRatio;
+    if (!(std::abs(m.position_offset) <= kMaxPositionOffset)) return ConfigStatus::InvalidOffset;
     if (effort == EffortKind::Current && (!std::isfinite(m.torque_constant) || m.torque_constant <= 0.0))
         return ConfigStatus::InvalidTorqueConstant;
     if (!(m.max_abs_velocity > 0.0) || !(m.max_abs_torque > 0.0)) return ConfigStatus::InvalidLimits;

@@ -24,6 +24,8 @@ JointMapping read_mapping(Fields& s, JointMapping m) {
 inline const char* mapping_key_of(ConfigStatus s) noexcept {
     switch (s) {
         case ConfigStatus::InvalidGearRatio: return "gear_ratio";
+        case ConfigStatus::GearRatioOutOfRange: return "gear_ratio";
+        case ConfigStatus::InvalidOffset: return "offset";
         case ConfigStatus::InvalidDirection: return "direction";
         case ConfigStatus::InvalidTorqueConstant: return "torque_constant";
         case ConfigStatus::InvalidLimits: return "max_torque";
