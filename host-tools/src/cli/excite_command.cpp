@@ -93,6 +93,13 @@ void check(const ExciteOptions& o) {
     if (o.starts < 1) throw InputError(fmt::format("--starts {}: expected >= 1", o.starts));
     if (!(o.time_limit > 0.0)) throw InputError(fmt::format("--time-limit {}: expected > 0 s", o.time_limit));
     if (o.samples < 0) throw InputError(fmt::format("--samples {}: expected >= 0 (0: automatic)", o.samples));
+    // Fewer samples per period than 2 x harmonics + 1 alias the highest harmonic: the optimizer's constraints
+    // are then blind to where the trajectory peaks, and the tightening rounds chase crossings they cannot see.
+    if (o.samples > 0 && o.samples < 2 * o.harmonics + 1) {
+        throw InputError(fmt::format("--samples {}: expected 0 (automatic) or at least 2 x --harmonics + 1 = {} samples per period (fewer "
+                                     "cannot see the highest harmonic)",
+                                     o.samples, 2 * o.harmonics + 1));
+    }
 }
 
 // The workspace options given together, or none; the workspace they describe (null: none).

@@ -222,11 +222,12 @@ TEST(ExciteCli, TheWorkspaceBoxHoldsAtEveryRowAndChangesTheTrajectory) {
 }
 
 TEST(ExciteCli, AFaceCrossedBetweenTheOptimizersSamplesIsTightenedUntilEveryRowIsInside) {
-    // 6 samples per period for 3 harmonics: the optimizer misses the point's peaks between its samples, the
-    // control-rate check finds them and the tightening rounds move the faces in.
+    // 10 samples per period for 3 harmonics: the optimizer misses the point's peaks between its samples, the
+    // control-rate check finds them and the tightening rounds move the faces in. (With 6, below 2 x 3 + 1, the
+    // samples alias the third harmonic and whether 4 rounds suffice depended on the compiler: now refused.)
     const std::string csv = scratch("sparse.csv"), json = scratch("sparse.json");
     const auto r = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " --duration 10 --harmonics 3 --base-frequency 0.1 --starts 1 " +
-                               "--time-limit 10 --samples 6 --workspace-frame tool --workspace-point 0.4,0,0 --workspace-box 0.6,0.95,-0.25,0.25,-1,1 -o " +
+                               "--time-limit 10 --samples 10 --workspace-frame tool --workspace-point 0.4,0,0 --workspace-box 0.6,0.95,-0.25,0.25,-1,1 -o " +
                                csv + " --json " + json);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_GE(nlohmann::json::parse(std::ifstream(json))["tightening_rounds"].get<int>(), 1);
@@ -256,6 +257,7 @@ TEST(ExciteCli, BadWorkspaceInputIsOneLineNamingTheOption) {
         {kTwoLink, "--workspace-frame 2 --workspace-box 0,1,1,-1,-1,1", "--workspace-box: ymin 1 >= ymax -1 (expected min < max)"},
         {kTwoLink, "--workspace-frame 2 --workspace-box 0,inf,-1,1,-1,1", "--workspace-box: value 2 is inf (expected a finite number, m)"},
         {kTwoLink, "--workspace-frame 2 --workspace-point 1,0" + box, "--workspace-point: 2 values (expected x,y,z"},
+        {kTwoLink, "--harmonics 3 --samples 6", "--samples 6: expected 0 (automatic) or at least 2 x --harmonics + 1 = 7 samples per period"},
         {kTwoLink, "--workspace-frame 2 --workspace-point 0.4,0,0 --workspace-box 1,2,-1,1,-1,1",
          "--workspace-box: at the start pose the point of frame 2 is at x = 0.9 m, not strictly inside [1, 2]"},
         {std::string(JACOBID_SOURCE_DIR) + "/examples/robots/planar2r.yaml", "--workspace-frame 2" + box, "--workspace-frame: needs a serial robot"},
