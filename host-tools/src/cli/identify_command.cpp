@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
@@ -20,6 +21,7 @@
 #include "cli/log_format_options.hpp"
 #include "cli/model_export_options.hpp"
 #include "cli/output_file.hpp"
+#include "core/parallel_for.hpp"
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
@@ -50,7 +52,9 @@ namespace {
 // FitOptions: how the log is identified (fit_options.hpp, shared with montecarlo).
 struct IdentifyOptions : FitOptions {
     std::string robot;
-    std::string in;
+    std::vector<std::string> inputs;  // --in, once or more
+    std::string in;                   // the first --in (the one log, or the first of several)
+    int threads = 0;                  // --threads: logs identified at once (0: one per core)
     std::string method = "jacobi";
     std::string format = "table";
     std::string output = "-";
@@ -74,10 +78,18 @@ struct IdentifyOptions : FitOptions {
     std::string period;            // --period auto|SECONDS; empty: off
 };
 
+// "a.csv", or "a.csv + b.csv" for several logs (titles, messages, the JSON's "log").
+std::string log_names(const std::vector<std::string>& inputs) {
+    std::string names;
+    for (const std::string& in : inputs) names += (names.empty() ? "" : " + ") + in;
+    return names;
+}
+
 // --period: the log averaged over its periods (periodic_log.hpp), described on stderr and in the output.
 std::unique_ptr<identify::PeriodicLog> periodic_log(const LogSegments& input, const std::vector<identify::LogColumns>& logs, const IdentifyOptions& o,
                                                     const identify::IdentifySettings& settings) {
     if (o.period.empty()) return nullptr;
+    if (o.inputs.size() > 1) throw InputError(fmt::format("--period with {} --in logs: periods are averaged over one continuous log", o.inputs.size()));
     if (input.split) throw InputError(fmt::format("--period with --on-gap split: {} has gaps; periods are averaged over one continuous log", o.in));
     if (identify::is_iterated(settings.estimator.estimator)) {
         throw InputError(fmt::format("--period with --estimator {}: the estimator simulates the log itself, not its mean period (use wls or ols)",
@@ -194,6 +206,72 @@ std::vector<identify::SegmentReport> segment_reports(const std::vector<io::LogSe
     return reports;
 }
 
+// The logs of --in, read on up to o.threads threads (in --in order whatever the threads), and their
+// columns: one per log, or one per segment with --on-gap split; `pieces` says where each comes from.
+struct InputLogs {
+    std::vector<LogSegments> read;                  // per --in
+    std::vector<identify::LogColumns> columns;      // every log's, or every segment's, in --in order
+    std::vector<identify::SegmentReport> pieces;    // per entry of `columns`: log path (several logs), lines, duration, samples
+    std::vector<std::string> names;                 // per entry of `columns`, for messages: "a.csv", "a.csv: segment 2 (lines ...)"
+    bool several() const { return read.size() > 1; }
+    bool split() const { return !read.empty() && read.front().split; }
+};
+
+InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOptions& o) {
+    InputLogs in;
+    in.read.resize(o.inputs.size());
+    ParallelForOptions pool;
+    pool.threads = o.threads;
+    const std::vector<std::exception_ptr> errors =
+        parallel_for(o.inputs.size(), pool, [&](std::size_t k) { in.read[k] = read_log(o.inputs[k], robot, o); });
+    for (const auto& e : errors) {
+        if (e) std::rethrow_exception(e);  // the first --in that failed, whatever the threads
+    }
+    for (std::size_t k = 0; k < in.read.size(); ++k) {
+        const LogSegments& logs = in.read[k];
+        std::vector<identify::LogColumns> columns = columns_of(logs, robot, o);
+        for (std::size_t s = 0; s < columns.size(); ++s) {
+            identify::SegmentReport piece;
+            if (in.several()) piece.log = o.inputs[k];
+            piece.samples = columns[s].samples();
+            piece.duration = piece.samples > 1 ? static_cast<double>(piece.samples - 1) * columns[s].sample_period : 0.0;
+            std::string name = o.inputs[k];
+            if (s < logs.segments.size() && logs.split) {
+                piece.first_line = logs.segments[s].first_line;
+                piece.last_line = logs.segments[s].last_line;
+                piece.duration = logs.segments[s].duration;
+                name += fmt::format(": segment {} ({})", s + 1, logs.segments[s].describe());
+            }
+            // One plan (windows, F_p, decimation in samples) serves every piece: the logs must share their sampling.
+            if (!in.columns.empty()) {
+                const double period = in.columns.front().sample_period;
+                if (std::abs(columns[s].sample_period - period) > 1e-3 * period) {
+                    throw InputError(fmt::format("--in {}: sampled every {:.6g} ms, but --in {} every {:.6g} ms; logs identified together must share "
+                                                 "their sample period (resample one of them)",
+                                                 o.inputs[k], 1e3 * columns[s].sample_period, o.inputs.front(), 1e3 * period));
+                }
+            }
+            in.pieces.push_back(piece);
+            in.names.push_back(name);
+            in.columns.push_back(std::move(columns[s]));
+        }
+    }
+    return in;
+}
+
+// The report lines of the pieces (segments and/or logs); each piece not used also on stderr (never dropped silently).
+std::vector<identify::SegmentReport> piece_reports(const InputLogs& in, const identify::SegmentedOutput& split, const char* method) {
+    std::vector<identify::SegmentReport> reports = in.pieces;
+    for (std::size_t s = 0; s < reports.size(); ++s) {
+        identify::SegmentReport& r = reports[s];
+        r.used = split.used[s];
+        r.why = split.why[s];
+        r.rows = split.rows[s];
+        if (!r.used) fmt::print(stderr, "jacobid identify [{}]: {} not used: {}\n", method, in.names[s], r.why);
+    }
+    return reports;
+}
+
 // --validate: one log (or a log that holds a pose) as identify::validate_log does it; with --on-gap split, the
 // torques predicted through the identification's filters, pooled over the segments.
 void validate(const robot::RobotModel& model, const LogSegments& input, const std::vector<identify::LogColumns>& logs,
@@ -219,7 +297,10 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
 }
 
 void run(IdentifyOptions o) {
-    check_outputs({{"--output", o.output}}, {{"--robot", o.robot}, {"--in", o.in}, {"--truth", o.truth}, {"--validate", o.validate}, {"--can-config", o.can_config}, {"--log-format", o.log_format.file}});
+    std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--truth", o.truth}, {"--validate", o.validate},
+                                                                   {"--can-config", o.can_config}, {"--log-format", o.log_format.file}};
+    for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
+    check_outputs({{"--output", o.output}}, read_files);
     using Clock = std::chrono::steady_clock;
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
@@ -229,7 +310,12 @@ void run(IdentifyOptions o) {
         return;
     }
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
+    if (o.threads < 0) throw InputError(fmt::format("--threads {}: must be >= 0 (0: one per core)", o.threads));
+    if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     if (o.drive_gains.enabled) {
+        if (o.inputs.size() > 1) {
+            throw InputError(fmt::format("--drive-gains with {} --in logs: give the unloaded run as --in and the loaded one as --loaded", o.inputs.size()));
+        }
         const std::vector<std::pair<std::string, bool>> given = {{"--validate", !o.validate.empty()}, {"--report", !o.report.empty()},
                                                                  {"--truth", !o.truth.empty()},       {"--essential", o.essential_flag},
                                                                  {"--physical", o.physical || o.semi_physical}, {"--can-config", !o.can_config.empty()},
@@ -248,15 +334,18 @@ void run(IdentifyOptions o) {
     o.physical = o.physical || (o.model_export.any() && !o.semi_physical);
     const std::optional<identify::PhysicalSettings> physical = physical_settings(o);
     const auto parse_start = Clock::now();
-    const LogSegments input = read_log(o.in, robot, o);
-    const std::vector<identify::LogColumns> logs = columns_of(input, robot, o);
+    const InputLogs inputs = read_inputs(robot, o);
+    const LogSegments& input = inputs.read.front();
+    const std::vector<identify::LogColumns>& logs = inputs.columns;
+    // Several pieces (segments of a log cut at its gaps, several logs, or both) are identified together.
+    const bool pieces = inputs.split() || inputs.several();
     const std::unique_ptr<identify::PeriodicLog> periodic = periodic_log(input, logs, o, identify_settings(o, identify::Method::Jacobi));
     const identify::LogColumns& log = periodic ? periodic->columns : logs.front();
     const double parse_seconds = std::chrono::duration<double>(Clock::now() - parse_start).count();
     std::size_t samples = 0;
     for (const auto& l : logs) samples += l.samples();
     o.pipeline.progress = !o.quiet && samples > 500'000;
-    if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", samples, o.in, parse_seconds);
+    if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", samples, log_names(o.inputs), parse_seconds);
 
     LogSegments validation_input;
     std::vector<identify::LogColumns> validation_logs;
@@ -266,7 +355,7 @@ void run(IdentifyOptions o) {
     }
 
     identify::ReportContext ctx;
-    ctx.log_source = o.in;
+    ctx.log_source = log_names(o.inputs);
     ctx.model_name = model->model_name();
     for (const auto& j : robot.joints) ctx.joint_names.push_back(j.name);
     ctx.truth = truth;
@@ -281,9 +370,11 @@ void run(IdentifyOptions o) {
             settings = identify::periodic_settings(settings, *periodic);
             solve.joint_noise = periodic->torque_noise;
         }
-        if (identify::is_iterated(resolved.estimator.estimator) && input.split) {
-            throw InputError(fmt::format("--estimator {}: {} is split at its gaps (--on-gap split); the estimator simulates one continuous log",
-                                         identify::to_string(resolved.estimator.estimator), o.in));
+        if (identify::is_iterated(resolved.estimator.estimator) && pieces) {
+            throw InputError(inputs.several() ? fmt::format("--estimator {} with {} --in logs: the estimator simulates one continuous log",
+                                                            identify::to_string(resolved.estimator.estimator), o.inputs.size())
+                                              : fmt::format("--estimator {}: {} is split at its gaps (--on-gap split); the estimator simulates one continuous log",
+                                                            identify::to_string(resolved.estimator.estimator), o.in));
         }
         if (identify::is_iterated(resolved.estimator.estimator) && physical) {
             throw InputError(fmt::format("--{} with --estimator {}: the physically consistent fit is a least-squares one (use wls or ols)",
@@ -293,16 +384,19 @@ void run(IdentifyOptions o) {
             throw InputError("--essential with --estimator iv: the essential parameters are chosen by least squares (use wls or didim)");
         }
         identify::IdentifiedLog fit;
-        if (input.split) {
-            // Every segment with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp):
+        if (pieces) {
+            // Every segment or log with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp):
             // the delay with the description's alpha, then each joint's alpha (friction alpha: auto) on the aligned log.
-            const identify::SegmentPlan plan = identify::plan_segments(logs, settings);
+            identify::SegmentSource source;
+            if (inputs.several()) source = {"--in", "log"};
+            const identify::SegmentPlan plan = identify::plan_segments(logs, settings, source);
             identify::TorqueDelayResult delay = identify::resolve_torque_delay(*model, logs[plan.reference], plan.fixed, solve, given_torque_delay(o));
             const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], delay.applied());
             identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, reference.log, plan.fixed, solve.weighted);
-            identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, delay.applied());
+            identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, delay.applied(), o.threads);
+            std::vector<identify::SegmentReport> reports = piece_reports(inputs, split, identify::to_string(m));
             fit = identify::solve_identification(std::move(split.merged), std::move(smoothed), std::move(delay), *model, solve);
-            fit.result.segments = segment_reports(input.segments, split.used, split.why, identify::to_string(m), o.in);
+            fit.result.segments = std::move(reports);
         } else {
             fit = identify::identify_log(robot, *model, log, {settings, solve, given_torque_delay(o), resolved.estimator});
         }
@@ -328,7 +422,8 @@ void run(IdentifyOptions o) {
         // method's fields also at the top level, as single-method output always had them.
         j = identify::to_json(results.front(), ctx);
         for (const auto& r : results) j["methods"][identify::to_string(r.info.method)] = identify::to_json(r, ctx);
-        j["log"] = o.in;
+        j["log"] = log_names(o.inputs);
+        j["logs"] = o.inputs;
         j["model"] = model->model_name();
         j["parse_seconds"] = parse_seconds;
         if (exported) j["export"] = *exported;
@@ -350,7 +445,13 @@ void add_identify_command(CLI::App& app) {
                                        "identify base dynamic parameters from a log (t, positions, torques) by least squares on the "
                                        "decimated inverse dynamic model; prints the paper's Table II");
     cmd->add_option("--robot", o->robot, "robot description (YAML, e.g. 'model: planar2r')")->required();
-    cmd->add_option("--in", o->in, "log (CSV with a header: time column, the joints' position and torque columns)");
+    cmd->add_option("--in", o->inputs,
+                    "log (CSV with a header: time column, the joints' position and torque columns); repeat it (--in a.csv --in b.csv) to "
+                    "identify several logs together: each log keeps its own edges, their equations are stacked")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    cmd->add_option("--threads", o->threads, "logs (or --on-gap split segments) processed at once (0: one per core); the results do not depend on it")
+        ->capture_default_str();
     cmd->add_flag("--print-base", o->print_base,
                   "print the robot's base parameters with their regrouping relations (e.g. ZZ1R = ZZ1 + IA1 + 0.25*M2) and true values, "
                   "then exit (no --in needed)");
@@ -398,6 +499,7 @@ void add_identify_command(CLI::App& app) {
                     "noise for the weights, and the mean period is identified as a periodic signal (no edges lost)");
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o] {
+        o->in = o->inputs.empty() ? std::string() : o->inputs.front();
         if (o->essential_flag && o->essential <= 0.0) o->essential = 10.0;
         o->pipeline.exact_discretization = o->discretization == "exact";
         run(*o);

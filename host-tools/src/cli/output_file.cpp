@@ -39,6 +39,10 @@ void check_writable(const NamedPath& out) {
 }  // namespace
 
 void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_list<NamedPath> inputs) {
+    check_outputs(outputs, std::vector<NamedPath>(inputs));
+}
+
+void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<NamedPath>& inputs) {
     for (auto out = outputs.begin(); out != outputs.end(); ++out) {
         if (out->path.empty() || out->path == "-") continue;
         for (const NamedPath& in : inputs) {

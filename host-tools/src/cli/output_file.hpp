@@ -4,6 +4,7 @@
 // written, naming the path).
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 namespace jacobid::cli {
 
@@ -18,6 +19,8 @@ struct NamedPath {
 // the try is removed again), and it is neither one of the inputs nor another output (a result written over
 // the log it came from). InputError naming the option and the path otherwise.
 void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_list<NamedPath> inputs = {});
+// The same with a list of inputs built at run time (identify --in a --in b ...).
+void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<NamedPath>& inputs);
 
 // Checks, before any work is done, that an output folder (--report DIR) can be written: it is a directory
 // or can be created, and a file can be created in it. What the check created is removed again (the

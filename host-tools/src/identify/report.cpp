@@ -98,13 +98,21 @@ std::vector<std::string> identifiability_warnings(const MethodResult& r, const s
 
 namespace {
 
-// "segments: 2 of 3 used (--on-gap split)", then one line per segment not used, with its reason.
+// "segments: 2 of 3 used (--on-gap split)", then one line per segment not used, with its reason; for several
+// logs (--in a --in b) one line per log or segment, used or not, with its equations.
 std::string segment_lines(const std::string& what, const std::vector<SegmentReport>& segments) {
     if (segments.empty()) return "";
     const auto used = std::count_if(segments.begin(), segments.end(), [](const SegmentReport& r) { return r.used; });
-    std::string s = fmt::format("{}: {} of {} used (--on-gap split)\n", what, used, segments.size());
+    const bool several_logs = std::any_of(segments.begin(), segments.end(), [](const SegmentReport& r) { return !r.log.empty(); });
+    std::string s = fmt::format("{}: {} of {} used{}\n", what, used, segments.size(), several_logs ? "" : " (--on-gap split)");
     for (const auto& r : segments) {
-        if (!r.used) s += fmt::format("  not used: lines {}-{} ({:.4g} s, {} samples): {}\n", r.first_line, r.last_line, r.duration, r.samples, r.why);
+        const std::string lines = r.first_line == 0 ? std::string() : fmt::format(" lines {}-{}", r.first_line, r.last_line);
+        if (several_logs) {
+            s += fmt::format("  {}{} ({:.4g} s, {} samples): {}\n", r.log, lines, r.duration, r.samples,
+                             r.used ? fmt::format("{} equations per joint", r.rows) : "not used: " + r.why);
+        } else if (!r.used) {
+            s += fmt::format("  not used:{} ({:.4g} s, {} samples): {}\n", lines, r.duration, r.samples, r.why);
+        }
     }
     return s;
 }
@@ -112,8 +120,13 @@ std::string segment_lines(const std::string& what, const std::vector<SegmentRepo
 nlohmann::json segments_json(const std::vector<SegmentReport>& segments) {
     nlohmann::json a = nlohmann::json::array();
     for (const auto& r : segments) {
-        a.push_back({{"first_line", r.first_line}, {"last_line", r.last_line}, {"duration_s", r.duration}, {"samples", r.samples},
-                     {"used", r.used}, {"why", r.why}});
+        nlohmann::json e = {{"first_line", r.first_line}, {"last_line", r.last_line}, {"duration_s", r.duration}, {"samples", r.samples},
+                            {"used", r.used}, {"why", r.why}};
+        if (!r.log.empty()) {
+            e["log"] = r.log;
+            e["rows"] = r.rows;
+        }
+        a.push_back(std::move(e));
     }
     return a;
 }

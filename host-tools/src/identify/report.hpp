@@ -22,12 +22,16 @@
 namespace jacobid::identify {
 
 // One segment of a log split at its gaps (--on-gap split), as the reports list it.
+// One piece of the identification's data: a segment of a log cut at its gaps (--on-gap split) and/or one
+// of several logs (--in a --in b).
 struct SegmentReport {
-    std::size_t first_line = 0, last_line = 0;
+    std::size_t first_line = 0, last_line = 0;  // 0: the whole log
     double duration = 0.0;  // s
     std::size_t samples = 0;
     bool used = false;
-    std::string why;  // the reason when not used
+    std::string why;       // the reason when not used
+    std::size_t rows = 0;  // equations per joint it gave (0 when not used or not counted)
+    std::string log;       // the log's path when several logs are identified together, else empty
 };
 
 struct MethodResult {

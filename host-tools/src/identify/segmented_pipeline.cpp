@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/parallel_for.hpp"
 #include "identify/merge_factors.hpp"
 #include "identify/torque_delay.hpp"
 #include "identify/validation.hpp"
@@ -20,9 +21,10 @@ std::string joined_reasons(const std::vector<std::string>& why) {
     return reasons;
 }
 
-SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings) {
+SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings, const SegmentSource& source) {
     if (segments.empty()) throw InputError("no log segment to identify from");
     SegmentPlan plan;
+    plan.source = source;
     for (std::size_t s = 1; s < segments.size(); ++s) {
         if (segments[s].samples() > segments[plan.reference].samples()) plan.reference = s;
     }
@@ -30,7 +32,7 @@ SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const Pipelin
     try {
         plan.info = plan_pipeline(longest, settings);
     } catch (const InputError& e) {
-        throw InputError(fmt::format("--on-gap split: no segment is usable; the longest of the {}: {}", segments.size(), e.what()));
+        throw InputError(fmt::format("{}: no {} is usable; the longest of the {}: {}", source.option, source.noun, segments.size(), e.what()));
     }
     // The same imposition as a validation log gets (bandwidth, windows, cutoffs), plus the decimation factor.
     plan.fixed = validation_settings(settings, plan.info);
@@ -40,24 +42,35 @@ SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const Pipelin
 }
 
 SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
-                                       double torque_delay) {
+                                       double torque_delay, int threads) {
     SegmentedOutput out;
     out.used.assign(segments.size(), false);
     out.why.assign(segments.size(), "");
+    out.rows.assign(segments.size(), 0);
     PipelineInfo& info = out.merged.info;
     PlotRows& plot = out.merged.plot;
     std::size_t samples = 0;
     double seconds_differentiate = 0.0, seconds_filter = 0.0, seconds_ls = 0.0;
     std::vector<double> range;
+    // Each segment on its own (threads), then merged in segment order: the thread count changes no bit.
+    std::vector<PipelineOutput> parts(segments.size());
+    ParallelForOptions pool;
+    pool.threads = threads;
+    pool.stop_on_failure = false;
+    const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) {
+        const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
+        parts[s] = run_pipeline(model, aligned.log, plan.fixed);
+    });
     for (std::size_t s = 0; s < segments.size(); ++s) {
-        PipelineOutput part;
-        try {
-            const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
-            part = run_pipeline(model, aligned.log, plan.fixed);
-        } catch (const InputError& e) {
-            out.why[s] = e.what();
-            continue;
+        if (errors[s]) {
+            try {
+                std::rethrow_exception(errors[s]);
+            } catch (const InputError& e) {
+                out.why[s] = e.what();
+                continue;
+            }
         }
+        PipelineOutput& part = parts[s];
         if (out.used_count == 0) info = part.info;
         out.used[s] = true;
         ++out.used_count;
@@ -67,7 +80,9 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
         seconds_ls += part.info.seconds_ls;
         range.resize(part.info.joint_range.size(), 0.0);
         for (std::size_t j = 0; j < range.size(); ++j) range[j] = std::max(range[j], part.info.joint_range[j]);
+        out.rows[s] = part.factors.rows.empty() ? 0 : part.factors.rows.front();
         merge_factors(out.merged.factors, part.factors);
+        part.factors = JointFactors{};  // merged: free it before the next segment
         // Plot rows of the segments one after another, at their true times.
         const std::size_t take = std::min(part.plot.t.size(), plan.fixed.plot_rows - std::min(plan.fixed.plot_rows, plot.t.size()));
         const std::size_t c = part.plot.t.empty() ? 0 : part.plot.w.front().size() / part.plot.t.size();
@@ -80,7 +95,7 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
         }
     }
     if (out.used_count == 0) {
-        throw InputError(fmt::format("--on-gap split: none of the {} segments is usable: {}", segments.size(), joined_reasons(out.why)));
+        throw InputError(fmt::format("{}: none of the {} {}s is usable: {}", plan.source.option, segments.size(), plan.source.noun, joined_reasons(out.why)));
     }
     info.samples = samples;
     info.bandwidth_estimated = plan.info.bandwidth_estimated;

@@ -14,14 +14,21 @@
 
 namespace jacobid::identify {
 
+// What the pieces are, for messages: the segments of one log cut at its gaps, or several logs (--in a --in b).
+struct SegmentSource {
+    std::string option = "--on-gap split";
+    std::string noun = "segment";
+};
+
 struct SegmentPlan {
+    SegmentSource source;
     std::size_t reference = 0;  // the longest segment, where the automatic choices were resolved
     PipelineInfo info;          // its plan
     PipelineSettings fixed;     // `settings` with those choices imposed, for every segment
 };
 
 // InputError (naming the longest segment) when even the longest segment cannot be planned.
-SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings);
+SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings, const SegmentSource& source = {});
 
 struct SegmentedOutput {
     // Factors of every used segment stacked; info of the first used segment with samples = the used
@@ -30,13 +37,15 @@ struct SegmentedOutput {
     PipelineOutput merged;
     std::vector<bool> used;        // per segment
     std::vector<std::string> why;  // per segment: the pipeline's reason when not used, else empty
+    std::vector<std::size_t> rows; // per segment: its equations (decimated rows per joint); 0 when not used
     std::size_t used_count = 0;
 };
 
-// `torque_delay` (s) is applied to every segment (shift_torques). InputError when no segment is usable,
-// naming each one's reason.
+// `torque_delay` (s) is applied to every segment (shift_torques). The segments run on up to `threads`
+// threads and are merged in their order, so the result does not depend on the thread count. InputError
+// when no segment is usable, naming each one's reason.
 SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
-                                       double torque_delay);
+                                       double torque_delay, int threads = 1);
 
 // "reason 1; reason 2; ..." of the segments not used (their non-empty `why`), for one-line errors.
 std::string joined_reasons(const std::vector<std::string>& why);

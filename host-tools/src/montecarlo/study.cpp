@@ -4,16 +4,13 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <exception>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
-#include <system_error>
-#include <thread>
 
 #include "core/errors.hpp"
+#include "core/parallel_for.hpp"
 #include "identify/log_columns.hpp"
 #include "robot/simulated_parameters.hpp"
 
@@ -69,35 +66,11 @@ Study run_study(const StudySettings& s) {
 
     const auto runs = static_cast<std::size_t>(s.runs);
     std::vector<RunResult> results(runs);
-    std::vector<std::exception_ptr> errors(runs);
-    std::atomic<int> next{0};
-    std::atomic<bool> failed{false};
-    std::mutex progress_mutex;
-    int finished = 0;
-    auto worker = [&] {
-        for (int k = next++; k < s.runs && !failed; k = next++) {
-            try {
-                results[static_cast<std::size_t>(k)] = one_run(s, *model, study.truth, k);
-            } catch (...) {
-                errors[static_cast<std::size_t>(k)] = std::current_exception();
-                failed = true;
-            }
-            const std::lock_guard<std::mutex> lock(progress_mutex);
-            ++finished;
-            try {
-                if (s.progress) s.progress(finished, s.runs);
-            } catch (...) {  // a progress callback that throws must not end a worker thread (std::terminate)
-            }
-        }
-    };
-    std::vector<std::thread> pool;
-    try {
-        for (int t = 1; t < study.threads; ++t) pool.emplace_back(worker);
-    } catch (const std::system_error&) {
-        // Fewer threads than asked (the system refused one): the started ones and this one do the runs.
-    }
-    worker();
-    for (auto& t : pool) t.join();
+    ParallelForOptions pool;
+    pool.threads = study.threads;
+    if (s.progress) pool.progress = [&](std::size_t finished, std::size_t) { s.progress(static_cast<int>(finished), s.runs); };
+    const std::vector<std::exception_ptr> errors =
+        parallel_for(runs, pool, [&](std::size_t k) { results[k] = one_run(s, *model, study.truth, static_cast<int>(k)); });
     for (std::size_t k = 0; k < runs; ++k) {
         if (!errors[k]) continue;
         const std::string where = fmt::format("run {} (seed {}, noise seed {})", k + 1, run_seed(s, static_cast<int>(k)), run_noise_seed(s, static_cast<int>(k)));

@@ -23,6 +23,7 @@
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
+#include "stacked_rows.hpp"
 
 namespace {
 
@@ -99,16 +100,6 @@ TEST(SplitIdentify, FindsTheTruthAsTheWholeLogDoes) {
     EXPECT_NE(text.out.find("Jacobi segments: 2 of 2 used (--on-gap split)"), std::string::npos) << text.out;
 }
 
-// Every decimated row of the pipeline on one segment, per joint: [W_j y_j].
-struct Rows : identify::RowSink {
-    std::vector<std::vector<double>> rows;  // joints x parameters, then joints torques
-    void row(const identify::DecimatedRow& r) override {
-        std::vector<double> v(r.w.data(), r.w.data() + r.w.size());  // column-major: joint fastest
-        v.insert(v.end(), r.y.data(), r.y.data() + r.y.size());
-        rows.push_back(v);
-    }
-};
-
 TEST(SplitIdentify, EqualsTheSegmentsEquationsStackedByHand) {
     const std::string gap = log_without("gap.csv", kGap);
     const robot::RobotDescription robot = robot::load_robot_description(path("robot.yaml"));
@@ -129,28 +120,12 @@ TEST(SplitIdentify, EqualsTheSegmentsEquationsStackedByHand) {
     const identify::LsSolution split = identify::solve_least_squares(merged.merged.factors, names);
 
     // By hand: each segment's rows with the same fixed settings, all joints and segments in one dense system.
-    const int joints = model->joint_count(), c = model->parameter_count();
-    std::vector<std::vector<double>> all;
-    std::size_t per_segment[2] = {0, 0};
-    for (std::size_t s = 0; s < 2; ++s) {
-        Rows rows;
-        identify::run_pipeline(*model, segments[s], plan.fixed, &rows);
-        per_segment[s] = rows.rows.size();
-        all.insert(all.end(), rows.rows.begin(), rows.rows.end());
-    }
-    EXPECT_GT(per_segment[0], 500u);
-    EXPECT_GT(per_segment[1], 500u);
-    Eigen::MatrixXd w(static_cast<Eigen::Index>(all.size()) * joints, c);
-    Eigen::VectorXd y(w.rows());
-    for (std::size_t k = 0; k < all.size(); ++k) {
-        for (int j = 0; j < joints; ++j) {
-            const auto r = static_cast<Eigen::Index>(k) * joints + j;
-            for (int p = 0; p < c; ++p) w(r, p) = all[k][static_cast<std::size_t>(p * joints + j)];
-            y(r) = all[k][static_cast<std::size_t>(joints * c + j)];
-        }
-    }
-    const Eigen::VectorXd x = w.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(y);
-    EXPECT_EQ(split.equations, static_cast<std::size_t>(w.rows()));
+    const int c = model->parameter_count();
+    const test::StackedSystem stacked = test::stack_rows(*model, segments, plan.fixed);
+    EXPECT_GT(stacked.rows_per_piece[0], 500u);
+    EXPECT_GT(stacked.rows_per_piece[1], 500u);
+    const Eigen::VectorXd x = stacked.solve();
+    EXPECT_EQ(split.equations, static_cast<std::size_t>(stacked.w.rows()));
     for (int p = 0; p < c; ++p) EXPECT_NEAR(split.x[p], x[p], 1e-9 * std::abs(x[p])) << names[static_cast<std::size_t>(p)];
 
     // The command gives the same numbers (its JSON keeps every digit) with ordinary LS, as computed by hand
