@@ -312,6 +312,7 @@ void run(IdentifyOptions o) {
     if (o.in.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
     if (o.threads < 0) throw InputError(fmt::format("--threads {}: must be >= 0 (0: one per core)", o.threads));
     if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    o.pipeline.threads = o.threads;  // one log: its regressor, F_p and QR on every thread (several: see run_segmented_pipeline)
     if (o.drive_gains.enabled) {
         if (o.inputs.size() > 1) {
             throw InputError(fmt::format("--drive-gains with {} --in logs: give the unloaded run as --in and the loaded one as --loaded", o.inputs.size()));
@@ -450,7 +451,9 @@ void add_identify_command(CLI::App& app) {
                     "identify several logs together: each log keeps its own edges, their equations are stacked")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    cmd->add_option("--threads", o->threads, "logs (or --on-gap split segments) processed at once (0: one per core); the results do not depend on it")
+    cmd->add_option("--threads", o->threads,
+                    "threads (0: one per core): several logs (or --on-gap split segments) are processed at once, one log's regressor, "
+                    "F_p and least squares are split over them; the results do not depend on it")
         ->capture_default_str();
     cmd->add_flag("--print-base", o->print_base,
                   "print the robot's base parameters with their regrouping relations (e.g. ZZ1R = ZZ1 + IA1 + 0.25*M2) and true values, "

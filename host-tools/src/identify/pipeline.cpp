@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
+#include <functional>
 #include <cmath>
 #include <utility>
 
 #include "core/errors.hpp"
+#include "core/parallel_for.hpp"
 #include "identify/bandwidth.hpp"
 #include "identify/running_qr.hpp"
 #include "identify/torque_smoothing.hpp"
@@ -312,9 +315,19 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
     }
     const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
     std::vector<std::vector<double>> buffer(columns);
-    std::vector<double> workspace;
-    Eigen::MatrixXd D(joints, c);
-    std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs), row(static_cast<std::size_t>(c + 1));
+    // Work split over threads (settings.threads) in three stages per chunk: the regressor by sample ranges,
+    // F_p by columns, the running QR by joints. Each piece of arithmetic is the same whatever the thread
+    // count (no sum is split), so the result is identical bit for bit.
+    const int threads = std::max(1, s.threads);
+    ParallelForOptions pool;
+    pool.threads = threads;
+    std::vector<std::vector<double>> workspaces(static_cast<std::size_t>(threads));
+    auto run_or_rethrow = [&](std::size_t jobs, const std::function<void(std::size_t)>& job) {
+        for (const auto& error : parallel_for(jobs, pool, job)) {
+            if (error) std::rethrow_exception(error);
+        }
+    };
+    std::vector<double> row(static_cast<std::size_t>(c + 1));
     out.plot.y.resize(static_cast<std::size_t>(joints));
     out.plot.w.resize(static_cast<std::size_t>(joints));
     DecimatedRow decimated;
@@ -336,23 +349,30 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
         const std::size_t len = e1 - e0;
         const auto t0 = Clock::now();
         for (auto& col : buffer) col.resize(len);
-        for (std::size_t i = 0; i < len; ++i) {
-            const std::size_t k = e0 + i;
-            for (int j = 0; j < joints; ++j) {
-                const auto js = static_cast<std::size_t>(j);
-                qs[js] = e.q[js][k];
-                qds[js] = e.qd[js][k];
-                qdds[js] = e.qdd[js][k];
+        const auto ranges = static_cast<std::size_t>(threads);
+        run_or_rethrow(ranges, [&](std::size_t range) {
+            Eigen::MatrixXd D(joints, c);
+            std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
+            for (std::size_t i = len * range / ranges; i < len * (range + 1) / ranges; ++i) {
+                const std::size_t k = e0 + i;
+                for (int j = 0; j < joints; ++j) {
+                    const auto js = static_cast<std::size_t>(j);
+                    qs[js] = e.q[js][k];
+                    qds[js] = e.qd[js][k];
+                    qdds[js] = e.qdd[js][k];
+                }
+                model.regressor(qs.data(), qds.data(), qdds.data(), D);
+                if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
+                for (int j = 0; j < joints; ++j) {
+                    const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
+                    for (int p = 0; p < c; ++p) buffer[base + static_cast<std::size_t>(p)][i] = D(j, p);
+                    buffer[base + static_cast<std::size_t>(c)][i] = e.tau[static_cast<std::size_t>(j)][k];
+                }
             }
-            model.regressor(qs.data(), qds.data(), qdds.data(), D);
-            if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
-            for (int j = 0; j < joints; ++j) {
-                const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                for (int p = 0; p < c; ++p) buffer[base + static_cast<std::size_t>(p)][i] = D(j, p);
-                buffer[base + static_cast<std::size_t>(c)][i] = e.tau[static_cast<std::size_t>(j)][k];
-            }
-        }
-        for (auto& col : buffer) filtfilt_or_throw(fp, col.data(), col.data(), len, workspace);
+        });
+        run_or_rethrow(ranges, [&](std::size_t t) {
+            for (std::size_t col = t; col < columns; col += ranges) filtfilt_or_throw(fp, buffer[col].data(), buffer[col].data(), len, workspaces[t]);
+        });
         const auto t1 = Clock::now();
         regressor_seconds += std::chrono::duration<double>(t1 - t0).count();
         if (sink) {
@@ -366,8 +386,18 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             }
             sink->filtered_torque(lo, hi - lo, torque_piece);
         }
-        std::size_t k = c0 + (d - (c0 - a0) % d) % d;
-        for (; k < c1; k += d) {
+        const std::size_t first_kept = c0 + (d - (c0 - a0) % d) % d;
+        // Each joint's rows into its own running QR and lagged products (one joint per job, rows in order).
+        run_or_rethrow(static_cast<std::size_t>(joints), [&](std::size_t j) {
+            const std::size_t base = j * static_cast<std::size_t>(c + 1);
+            std::vector<double> joint_row(static_cast<std::size_t>(c + 1));
+            for (std::size_t k = first_kept; k < c1; k += d) {
+                for (int p = 0; p <= c; ++p) joint_row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][k - e0];
+                qr[j].add_row(joint_row.data());
+                lagged[j].add_row(joint_row.data());
+            }
+        });
+        for (std::size_t k = first_kept; k < c1 && (sink || out.plot.t.size() < s.plot_rows); k += d) {
             const std::size_t i = k - e0;
             const bool keep_for_plot = out.plot.t.size() < s.plot_rows;
             const double t = log.start_time + static_cast<double>(k) * log.sample_period;
@@ -375,8 +405,6 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             for (int j = 0; j < joints; ++j) {
                 const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
                 for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][i];
-                qr[static_cast<std::size_t>(j)].add_row(row.data());
-                lagged[static_cast<std::size_t>(j)].add_row(row.data());
                 if (keep_for_plot) {
                     out.plot.y[static_cast<std::size_t>(j)].push_back(row[static_cast<std::size_t>(c)]);
                     out.plot.w[static_cast<std::size_t>(j)].insert(out.plot.w[static_cast<std::size_t>(j)].end(), row.begin(), row.end() - 1);

@@ -57,9 +57,12 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
     ParallelForOptions pool;
     pool.threads = threads;
     pool.stop_on_failure = false;
+    // Threads left over when there are fewer pieces than threads go inside each piece's pipeline.
+    PipelineSettings fixed = plan.fixed;
+    fixed.threads = std::max(1, threads / static_cast<int>(std::max<std::size_t>(1, segments.size())));
     const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) {
         const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
-        parts[s] = run_pipeline(model, aligned.log, plan.fixed);
+        parts[s] = run_pipeline(model, aligned.log, fixed);
     });
     for (std::size_t s = 0; s < segments.size(); ++s) {
         if (errors[s]) {
