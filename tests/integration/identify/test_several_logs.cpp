@@ -135,7 +135,14 @@ TEST(SeveralLogs, NeitherTheThreadCountNorTheOrderChangesTheResult) {
     const json one = run_json(logs.identify(ab + " --threads 1"));
     const json two = run_json(logs.identify(ab + " --threads 2"));
     const json ba = run_json(logs.identify("--in " + logs.b + " --in " + logs.a + " --method both --threads 2"));
+    // One log: its regressor, F_p and QR split over the threads.
+    const json alone1 = run_json(logs.identify("--in " + logs.a + " --threads 1 --method both"));
+    const json alone2 = run_json(logs.identify("--in " + logs.a + " --threads 2 --method both"));
     for (const char* method : {"jacobi", "butterworth"}) {
+        for (const auto& [name, p] : alone1["methods"][method]["parameters"].items()) {
+            EXPECT_EQ(p["value"], alone2["methods"][method]["parameters"][name]["value"]) << method << ' ' << name;
+            EXPECT_EQ(p["std"], alone2["methods"][method]["parameters"][name]["std"]) << method << ' ' << name;
+        }
         for (const auto& [name, p] : one["methods"][method]["parameters"].items()) {
             EXPECT_EQ(p["value"], two["methods"][method]["parameters"][name]["value"]) << method << ' ' << name;  // bit for bit
             const double v = p["value"].get<double>();
