@@ -9,8 +9,10 @@
 #include <fstream>
 #include <sstream>
 #include <string_view>
+#include <thread>
 
 #include "core/errors.hpp"
+#include "core/parallel_for.hpp"
 #include "io/printable_text.hpp"
 #include "jacobid/yaml/input_file.hpp"
 
@@ -71,11 +73,104 @@ std::size_t CsvTable::column_index(const std::string& name) const {
     return it->second;
 }
 
-CsvTable parse_csv(const std::string& text, const std::string& source) {
-    TextLines lines(text);
-    auto next_line = [&](std::string_view& out) { return lines.next(out); };
-    std::string_view row;
-    if (!next_line(row) || trim_cell(row).empty()) throw InputError(fmt::format("{}:1: empty file, expected a header row", source));
+namespace {
+
+// The data rows of text[begin, end), whose first line is line number `first_line`, written into every
+// column at rows [first_row, ...): one value per column per line. `last` says whether the range ends the
+// text (only there may the last line be empty: a trailing newline). Returns the rows written.
+std::size_t parse_row_range(const std::string& text, std::size_t begin, std::size_t end, std::size_t first_line, std::size_t first_row, bool last,
+                            CsvTable& table) {
+    const std::string& source = table.source();
+    const std::vector<std::string>& header = table.header();
+    const std::size_t width = header.size();
+    std::size_t line = first_line, row_index = first_row;
+    for (std::size_t pos = begin; pos < end; ++line) {
+        std::size_t stop = text.find('\n', pos);
+        if (stop == std::string::npos || stop > end) stop = end;
+        const std::string_view row(text.data() + pos, stop - pos);
+        pos = stop + 1;
+        if (trim_cell(row).empty()) {
+            if (last && pos >= end) break;  // trailing empty line
+            throw InputError(fmt::format("{}:{}: empty line inside the data", source, line));
+        }
+        const char* p = row.data();
+        const char* row_end = row.data() + row.size();
+        for (std::size_t c = 0; c < width; ++c) {
+            while (p < row_end && is_space(*p)) ++p;
+            double value = 0;
+            const auto r = fast_float::from_chars(p, row_end, value);
+            const char* cell_end = p;
+            while (cell_end < row_end && *cell_end != ',') ++cell_end;
+            const auto cell = [&] { return printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p)))); };
+            if (r.ec != std::errc()) throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", source, line, header[c], cell()));
+            const char* q = r.ptr;
+            while (q < row_end && (is_space(*q) || *q == '\r')) ++q;
+            if (q != cell_end) throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", source, line, header[c], cell()));
+            if (!std::isfinite(value) || beyond_log_range(value)) {
+                throw InputError(fmt::format("{}:{}: column '{}': value '{}' {}", source, line, header[c], cell(),
+                                             std::isfinite(value) ? kBeyondLogRange : "is not finite (NaN or Inf)"));
+            }
+            table.mutable_column(c)[row_index] = value;
+            if (c + 1 < width) {
+                if (cell_end == row_end) throw InputError(fmt::format("{}:{}: expected {} columns, found {}", source, line, width, c + 1));
+                p = cell_end + 1;
+            } else if (cell_end != row_end) {
+                const auto extra = static_cast<std::size_t>(std::count(cell_end, row_end, ','));
+                throw InputError(fmt::format("{}:{}: expected {} columns, found {}", source, line, width, width + extra));
+            }
+        }
+        ++row_index;
+    }
+    return row_index - first_row;
+}
+
+// Rows of text[begin, end) (whole lines; the text ends there only if `last`), the first being line
+// `first_line`, appended to the table's columns. Long pieces are parsed in ranges of whole lines on every
+// core: each range knows its first line number and row (counted first) and writes its own rows, and the
+// first error by position is the one reported, so neither the table nor the message depends on the thread
+// count.
+void parse_rows(const std::string& text, std::size_t begin, std::size_t end, std::size_t first_line, bool last, const CsvChunking& chunking,
+                CsvTable& table) {
+    if (begin >= end) return;
+    const std::size_t bytes = end - begin;
+    const std::size_t ranges = std::max<std::size_t>(
+        1, std::min<std::size_t>(bytes / std::max<std::size_t>(1, chunking.range_bytes),
+                                 chunking.max_ranges > 0 ? chunking.max_ranges : std::max(1u, std::thread::hardware_concurrency())));
+    std::vector<std::size_t> starts = {begin};
+    for (std::size_t r = 1; r < ranges; ++r) {
+        const std::size_t newline = text.find('\n', begin + bytes * r / ranges);
+        if (newline == std::string::npos || newline + 1 >= end || newline + 1 <= starts.back()) break;
+        starts.push_back(newline + 1);
+    }
+    starts.push_back(end);
+    const std::size_t count = starts.size() - 1;
+    // Lines per range: every range but the last ends with a newline.
+    const std::size_t rows_before = table.rows();
+    std::vector<std::size_t> first_lines(count), first_rows(count);
+    std::size_t lines = 0;
+    for (std::size_t r = 0; r < count; ++r) {
+        first_lines[r] = first_line + lines;
+        first_rows[r] = rows_before + lines;
+        lines += static_cast<std::size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(starts[r]),
+                                                      text.begin() + static_cast<std::ptrdiff_t>(starts[r + 1]), '\n'));
+    }
+    const std::size_t capacity = rows_before + lines + (text[end - 1] != '\n' ? 1 : 0);
+    for (std::size_t c = 0; c < table.header().size(); ++c) table.mutable_column(c).resize(capacity);
+    std::vector<std::size_t> written(count, 0);
+    ParallelForOptions pool;
+    pool.threads = static_cast<int>(count);
+    const std::vector<std::exception_ptr> errors = parallel_for(count, pool, [&](std::size_t r) {
+        written[r] = parse_row_range(text, starts[r], starts[r + 1], first_lines[r], first_rows[r], last && r + 1 == count, table);
+    });
+    for (const auto& e : errors) {
+        if (e) std::rethrow_exception(e);  // the earliest range's error: the first in the file
+    }
+    for (std::size_t c = 0; c < table.header().size(); ++c) table.mutable_column(c).resize(first_rows[count - 1] + written[count - 1]);
+}
+
+// The header row's names (InputError for an empty file or a bad name).
+std::vector<std::string> parse_header(std::string_view row, const std::string& source) {
+    if (trim_cell(row).empty()) throw InputError(fmt::format("{}:1: empty file, expected a header row", source));
     // A UTF-8 byte order mark (spreadsheet exports) is an encoding marker, not part of the first name: kept,
     // it made the first column 'BOM+t', and "no column 't'" listed a 't' that looked the same.
     constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
@@ -99,57 +194,66 @@ CsvTable parse_csv(const std::string& text, const std::string& source) {
         if (comma == std::string_view::npos) break;
         start = comma + 1;
     }
-    CsvTable table(source, header);
-    const std::size_t width = header.size();
-    // Reserve from a cheap estimate of the row count to avoid repeated growth on long logs.
-    const std::size_t estimate = static_cast<std::size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(std::min(lines.offset(), text.size())), text.end(), '\n')) + 1;
-    for (std::size_t c = 0; c < width; ++c) table.mutable_column(c).reserve(estimate);
-    while (next_line(row)) {
-        const std::size_t line = lines.line();
-        if (trim_cell(row).empty()) {
-            if (lines.at_end()) break;  // trailing empty line
-            throw InputError(fmt::format("{}:{}: empty line inside the data", source, line));
-        }
-        const char* p = row.data();
-        const char* end = row.data() + row.size();
-        for (std::size_t c = 0; c < width; ++c) {
-            while (p < end && is_space(*p)) ++p;
-            double value = 0;
-            const auto r = fast_float::from_chars(p, end, value);
-            const char* cell_end = p;
-            while (cell_end < end && *cell_end != ',') ++cell_end;
-            if (r.ec != std::errc()) {
-                throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", source, line, header[c],
-                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
-            }
-            const char* q = r.ptr;
-            while (q < end && (is_space(*q) || *q == '\r')) ++q;
-            if (q != cell_end) {
-                throw InputError(fmt::format("{}:{}: column '{}': expected a number, got '{}'", source, line, header[c],
-                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p))))));
-            }
-            if (!std::isfinite(value) || beyond_log_range(value)) {
-                throw InputError(fmt::format("{}:{}: column '{}': value '{}' {}", source, line, header[c],
-                                             printable_cell(trim_cell(std::string_view(p, static_cast<std::size_t>(cell_end - p)))),
-                                             std::isfinite(value) ? kBeyondLogRange : "is not finite (NaN or Inf)"));
-            }
-            table.mutable_column(c).push_back(value);
-            if (c + 1 < width) {
-                if (cell_end == end) {
-                    throw InputError(fmt::format("{}:{}: expected {} columns, found {}", source, line, width, c + 1));
-                }
-                p = cell_end + 1;
-            } else if (cell_end != end) {
-                const auto extra = static_cast<std::size_t>(std::count(cell_end, end, ','));
-                throw InputError(fmt::format("{}:{}: expected {} columns, found {}", source, line, width, width + extra));
-            }
-        }
-    }
+    return header;
+}
+
+}  // namespace
+
+CsvTable parse_csv(const std::string& text, const std::string& source, const CsvChunking& chunking) {
+    const std::size_t header_end = std::min(text.find('\n'), text.size());
+    CsvTable table(source, parse_header(std::string_view(text).substr(0, header_end), source));
+    parse_rows(text, std::min(header_end + 1, text.size()), text.size(), 2, true, chunking, table);
     return table;
 }
 
 std::string read_text_file(const std::string& path, const std::string& what) { return yaml::read_input_file<InputError>(path, what); }
 
-CsvTable read_csv(const std::string& path) { return parse_csv(read_text_file(path, "file"), path); }
+// Streamed in blocks of whole lines: the text of a long log is never held whole (a 1-hour 6-axis log is
+// 1.4 GB of text for 0.7 GB of numbers), and each block is parsed as it arrives.
+CsvTable read_csv(const std::string& path, const CsvChunking& chunking) {
+    const std::size_t kBlockBytes = std::max<std::size_t>(1, chunking.block_bytes);
+    const std::uintmax_t size = yaml::checked_input_file_size<InputError>(path, "file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(fmt::format("{}: cannot open file", path));
+    std::string buffer;
+    // Appends up to one block; false at the end of the file.
+    auto read_more = [&] {
+        const std::size_t had = buffer.size();
+        buffer.resize(had + kBlockBytes);
+        in.read(buffer.data() + had, static_cast<std::streamsize>(kBlockBytes));
+        if (in.bad()) throw InputError(fmt::format("{}: read error in file", path));
+        buffer.resize(had + static_cast<std::size_t>(in.gcount()));
+        return in.gcount() > 0;
+    };
+    std::size_t newline = std::string::npos;
+    while ((newline = buffer.find('\n')) == std::string::npos && read_more()) {
+    }
+    const std::size_t header_end = std::min(newline, buffer.size());
+    CsvTable table(path, parse_header(std::string_view(buffer).substr(0, header_end), path));
+    buffer.erase(0, std::min(header_end + 1, buffer.size()));
+    // The row count estimated from the first block's lines, so that the columns grow once.
+    if (!buffer.empty() || read_more()) {
+        const auto lines = static_cast<double>(std::count(buffer.begin(), buffer.end(), '\n')) + 1.0;
+        const double bytes_per_line = static_cast<double>(buffer.size()) / lines;
+        const auto estimate = static_cast<std::size_t>(1.02 * static_cast<double>(size) / std::max(1.0, bytes_per_line)) + 16;
+        for (std::size_t c = 0; c < table.header().size(); ++c) table.mutable_column(c).reserve(estimate);
+    }
+    std::size_t line = 2;
+    for (bool ended = in.eof(); !buffer.empty() || !ended;) {
+        if (!ended) {
+            read_more();
+            ended = in.eof();
+        }
+        // Until the file has ended, whole lines only and never the last one (whether an empty last line is
+        // the file's trailing newline or an empty line inside the data depends on what follows it).
+        const std::size_t cut = ended ? buffer.size() - 1 : buffer.size() < 2 ? std::string::npos : buffer.rfind('\n', buffer.size() - 2);
+        if (buffer.empty() || cut == std::string::npos) continue;  // nothing left, or no whole line yet: read on
+        parse_rows(buffer, 0, cut + 1, line, ended, chunking, table);
+        line += static_cast<std::size_t>(std::count(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(cut + 1), '\n'));
+        buffer.erase(0, cut + 1);
+    }
+    return table;
+}
+
 
 }  // namespace jacobid::io

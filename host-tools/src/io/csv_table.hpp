@@ -71,11 +71,20 @@ std::string printable_cell(std::string_view cell);
 // A header's names for a message ("t,q1,q2"), each one printable, the first 20 and the count when longer.
 std::string describe_columns(const std::vector<std::string>& names);
 
+// How a long CSV is read: streamed in blocks of whole lines (the text is never held whole), each block
+// parsed in ranges of whole lines on up to max_ranges threads (0: one per core). The table and the
+// messages do not depend on these; tests make them small to cross block and range boundaries.
+struct CsvChunking {
+    std::size_t block_bytes = std::size_t{64} << 20;
+    std::size_t range_bytes = std::size_t{16} << 20;
+    std::size_t max_ranges = 0;
+};
+
 // Reads `path`. Accepts ',' separators, optional spaces around cells, '\n' or '\r\n' line ends, a final
 // line with or without '\n'; rejects empty files, empty or duplicate header names, rows with too few or
 // too many cells, non-numeric cells and NaN/Inf.
-CsvTable read_csv(const std::string& path);
+CsvTable read_csv(const std::string& path, const CsvChunking& chunking = {});
 // Same, from text already in memory (`source` names it in messages).
-CsvTable parse_csv(const std::string& text, const std::string& source);
+CsvTable parse_csv(const std::string& text, const std::string& source, const CsvChunking& chunking = {});
 
 }  // namespace jacobid::io

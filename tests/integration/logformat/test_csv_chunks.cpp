@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// The CSV reader streams long logs in blocks of whole lines and parses each block in ranges on several
+// threads (io/csv_table.hpp, CsvChunking). With blocks and ranges made tiny, every boundary case occurs in
+// a small file: lines cut by a block end, a line longer than a block, ranges inside a block; the table must
+// hold exactly the values written (known by construction, not read back from the reader), and an error
+// must name the same line whatever the chunking.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "core/errors.hpp"
+#include "io/csv_table.hpp"
+#include "scratch_directory.hpp"
+
+namespace {
+
+using namespace jacobid;
+
+std::string write(const std::string& name, const std::string& text) {
+    const std::string path = (test::scratch_directory() / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+// Row i: t = i / 1000 (printed with 3 decimals), a = i + 0.25, b = -i / 8, all exact in binary.
+std::string rows_text(std::size_t rows, bool final_newline, const std::string& line_end = "\n") {
+    std::string text = "t, a ,b" + line_end;
+    for (std::size_t i = 0; i < rows; ++i) {
+        text += std::to_string(i / 1000) + "." + std::string(3 - std::to_string(i % 1000).size(), '0') + std::to_string(i % 1000) + "," +
+                std::to_string(static_cast<double>(i) + 0.25) + ", " + std::to_string(-static_cast<double>(i) / 8.0);
+        if (i + 1 < rows || final_newline) text += line_end;
+    }
+    return text;
+}
+
+void expect_rows(const io::CsvTable& table, std::size_t rows) {
+    ASSERT_EQ(table.rows(), rows);
+    ASSERT_EQ(table.header(), (std::vector<std::string>{"t", "a", "b"}));
+    for (std::size_t i = 0; i < rows; ++i) {
+        ASSERT_EQ(table.column("t")[i], std::stod(std::to_string(i / 1000) + "." + std::string(3 - std::to_string(i % 1000).size(), '0') +
+                                                  std::to_string(i % 1000)))
+            << i;
+        ASSERT_EQ(table.column("a")[i], static_cast<double>(i) + 0.25) << i;
+        ASSERT_EQ(table.column("b")[i], -static_cast<double>(i) / 8.0) << i;
+    }
+}
+
+const io::CsvChunking kChunkings[] = {
+    {},                // one block, one range (the file is small)
+    {4096, 512, 4},    // many blocks, several ranges per block
+    {97, 31, 3},       // blocks shorter than a line: a line spans several reads
+    {1000, 1, 0},      // a range per line, one thread per core
+};
+
+TEST(CsvChunks, EveryChunkingReadsExactlyTheValuesWritten) {
+    for (const bool final_newline : {true, false}) {
+        for (const std::string line_end : {"\n", "\r\n"}) {
+            const std::string path = write("rows.csv", rows_text(1501, final_newline, line_end));
+            for (const auto& chunking : kChunkings) {
+                SCOPED_TRACE(testing::Message() << "block " << chunking.block_bytes << " range " << chunking.range_bytes << " newline "
+                                                << final_newline << " crlf " << (line_end.size() == 2));
+                expect_rows(io::read_csv(path, chunking), 1501);
+            }
+            const std::string text = rows_text(1501, final_newline, line_end);
+            expect_rows(io::parse_csv(text, "text", {4096, 300, 4}), 1501);
+        }
+    }
+}
+
+TEST(CsvChunks, AHeaderAloneAndOneTrailingEmptyLineAreFine) {
+    for (const auto& chunking : kChunkings) {
+        EXPECT_EQ(io::read_csv(write("header.csv", "t,a,b"), chunking).rows(), 0u);
+        EXPECT_EQ(io::read_csv(write("header_nl.csv", "t,a,b\n"), chunking).rows(), 0u);
+        expect_rows(io::read_csv(write("trailing.csv", rows_text(500, true) + "\n"), chunking), 500);
+    }
+}
+
+// The message names the file's line, the first bad one when there are several, whatever the chunking.
+TEST(CsvChunks, ErrorsNameTheSameLineWhateverTheChunking) {
+    std::string text = rows_text(2000, true);
+    const auto replace_line = [](std::string t, std::size_t line, const std::string& with) {
+        std::size_t pos = 0;
+        for (std::size_t l = 1; l < line; ++l) pos = t.find('\n', pos) + 1;
+        return t.replace(pos, t.find('\n', pos) - pos, with);
+    };
+    struct Case {
+        std::string text, expected;
+    };
+    const Case cases[] = {
+        {replace_line(text, 1718, "1.716,abc,1"), "bad.csv:1718: column 'a': expected a number, got 'abc'"},
+        {replace_line(replace_line(text, 1500, "1.498,1"), 1234, "1.232,1,2,3"), "bad.csv:1234: expected 3 columns, found 4"},
+        {replace_line(text, 1999, ""), "bad.csv:1999: empty line inside the data"},
+        {text + "\n\n", "bad.csv:2002: empty line inside the data"},  // the first of two empty lines at the end
+        {replace_line(text, 2001, "1.999,nan,0"), "bad.csv:2001: column 'a': value 'nan' is not finite"},
+    };
+    for (const Case& c : cases) {
+        const std::string path = write("bad.csv", c.text);
+        for (const auto& chunking : kChunkings) {
+            try {
+                (void)io::read_csv(path, chunking);
+                ADD_FAILURE() << "no error for " << c.expected << " (block " << chunking.block_bytes << ")";
+            } catch (const InputError& e) {
+                EXPECT_EQ(std::string(e.what()).rfind(path + c.expected.substr(7), 0), 0u)
+                    << e.what() << " expected " << c.expected << " (block " << chunking.block_bytes << ")";
+            }
+        }
+    }
+}
+
+}  // namespace
