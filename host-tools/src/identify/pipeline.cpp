@@ -350,10 +350,11 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
         const auto t0 = Clock::now();
         for (auto& col : buffer) col.resize(len);
         const auto ranges = static_cast<std::size_t>(threads);
-        run_or_rethrow(ranges, [&](std::size_t range) {
+        const std::size_t regressor_ranges = model.concurrent_regressor() ? ranges : 1;
+        run_or_rethrow(regressor_ranges, [&](std::size_t range) {
             Eigen::MatrixXd D(joints, c);
             std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
-            for (std::size_t i = len * range / ranges; i < len * (range + 1) / ranges; ++i) {
+            for (std::size_t i = len * range / regressor_ranges; i < len * (range + 1) / regressor_ranges; ++i) {
                 const std::size_t k = e0 + i;
                 for (int j = 0; j < joints; ++j) {
                     const auto js = static_cast<std::size_t>(j);

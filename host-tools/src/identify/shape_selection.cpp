@@ -31,6 +31,8 @@ public:
     int joint_count() const override { return nominal_.joint_count(); }
     int parameter_count() const override { return static_cast<int>(names_.size()); }
     const std::vector<std::string>& parameter_names() const override { return names_; }
+    // regressor() keeps the velocities for history_columns() of the same sample (qd_ below): one thread only.
+    bool concurrent_regressor() const override { return false; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override {
         const int p = nominal_.parameter_count();
         nominal_.regressor(q, qd, qdd, D.leftCols(p));

@@ -34,6 +34,10 @@ public:
     virtual const std::vector<std::string>& parameter_names() const = 0;
     // D (joint_count x parameter_count) such that tau = D X. q, qd, qdd have joint_count entries.
     virtual void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const = 0;
+    // Whether regressor() (and history_columns() after it) may be called from several threads at once on
+    // one object. Models are stateless, so yes; a model that keeps per-call scratch between the two calls
+    // says no, and the pipeline then builds its regressor rows on one thread.
+    virtual bool concurrent_regressor() const { return true; }
 
     // tau = D(q, qd, qdd) X by a route faster than the regressor, if the model has one (it then returns
     // true); the default has none and returns false, and callers use the regressor.

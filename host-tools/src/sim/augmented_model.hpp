@@ -20,6 +20,7 @@ public:
     int parameter_count() const override { return static_cast<int>(names_.size()); }
     const std::vector<std::string>& parameter_names() const override { return names_; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
+    bool concurrent_regressor() const override { return nominal_.concurrent_regressor(); }
     // The nominal model's history columns (presliding friction), so that they are fitted beside the terms.
     int history_size() const override { return nominal_.history_size(); }
     void integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const override {
