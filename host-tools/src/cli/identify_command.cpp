@@ -218,6 +218,15 @@ struct InputLogs {
 };
 
 InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOptions& o) {
+    // One log given twice would count its equations twice: a std too small by sqrt(2), data invented.
+    for (std::size_t k = 0; k < o.inputs.size(); ++k) {
+        for (std::size_t l = k + 1; l < o.inputs.size(); ++l) {
+            if (same_file(o.inputs[k], o.inputs[l])) {
+                throw InputError(fmt::format("--in {}: given twice (--in number {} and {}); give each log once (its equations would count twice)",
+                                             o.inputs[l], k + 1, l + 1));
+            }
+        }
+    }
     InputLogs in;
     in.read.resize(o.inputs.size());
     ParallelForOptions pool;

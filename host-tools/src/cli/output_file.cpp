@@ -13,7 +13,6 @@
 #include "cli/command.hpp"
 
 namespace jacobid::cli {
-namespace {
 
 namespace fs = std::filesystem;
 
@@ -22,6 +21,8 @@ bool same_file(const std::string& a, const std::string& b) {
     if (fs::equivalent(a, b, ec)) return true;  // both exist: compares inodes (links, "./x" vs "x")
     return fs::absolute(a, ec).lexically_normal() == fs::absolute(b, ec).lexically_normal();
 }
+
+namespace {
 
 void check_writable(const NamedPath& out) {
     std::error_code ec;

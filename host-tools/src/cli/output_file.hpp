@@ -14,6 +14,10 @@ struct NamedPath {
     std::string path;  // empty: not given (skipped); "-": standard output
 };
 
+// Whether two paths name one file (the same inode when both exist: links, "./x" and "x"; else the same
+// normalized absolute path).
+bool same_file(const std::string& a, const std::string& b);
+
 // Checks, before any work is done, that each output can be written: its directory exists, it is not a
 // directory, the file can be created or opened for writing (tried without truncating; a file created for
 // the try is removed again), and it is neither one of the inputs nor another output (a result written over

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -135,9 +136,15 @@ TEST(SeveralLogs, NeitherTheThreadCountNorTheOrderChangesTheResult) {
     const json one = run_json(logs.identify(ab + " --threads 1"));
     const json two = run_json(logs.identify(ab + " --threads 2"));
     const json ba = run_json(logs.identify("--in " + logs.b + " --in " + logs.a + " --method both --threads 2"));
-    // One log: its regressor, F_p and QR split over the threads.
-    const json alone1 = run_json(logs.identify("--in " + logs.a + " --threads 1 --method both"));
-    const json alone2 = run_json(logs.identify("--in " + logs.a + " --threads 2 --method both"));
+    // One log: its regressor, F_p and QR split over the threads; with alpha: auto, whose candidate model keeps
+    // per-call scratch between its regressor and history calls (its rows are then built on one thread: they
+    // raced when split, and the result moved by up to 2 % under load).
+    const std::string auto_robot = path("robot_auto.yaml");
+    std::ofstream(auto_robot) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: auto}\n";
+    const std::string alone = "identify --quiet --robot " + auto_robot + " --torque-delay 0 --in " + logs.a + " --method both";
+    const json alone1 = run_json(alone + " --threads 1");
+    const json alone2 = run_json(alone + " --threads 2");
+    ASSERT_TRUE(alone1.contains("coulomb_smoothing")) << "alpha auto was not chosen from data";
     for (const char* method : {"jacobi", "butterworth"}) {
         for (const auto& [name, p] : alone1["methods"][method]["parameters"].items()) {
             EXPECT_EQ(p["value"], alone2["methods"][method]["parameters"][name]["value"]) << method << ' ' << name;
@@ -175,7 +182,8 @@ TEST(SeveralLogs, ALogTooShortIsReportedAndTheOthersIdentify) {
     EXPECT_NE(pieces[1]["why"].get<std::string>().find("too short"), std::string::npos) << pieces[1]["why"];
     EXPECT_NE(r.err.find(fmt::format("jacobid identify [jacobi]: {} not used: ", path("short.csv"))), std::string::npos) << r.err;
     // Only logs too short: an error naming them.
-    const auto none = jacobid_cli(logs.identify("--in " + path("short.csv") + " --in " + path("short.csv")));
+    std::filesystem::copy_file(path("short.csv"), path("short2.csv"), std::filesystem::copy_options::overwrite_existing);
+    const auto none = jacobid_cli(logs.identify("--in " + path("short.csv") + " --in " + path("short2.csv")));
     EXPECT_EQ(none.exit_code, 2);
     EXPECT_NE(none.err.find("--in: no log is usable; the longest of the 2: "), std::string::npos) << none.err;
 }
@@ -204,6 +212,9 @@ TEST(SeveralLogs, RefusalsNameTheOptionAndTheLog) {
     const auto threads = jacobid_cli(logs.identify(ab + " --threads -1"));
     EXPECT_EQ(threads.exit_code, 2);
     EXPECT_NE(threads.err.find("--threads"), std::string::npos) << threads.err;
+    const auto twice = jacobid_cli(logs.identify(ab + " --in " + logs.a));
+    EXPECT_EQ(twice.exit_code, 2);
+    EXPECT_NE(twice.err.find(fmt::format("--in {}: given twice (--in number 1 and 3)", logs.a)), std::string::npos) << twice.err;
     const auto output = jacobid_cli(logs.identify(ab + " -o " + logs.b));
     EXPECT_EQ(output.exit_code, 2);
     EXPECT_NE(output.err.find("is the input given to --in"), std::string::npos) << output.err;
