@@ -18,6 +18,7 @@
 #include "sim/effect_spec.hpp"
 #include "sim/simulator.hpp"
 #include "sim/tabulated_trajectory.hpp"
+#include "io/partial_output.hpp"
 #include "io/csv_table.hpp"
 
 namespace jacobid::cli {
@@ -50,7 +51,7 @@ public:
     ~CsvWriter() {
         if (!file_) return;
         std::fclose(file_);
-        std::remove(path_.c_str());
+        io::remove_partial_output(path_);
     }
     fmt::memory_buffer& buffer() { return buffer_; }
     void row_done() {
@@ -60,7 +61,7 @@ public:
         flush();
         if (std::fclose(file_) != 0) {
             file_ = nullptr;
-            std::remove(path_.c_str());
+            io::remove_partial_output(path_);
             throw InputError(fmt::format("{}: write failed (disk full?)", path_));
         }
         file_ = nullptr;

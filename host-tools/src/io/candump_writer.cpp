@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "io/candump_joints.hpp"
+#include "io/partial_output.hpp"
 
 namespace jacobid::io {
 
@@ -18,14 +19,14 @@ CandumpWriter::CandumpWriter(const std::string& path, std::string interface) : p
 CandumpWriter::~CandumpWriter() {
     if (!file_) return;
     std::fclose(file_);
-    std::remove(path_.c_str());
+    remove_partial_output(path_);
 }
 
 void CandumpWriter::close() {
     std::FILE* file = file_;
     file_ = nullptr;
     if (std::fclose(file) != 0) {
-        std::remove(path_.c_str());
+        remove_partial_output(path_);
         throw InputError(fmt::format("{}: write failed (disk full?)", path_));
     }
 }

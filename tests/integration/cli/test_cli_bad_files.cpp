@@ -138,6 +138,16 @@ TEST(BadFiles, AWriteErrorIsNotExitZero) {
     expect_refused(jacobid("kernel --order 1 --window 0.05 --ts 0.001 -o /dev/full"), {"/dev/full", "write failed"});
 }
 
+// A failed run removes its partial output, but only a regular file: simulate -o /dev/full deleted the device
+// when run as root (found by an audit of issue 20's examples; CI runs as root).
+TEST(BadFiles, AFailedRunNeverRemovesADeviceGivenAsItsOutput) {
+    if (!fs::is_character_file("/dev/full")) GTEST_SKIP() << "no /dev/full on this machine";
+    expect_refused(jacobid("simulate --robot " + write("full_robot.yaml", kPlanar) + " --duration 1 -o /dev/full"), {"/dev/full", "write failed"});
+    EXPECT_TRUE(fs::is_character_file("/dev/full")) << "simulate removed /dev/full";
+    expect_refused(jacobid("sim-can --candump /dev/full --duration 1 --quiet"), {"/dev/full", "write failed"});
+    EXPECT_TRUE(fs::is_character_file("/dev/full")) << "sim-can removed /dev/full";
+}
+
 TEST(BadFiles, OutputFoldersAndPathsAreCheckedFirst) {
     const std::string file = write("not_a_dir", "x");
     expect_refused(jacobid("paper-sines --format json --out-dir " + file), {"--out-dir", "not a directory"});
