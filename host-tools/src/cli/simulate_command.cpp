@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/log_format_options.hpp"
 #include "cli/output_file.hpp"
 #include "cli/simulation_options.hpp"
 #include "robot/robot_description.hpp"
@@ -134,6 +135,23 @@ void run(SimulateOptions o) {
     }
     sim::MeasurementModel measurement(ms);
 
+    // The log must read back: each joint's position and torque in a column of its own, none on the time
+    // column or on a reference column written after them (identify refuses such a header).
+    (void)robot_column_names(robot, "t");
+    for (const char* prefix : {"q_ref", "qd_ref"}) {
+        for (int k = 1; k <= n; ++k) {
+            const std::string reference = fmt::format("{}{}", prefix, k);
+            for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+                for (const std::string* column : {&robot.joints[j].position_column, &robot.joints[j].torque_column}) {
+                    if (*column == reference) {
+                        throw InputError(fmt::format("{}: joint {} ({}) reads column '{}', which is the reference column simulate writes for joint "
+                                                     "{}; give it another name",
+                                                     robot.source, j + 1, robot.joints[j].name, reference, k));
+                    }
+                }
+            }
+        }
+    }
     std::string header = "t";
     for (const auto& j : robot.joints) header += "," + j.position_column;
     for (const auto& j : robot.joints) header += "," + j.torque_column;

@@ -112,8 +112,11 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
 std::string describe(const TorqueDelayResult& r) {
     const TorqueDelayEstimate& e = r.estimate;
     if (r.given) return fmt::format("torque delay {:+.3f} ms (given by --torque-delay)", 1e3 * e.delay);
-    std::string s = fmt::format("torque delay {:+.3f} ms (std {:.3f} ms, estimated from {} identifications of {} samples; ", 1e3 * e.delay,
-                                1e3 * e.std_dev, e.evaluations, e.samples_used);
+    // No curvature at the minimum (at the edge of the search range, or a flat cost): the std is unknown,
+    // said in words rather than printed as "inf" (JSON: null).
+    const std::string std_text = std::isfinite(e.std_dev) ? fmt::format("std {:.3f} ms", 1e3 * e.std_dev) : std::string("std unknown");
+    std::string s = fmt::format("torque delay {:+.3f} ms ({}, estimated from {} identifications of {} samples; ", 1e3 * e.delay, std_text,
+                                e.evaluations, e.samples_used);
     if (e.at_bound) return s + "at the edge of the search range: the offset may be larger; not compensated)";
     return s + (e.compensated ? "compensated)" : "not significant, not compensated)");
 }

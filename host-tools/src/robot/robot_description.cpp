@@ -2,6 +2,7 @@
 #include "robot/robot_description.hpp"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -235,6 +236,12 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
     if (top.has("gravity")) {
         const YAML::Node gravity = top.list("gravity", 3, 3, "numbers [gx, gy, gz] in m/s^2");
         for (std::size_t k = 0; k < 3; ++k) d.gravity[static_cast<Eigen::Index>(k)] = top.number_element(gravity[k], "gravity", "m/s^2");
+        // Bounded where it is read, for every command: 1e308 along an axis overflowed the base-parameter
+        // search into "no moving joint" in identify, a wrong cause (simulate's own check came later).
+        constexpr double kMaxGravity = 1e3;  // m/s^2, as robot/simulated_parameters.cpp
+        if (d.gravity.norm() > kMaxGravity) {
+            top.fail(gravity, "gravity", fmt::format("[{}]: expected a vector of at most {:g} m/s^2", fmt::join(d.gravity, ", "), kMaxGravity));
+        }
     }
     top.mark_used("gravity");
     top.mark_used("friction");

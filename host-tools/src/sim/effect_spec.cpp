@@ -62,6 +62,12 @@ EffectSpec build(const std::string& name, const std::vector<std::pair<std::strin
         }
         if (given.count(key)) throw InputError(fmt::format("{}: key '{}' given twice", where(key), key));
         given[key] = number_or_throw(text, where(key));
+        // Far beyond any real effect (1e6 N.m, kg.m^2, kg.m, rad/s): 1e300 made the simulated robot's mass
+        // matrix indefinite or its torques overflow, and the error named no effect.
+        constexpr double kMaxEffectValue = 1e6;
+        if (key != "joint" && key != "order" && !(std::abs(given[key]) <= kMaxEffectValue)) {
+            throw InputError(fmt::format("{}: {} must be within +-{:g}", where(key), given[key], kMaxEffectValue));
+        }
     }
     auto need = [&](const char* key) {
         if (!given.count(key)) throw InputError(fmt::format("{}: {} needs '{}'", where(""), name, key));
@@ -102,6 +108,10 @@ EffectSpec build(const std::string& name, const std::vector<std::pair<std::strin
         case EffectKind::TorqueDelay:
             s.value = need("value");
             if (!(s.value >= 0.0 && s.value <= 1.0)) throw InputError(fmt::format("{}: delay must be within [0, 1] s", where("value")));
+            break;
+        case EffectKind::RotorInertia:
+            s.value = need("value");
+            if (!(s.value >= 0.0)) throw InputError(fmt::format("{}: a rotor inertia must be >= 0 kg.m^2, got {}", where("value"), s.value));
             break;
         default: s.value = need("value"); break;
     }

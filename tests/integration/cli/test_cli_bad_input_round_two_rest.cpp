@@ -307,3 +307,59 @@ TEST(CliBadInputRest, ReportDirectoryIsCheckedBeforeTheWork) {
 }
 
 }  // namespace
+
+// --- 7. Found by the audit of 2026-12-03 ---------------------------------------------------------------
+
+namespace {
+
+// Injected effects of absurd size: before, "the robot's parameters give an inertia matrix that is not
+// positive definite" naming no effect, or (a rotor inertia of 1e300) exit 0 with torques of 1e301 that
+// identify then refused.
+TEST(CliBadInputRest, InjectedEffectsAreBoundedAndNamed) {
+    const std::string out = scratch("effects.csv").string();
+    for (const std::string effect : {"coulomb_offset:joint=1,value=1e300", "cogging:joint=2,amplitude=1e300,order=6",
+                                     "gravity:tilt=3,direction=0,mx1=1e300", "rotor_inertia:joint=2,value=1e300"}) {
+        expect_refused_on_one_line(jacobid("simulate --robot " + planar_robot() + " --duration 2 -o " + out + " --effect " + effect),
+                                   {"--effect '" + effect + "' key '", "must be within +-1e+06"});
+        EXPECT_FALSE(fs::exists(out)) << effect;
+    }
+    expect_refused_on_one_line(jacobid("simulate --robot " + planar_robot() + " --duration 2 -o " + out + " --effect rotor_inertia:joint=2,value=-1"),
+                               {"--effect 'rotor_inertia:joint=2,value=-1' key 'value'", "a rotor inertia must be >= 0"});
+    const std::string file = write("effects.yaml", "effects:\n  - {name: coulomb_offset, joint: 1, value: 1e300}\n");
+    expect_refused_on_one_line(jacobid("simulate --robot " + planar_robot() + " --duration 2 -o " + out + " --effects " + file),
+                               {file, "must be within +-1e+06"});
+}
+
+// Gravity of 1e308 (the issue's example): before, identify said "no moving joint", a wrong cause.
+TEST(CliBadInputRest, HugeGravityIsRefusedWhereItIsRead) {
+    const std::string mdh = write("gravity.yaml",
+                                  "model: mdh\ngravity: [1e308, 0, 0]\njoints:\n"
+                                  "  - {name: j1, sigma: 0, alpha: 0, d: 0, theta: 0, r: 0}\n"
+                                  "  - {name: j2, sigma: 0, alpha: 0, d: 0.5, theta: 0, r: 0}\n");
+    for (const std::string command : {"identify --print-base --robot " + mdh, "simulate --duration 1 -o " + scratch("g.csv").string() + " --robot " + mdh}) {
+        expect_refused_on_one_line(jacobid(command), {"gravity.yaml:2:", "gravity", "at most 1000 m/s^2"});
+    }
+}
+
+// simulate wrote headers its own reader refuses: two joints on one column, a joint on the time column or on
+// a reference column it writes itself.
+TEST(CliBadInputRest, SimulateRefusesColumnNamesItCouldNotReadBack) {
+    const std::string out = scratch("columns.csv").string();
+    const std::string base = "model: planar2r\nL1: 0.5\njoints:\n";
+    const struct {
+        const char* name;
+        const char* joints;
+        std::string expected;
+    } cases[] = {
+        {"twice.yaml", "  - {name: j1, position: q1, torque: tau1}\n  - {name: j2, position: q1, torque: tau2}\n", "joint 2 (j2)'s position reads column 'q1'"},
+        {"time.yaml", "  - {name: j1, position: t, torque: tau1}\n  - {name: j2, position: q2, torque: tau2}\n", "joint 1 (j1)'s position reads column 't'"},
+        {"reference.yaml", "  - {name: j1, position: q1, torque: q_ref1}\n  - {name: j2, position: q2, torque: tau2}\n",
+         "joint 1 (j1) reads column 'q_ref1', which is the reference column simulate writes for joint 1"},
+    };
+    for (const auto& c : cases) {
+        expect_refused_on_one_line(jacobid("simulate --duration 1 -o " + out + " --robot " + write(c.name, base + c.joints)), {c.expected});
+        EXPECT_FALSE(fs::exists(out)) << c.name;
+    }
+}
+
+}  // namespace

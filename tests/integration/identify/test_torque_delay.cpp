@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -132,3 +133,22 @@ TEST(TorqueDelay, LongLogsAreSearchedOnTheirFirstSamples) {
     EXPECT_NEAR(e.delay, 0.002, 0.0001);
     EXPECT_TRUE(e.compensated);
 }
+
+namespace {
+
+// An estimate without curvature at its minimum (at the edge of the search range: a 1 s PUMA log did it)
+// has no std: the text says so in words instead of printing "std inf ms" (issue 20: no non-finite value
+// in a result; the JSON writes null).
+TEST(TorqueDelay, AnUnknownStdIsSaidInWordsNotPrintedAsInf) {
+    jacobid::identify::TorqueDelayResult r;
+    r.estimate.delay = -0.005;
+    r.estimate.std_dev = std::numeric_limits<double>::infinity();
+    r.estimate.at_bound = true;
+    const std::string text = jacobid::identify::describe(r);
+    EXPECT_NE(text.find("torque delay -5.000 ms (std unknown, "), std::string::npos) << text;
+    EXPECT_EQ(text.find("inf"), std::string::npos) << text;
+    r.estimate.std_dev = 0.0004;
+    EXPECT_NE(jacobid::identify::describe(r).find("(std 0.400 ms, "), std::string::npos) << jacobid::identify::describe(r);
+}
+
+}  // namespace
