@@ -54,7 +54,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         JACOBID_FUZZ_CHECK(false, "the printed copy of an accepted table is rejected");
     }
     JACOBID_FUZZ_CHECK(again.header() == table.header() && again.rows() == table.rows(), "printed copy has another shape");
-    for (std::size_t c = 0; c < table.columns(); ++c) {
+    // A header without rows leaves the columns unallocated (data() null): memcmp of null, even for 0 bytes,
+    // is undefined (found by this target once the reader stopped reserving before the first row).
+    for (std::size_t c = 0; c < table.columns() && table.rows() > 0; ++c) {
         JACOBID_FUZZ_CHECK(std::memcmp(again.column(c).data(), table.column(c).data(), table.rows() * sizeof(double)) == 0,
                            "a value does not survive printing with 17 digits and parsing again");
     }
