@@ -219,6 +219,9 @@ void FirmwareCycle::log_commands(std::int64_t now_ns, const PlayerInput& in, con
 void FirmwareCycle::run_playback(std::int64_t now_ns) noexcept {
     const bool enabled = safety_ == nullptr || safety_->enabled();
     if (player_.phase() == PlaybackPhase::Idle) {
+        // An overrun while nothing is commanded yet (start-up, waiting for every joint's first sample) puts
+        // nothing at risk: the loop counts it, the playback that starts later must not inherit it.
+        deadline_missed_ = false;
         if (!enabled) return;
         for (std::size_t j = 0; j < joint_count_; ++j) {
             const hal::JointState& s = decoders_.state(j);

@@ -191,6 +191,17 @@ TEST(FirmwarePlayback, EachFaultTurnsTheNextCommandsIntoAHold) {
     expect_hold_after([](PlaybackRig& r) { r.cycle->note_missed_deadline(); }, firmware::StopReason::MissedDeadline, -1);
 }
 
+// An overrun while the firmware waits for every joint's first sample (start-up, before anything is
+// commanded) must not stop the playback that starts later: the VM board run stopped at row 1, cycle 0,
+// on a flag set during jacobid-fw's start-up. An overrun once commands flow still stops it (above).
+TEST(FirmwarePlayback, ADeadlineMissedBeforeThePlaybackStartsDoesNotStopIt) {
+    PlaybackRig rig;
+    rig.cycle->note_missed_deadline();  // the loop's start-up overrun, before the first tick
+    rig.run(1 + 500 + 100);
+    EXPECT_EQ(rig.cycle->player().phase(), firmware::PlaybackPhase::Playing) << firmware::to_string(rig.cycle->player().stop_reason());
+    EXPECT_EQ(rig.cycle->counters().stop_cycles, 0u);
+}
+
 TEST(FirmwarePlayback, CsvCommandLogWritesAHeaderAndOneLinePerRecord) {
     const std::string file = (test::scratch_directory() / "commands.csv").string();
     {
