@@ -72,6 +72,12 @@ void add_pipeline_rate_options(CLI::App* cmd, identify::PipelineSettings& pipeli
     cmd->add_option("--decimation-cutoff", pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)")
         ->check(positive_number());
     cmd->add_option("--decimation", pipeline.decimation, "decimation factor (default: fs / (4 x F_p cutoff))")->check(whole_number_from(1));
+    cmd->add_option("--coulomb-velocity-ratio", pipeline.coulomb_velocity_ratio,
+                    "the Coulomb columns' velocity cutoff as a multiple of the differentiators' (F_q's); the columns then go through the "
+                    "torque's filter like the torque. 1: the same velocity; 2: switches nearer the true reversals (more position noise); "
+                    "0: off (docs/method.md)")
+        ->check(number_in(0.0, 10.0))
+        ->capture_default_str();
 }
 
 std::optional<double> given_torque_delay(const FitOptions& o) {

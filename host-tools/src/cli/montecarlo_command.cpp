@@ -59,7 +59,8 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
                                    {"position_noise", ms.position_noise}}},
                   {"identify", {{"estimator", estimator}, {"weighting", weighting}, {"weighted", weighting == "wls"}, {"std_method", o.std_method}, {"torque_delay", o.torque_delay}, {"discretization", o.discretization},
                                 {"bandwidth", o.pipeline.bandwidth}, {"cutoff", o.pipeline.differentiator_cutoff},
-                                {"decimation_cutoff", o.pipeline.decimation_cutoff}, {"decimation", o.pipeline.decimation}}}};
+                                {"decimation_cutoff", o.pipeline.decimation_cutoff}, {"decimation", o.pipeline.decimation},
+                                {"coulomb_velocity_ratio", o.pipeline.coulomb_velocity_ratio}}}};
     std::string noise;
     for (double v : ms.torque_noise) noise += fmt::format("{}{:g}", noise.empty() ? "" : "/", v);
     c.settings_line = fmt::format("{} runs (seeds {}..{}, noise seeds {}..{}), {:g} s at {:g} Hz, torque noise {} N.m{}", o.runs, sim.seed,

@@ -172,6 +172,8 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     e.qdd.assign(joints, std::vector<double>(n, 0.0));
     e.tau.resize(joints);
     std::vector<double> smoothing;  // Jacobi: the velocity kernel's low-pass, for a measured velocity
+    const double coulomb_ratio = s.measured_velocity ? 0.0 : s.coulomb_velocity_ratio;
+    info.coulomb_velocity_cutoff = 0.0;
     if (s.method == Method::Jacobi) {
         KernelParams pv = jacobi_params(s, 1, ts), pa = jacobi_params(s, 2, ts);
         pv.window = info.velocity_window;
@@ -203,6 +205,30 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
             std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
                       e.tau[j].begin() + static_cast<std::ptrdiff_t>((ws.size() - 1) / 2));
         }
+        if (coulomb_ratio > 0.0) {
+            // The Coulomb columns' velocity: a Jacobi velocity kernel at coulomb_ratio x the cutoff.
+            const double cutoff = std::min(coulomb_ratio * info.differentiator_cutoff, 0.4 / ts);
+            std::vector<double> scratch(std::max<std::size_t>(std::min<std::size_t>(n, 2'000'001), 3));
+            KernelParams pc = jacobi_params(s, 1, ts);
+            const WindowDesign d = window_for_cutoff(pc, cutoff, true, Span<double>(scratch));
+            if (d.status != KernelStatus::Ok) throw InputError(fmt::format("Coulomb velocity window design: {}", describe(d.status)));
+            pc.window = d.window;
+            const std::vector<double> wc = design_or_throw(pc);
+            info.coulomb_velocity_cutoff = find_cutoff(Span<const double>(wc), ts, 1).frequency;
+            e.torque_fir = ws;
+            e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
+            const std::size_t hc = (wc.size() - 1) / 2;
+            for (std::size_t j = 0; j < joints && wc.size() <= n; ++j) {
+                const std::size_t outputs = n - wc.size() + 1;
+                const BatchStatus status = signal::differentiate_batch(Span<const double>(wc), Span<const double>(*log.q[j]),
+                                                                       Span<double>(out.data(), outputs));
+                if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
+                auto& v = e.qd_coulomb[j];
+                std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs), v.begin() + static_cast<std::ptrdiff_t>(hc));
+                std::fill(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(hc), v[hc]);
+                std::fill(v.begin() + static_cast<std::ptrdiff_t>(hc + outputs), v.end(), v[hc + outputs - 1]);
+            }
+        }
     } else {
         // The paper's baseline: positions AND torques through the same forward-backward Butterworth F_q
         // (filtering only q would leave torque content the regressor lacks), then central Euler differences.
@@ -215,6 +241,19 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
             filtfilt_or_throw(fq, log.tau[j]->data(), e.tau[j].data(), n, workspace);
             euler_first_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qd[j]));
             euler_second_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qdd[j]));
+        }
+        if (coulomb_ratio > 0.0) {
+            // The Coulomb columns' velocity: central differences of the positions through a Butterworth of
+            // the same order at coulomb_ratio x F_q's cutoff (the columns then go through F_q like the torque).
+            const double cutoff = std::min(coulomb_ratio * info.prefilter_cutoff, 0.4 / ts);
+            const Lowpass fc = signal::design_butterworth_or_throw(s.butterworth_order, cutoff, ts, "Coulomb velocity prefilter");
+            info.coulomb_velocity_cutoff = cutoff;
+            e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
+            std::vector<double> qf(n);
+            for (std::size_t j = 0; j < joints; ++j) {
+                filtfilt_or_throw(fc, log.q[j]->data(), qf.data(), n, workspace);
+                euler_first_derivative(Span<const double>(qf), ts, Span<double>(e.qd_coulomb[j]));
+            }
         }
     }
     if (s.measured_velocity) {
@@ -327,6 +366,20 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             if (error) std::rethrow_exception(error);
         }
     };
+    std::vector<int> coulomb_columns;  // the FCj columns, when their velocity is given (StateEstimates::qd_coulomb)
+    std::vector<std::vector<double>> coulomb_raw;
+    const std::size_t full_length = e.q.empty() ? 0 : e.q.front().size();
+    Lowpass coulomb_fq{};
+    if (!e.qd_coulomb.empty()) {
+        for (int j = 0; j < joints; ++j) {
+            const int index = model.parameter_index(fmt::format("FC{}", j + 1));
+            if (index >= 0) coulomb_columns.push_back(index);
+        }
+        coulomb_raw.resize(coulomb_columns.size() * static_cast<std::size_t>(joints));
+        if (e.torque_fir.empty()) {
+            coulomb_fq = signal::design_butterworth_or_throw(s.butterworth_order, info.prefilter_cutoff, log.sample_period, "Butterworth prefilter");
+        }
+    }
     std::vector<double> row(static_cast<std::size_t>(c + 1));
     out.plot.y.resize(static_cast<std::size_t>(joints));
     out.plot.w.resize(static_cast<std::size_t>(joints));
@@ -371,6 +424,45 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                 }
             }
         });
+        if (!coulomb_columns.empty()) {
+            // The Coulomb columns s(alpha qd) on the wider velocity, then through the torque's own filter
+            // (StateEstimates::qd_coulomb), on [e0, e1) plus the filter's reach on each side.
+            const bool fir = !e.torque_fir.empty();
+            const std::size_t reach = fir ? (e.torque_fir.size() - 1) / 2 : info.first;
+            const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
+            Eigen::MatrixXd D(joints, c);
+            std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
+            for (auto& col : coulomb_raw) col.resize(xlen);
+            for (std::size_t k = x0; k < x1; ++k) {
+                for (int j = 0; j < joints; ++j) {
+                    const auto js = static_cast<std::size_t>(j);
+                    qs[js] = e.q[js][k];
+                    qds[js] = e.qd_coulomb[js][k];
+                    qdds[js] = e.qdd[js][k];
+                }
+                model.regressor(qs.data(), qds.data(), qdds.data(), D);
+                for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
+                    for (int j = 0; j < joints; ++j) coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)][k - x0] = D(j, coulomb_columns[ci]);
+                }
+            }
+            std::vector<double> filtered(xlen);
+            for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
+                for (int j = 0; j < joints; ++j) {
+                    const auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
+                    std::size_t shift = 0;  // filtered[m] belongs to sample x0 + m + shift
+                    if (fir) {
+                        const BatchStatus status = signal::differentiate_batch(Span<const double>(e.torque_fir), Span<const double>(raw),
+                                                                               Span<double>(filtered.data(), xlen - e.torque_fir.size() + 1));
+                        if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
+                        shift = reach;
+                    } else {
+                        filtfilt_or_throw(coulomb_fq, raw.data(), filtered.data(), xlen, workspaces[0]);
+                    }
+                    auto& target = buffer[static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci])];
+                    for (std::size_t k = e0; k < e1; ++k) target[k - e0] = filtered[k - x0 - shift];
+                }
+            }
+        }
         run_or_rethrow(ranges, [&](std::size_t t) {
             for (std::size_t col = t; col < columns; col += ranges) filtfilt_or_throw(fp, buffer[col].data(), buffer[col].data(), len, workspaces[t]);
         });

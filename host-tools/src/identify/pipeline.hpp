@@ -53,6 +53,12 @@ struct PipelineSettings {
     // The regressor's velocities from the log's measured velocity columns (LogColumns::qd) instead of the
     // differentiated positions (identify --velocity measured); accelerations still come from the positions.
     bool measured_velocity = false;
+    // The Coulomb columns s(alpha qd) from a velocity estimate whose cutoff is this multiple of the
+    // differentiators' (or F_q's), put through the torque's filter after the sign function
+    // (StateEstimates::qd_coulomb; docs/method.md "Coulomb columns"). 1: the same velocity as the other
+    // columns; > 1: a wider one (switches closer to the true reversal, but carries more position noise
+    // into the sign function); 0: off (the sign of the filtered velocity, unfiltered: the bias of issue 14).
+    double coulomb_velocity_ratio = 1.0;
     // Lags of the residual autocorrelation accumulated with the factors (JointFactors::lagged; 0: none).
     int residual_lags = kDefaultResidualLags;
     // Only the log's samples [kept_from, kept_to) become equations (both 0: all); the samples around them
@@ -88,6 +94,7 @@ struct PipelineInfo {
     double velocity_window = 0.0, acceleration_window = 0.0;  // Jacobi, s
     double velocity_cutoff = 0.0, acceleration_cutoff = 0.0;  // achieved, Hz
     double prefilter_cutoff = 0.0;                            // Butterworth F_q, Hz
+    double coulomb_velocity_cutoff = 0.0;                     // Hz, the Coulomb columns' velocity (0: off)
     double decimation_cutoff = 0.0;
     int decimation = 1;
     std::size_t first = 0, last = 0;  // valid derivative range [first, last) of input samples
@@ -138,6 +145,13 @@ public:
 struct StateEstimates {
     std::size_t first = 0, last = 0;  // valid input samples [first, last)
     std::vector<std::vector<double>> q, qd, qdd, tau;  // per joint, full length (only [first, last) meaningful)
+    // Coulomb columns (issue 14): a steep sign function s(alpha qd) does not commute with a low-pass, so
+    // s(alpha qd^) of the filtered velocity is not the filtered s(alpha qd) the torque holds. When
+    // qd_coulomb is set, fold_states evaluates the FCj columns on this wider velocity and then puts them
+    // through the filter the torque went through (torque_fir: the Jacobi torque smoothing kernel; empty:
+    // the Butterworth F_q), like the torque. Empty: the FCj columns come from qd as before.
+    std::vector<std::vector<double>> qd_coulomb;
+    std::vector<double> torque_fir;
 };
 
 // Resolves automatic choices (bandwidth, cutoffs, windows, decimation) and checks that the log is long
