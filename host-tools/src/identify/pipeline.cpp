@@ -61,6 +61,60 @@ void filtfilt_or_throw(const Lowpass& sos, const double* x, double* y, std::size
     if (status != FilterStatus::Ok) throw InputError(fmt::format("zero-phase filter on {} samples: {}", n, describe(status)));
 }
 
+// A Jacobi velocity kernel (the pipeline's kappa, mu, q) whose cutoff is closest to `cutoff`.
+std::vector<double> coulomb_velocity_kernel(const PipelineSettings& s, double ts, std::size_t n, double cutoff) {
+    std::vector<double> scratch(std::max<std::size_t>(std::min<std::size_t>(n, 2'000'001), 3));
+    KernelParams p = jacobi_params(s, 1, ts);
+    const WindowDesign d = window_for_cutoff(p, cutoff, true, Span<double>(scratch));
+    if (d.status != KernelStatus::Ok) throw InputError(fmt::format("Coulomb velocity window design: {}", describe(d.status)));
+    p.window = d.window;
+    return design_or_throw(p);
+}
+
+// s'_j(0): the slope at qd = 0 of joint j's Coulomb column s(alpha qd); 0 when the model has no FCj column or
+// its sign is not smooth (s jumps to about 1 already at qd = 1e-7).
+double coulomb_slope(const robot::RobotModel& model, int joint) {
+    const int index = model.parameter_index(fmt::format("FC{}", joint + 1));
+    if (index < 0) return 0.0;
+    const int joints = model.joint_count();
+    std::vector<double> q(static_cast<std::size_t>(joints), 0.0), qd(q), qdd(q);
+    constexpr double eps = 1e-7;
+    qd[static_cast<std::size_t>(joint)] = eps;
+    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(joints, model.parameter_count());
+    model.regressor(q.data(), qd.data(), qdd.data(), D);
+    const double value = D(joint, index);
+    return std::isfinite(value) && value > 0.0 && value < 0.5 ? value / eps : 0.0;
+}
+
+// The Coulomb velocity's cutoff ratio per joint (PipelineSettings::coulomb_velocity_ratio). A given ratio
+// applies to every joint. Auto (< 0): the widest of 3, 2.5, 2, 1.5 x the cutoff whose position noise in
+// the sign function, s'_j(0) sigma_q,j ||w||_2 (w: that velocity estimate's weights, `noise_gain`), stays
+// within kCoulombVelocityNoise (of the sign's transition width); 1 otherwise, or when s'_j(0) or the model
+// is unknown. sigma_q,j is the bandwidth estimate's white position noise.
+std::vector<double> coulomb_ratios(const robot::RobotModel* model, const LogColumns& log, const PipelineSettings& s, const PipelineInfo& info,
+                                   double ratio, const std::function<double(double)>& noise_gain) {
+    const std::size_t joints = log.q.size();
+    if (ratio > 0.0) return std::vector<double>(joints, ratio);
+    std::vector<double> ratios(joints, 1.0);
+    if (!model || model->joint_count() != static_cast<int>(joints)) return ratios;
+    const BandwidthEstimate estimate =
+        info.bandwidth_estimated ? info.bandwidth_estimate : estimate_motion_bandwidth(log.q, log.sample_period, log.q_names, s.differentiator_ratio);
+    std::vector<std::pair<double, double>> gains;  // ratio, ||w||_2
+    for (double candidate : {3.0, 2.5, 2.0, 1.5}) gains.emplace_back(candidate, noise_gain(candidate));
+    for (std::size_t j = 0; j < joints; ++j) {
+        const double alpha = coulomb_slope(*model, static_cast<int>(j));
+        if (alpha <= 0.0 || j >= estimate.joints.size()) continue;
+        const double sigma_q = estimate.joints[j].noise_rms;
+        for (const auto& [candidate, gain] : gains) {
+            if (alpha * sigma_q * gain <= kCoulombVelocityNoise) {
+                ratios[j] = candidate;
+                break;
+            }
+        }
+    }
+    return ratios;
+}
+
 }  // namespace
 
 const char* to_string(Method m) { return m == Method::Jacobi ? "jacobi" : "butterworth"; }
@@ -159,7 +213,7 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
     return info;
 }
 
-StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s, PipelineInfo& info) {
+StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s, PipelineInfo& info, const robot::RobotModel* model) {
     const auto start = Clock::now();
     const std::size_t n = log.samples();
     const std::size_t joints = log.q.size();
@@ -173,7 +227,7 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     e.tau.resize(joints);
     std::vector<double> smoothing;  // Jacobi: the velocity kernel's low-pass, for a measured velocity
     const double coulomb_ratio = s.measured_velocity ? 0.0 : s.coulomb_velocity_ratio;
-    info.coulomb_velocity_cutoff = 0.0;
+    info.coulomb_velocity_cutoffs.clear();
     if (s.method == Method::Jacobi) {
         KernelParams pv = jacobi_params(s, 1, ts), pa = jacobi_params(s, 2, ts);
         pv.window = info.velocity_window;
@@ -205,20 +259,22 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
             std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
                       e.tau[j].begin() + static_cast<std::ptrdiff_t>((ws.size() - 1) / 2));
         }
-        if (coulomb_ratio > 0.0) {
-            // The Coulomb columns' velocity: a Jacobi velocity kernel at coulomb_ratio x the cutoff.
-            const double cutoff = std::min(coulomb_ratio * info.differentiator_cutoff, 0.4 / ts);
-            std::vector<double> scratch(std::max<std::size_t>(std::min<std::size_t>(n, 2'000'001), 3));
-            KernelParams pc = jacobi_params(s, 1, ts);
-            const WindowDesign d = window_for_cutoff(pc, cutoff, true, Span<double>(scratch));
-            if (d.status != KernelStatus::Ok) throw InputError(fmt::format("Coulomb velocity window design: {}", describe(d.status)));
-            pc.window = d.window;
-            const std::vector<double> wc = design_or_throw(pc);
-            info.coulomb_velocity_cutoff = find_cutoff(Span<const double>(wc), ts, 1).frequency;
+        if (coulomb_ratio != 0.0) {
+            // The Coulomb columns' velocity: a Jacobi velocity kernel at the joint's ratio x the cutoff.
+            auto kernel = [&](double ratio) { return coulomb_velocity_kernel(s, ts, n, std::min(ratio * info.differentiator_cutoff, 0.4 / ts)); };
+            const std::vector<double> ratios = coulomb_ratios(model, log, s, info, coulomb_ratio, [&](double ratio) {
+                double sum = 0.0;
+                for (double w : kernel(ratio)) sum += w * w;
+                return std::sqrt(sum);
+            });
             e.torque_fir = ws;
             e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
-            const std::size_t hc = (wc.size() - 1) / 2;
-            for (std::size_t j = 0; j < joints && wc.size() <= n; ++j) {
+            info.coulomb_velocity_cutoffs.assign(joints, 0.0);
+            for (std::size_t j = 0; j < joints; ++j) {
+                const std::vector<double> wc = kernel(ratios[j]);
+                if (wc.size() > n) throw InputError(fmt::format("{}: {} samples are shorter than the Coulomb velocity kernel", log.source, n));
+                info.coulomb_velocity_cutoffs[j] = find_cutoff(Span<const double>(wc), ts, 1).frequency;
+                const std::size_t hc = (wc.size() - 1) / 2;
                 const std::size_t outputs = n - wc.size() + 1;
                 const BatchStatus status = signal::differentiate_batch(Span<const double>(wc), Span<const double>(*log.q[j]),
                                                                        Span<double>(out.data(), outputs));
@@ -242,15 +298,29 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
             euler_first_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qd[j]));
             euler_second_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qdd[j]));
         }
-        if (coulomb_ratio > 0.0) {
+        if (coulomb_ratio != 0.0) {
             // The Coulomb columns' velocity: central differences of the positions through a Butterworth of
-            // the same order at coulomb_ratio x F_q's cutoff (the columns then go through F_q like the torque).
-            const double cutoff = std::min(coulomb_ratio * info.prefilter_cutoff, 0.4 / ts);
-            const Lowpass fc = signal::design_butterworth_or_throw(s.butterworth_order, cutoff, ts, "Coulomb velocity prefilter");
-            info.coulomb_velocity_cutoff = cutoff;
+            // the same order at the joint's ratio x F_q's cutoff (the columns then go through F_q like the torque).
+            auto cutoff_for = [&](double ratio) { return std::min(ratio * info.prefilter_cutoff, 0.4 / ts); };
+            const std::vector<double> ratios = coulomb_ratios(model, log, s, info, coulomb_ratio, [&](double ratio) {
+                // White-noise gain: the impulse response of F_q (forward-backward) and the central difference.
+                const Lowpass f = signal::design_butterworth_or_throw(s.butterworth_order, cutoff_for(ratio), ts, "Coulomb velocity prefilter");
+                const std::size_t half = static_cast<std::size_t>(std::ceil(20.0 / (cutoff_for(ratio) * ts))) + 2;
+                std::vector<double> x(2 * half + 1, 0.0), y(x.size()), d(x.size());
+                x[half] = 1.0;
+                std::vector<double> w;
+                filtfilt_or_throw(f, x.data(), y.data(), x.size(), w);
+                euler_first_derivative(Span<const double>(y), ts, Span<double>(d));
+                double sum = 0.0;
+                for (std::size_t k = 1; k + 1 < d.size(); ++k) sum += d[k] * d[k];
+                return std::sqrt(sum);
+            });
             e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
+            info.coulomb_velocity_cutoffs.assign(joints, 0.0);
             std::vector<double> qf(n);
             for (std::size_t j = 0; j < joints; ++j) {
+                const Lowpass fc = signal::design_butterworth_or_throw(s.butterworth_order, cutoff_for(ratios[j]), ts, "Coulomb velocity prefilter");
+                info.coulomb_velocity_cutoffs[j] = cutoff_for(ratios[j]);
                 filtfilt_or_throw(fc, log.q[j]->data(), qf.data(), n, workspace);
                 euler_first_derivative(Span<const double>(qf), ts, Span<double>(e.qd_coulomb[j]));
             }
@@ -310,7 +380,7 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
         fmt::print(stderr, "identify [{}]: {} samples, bandwidth {:.3g} Hz{}, F_p {:.3g} Hz, decimation {}\n", to_string(s.method),
                    log.samples(), info.bandwidth, info.bandwidth_estimated ? " (estimated)" : "", info.decimation_cutoff, info.decimation);
     }
-    const StateEstimates e = estimate_states(log, s, info);
+    const StateEstimates e = estimate_states(log, s, info, &model);
     if (s.progress) fmt::print(stderr, "identify [{}]: derivatives in {:.2f} s\n", to_string(s.method), info.seconds_differentiate);
     return fold_states(model, log, s, std::move(info), e, sink);
 }

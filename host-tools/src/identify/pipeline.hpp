@@ -27,6 +27,11 @@ namespace jacobid::identify {
 enum class Method { Jacobi, Butterworth };
 const char* to_string(Method m);
 
+// Auto Coulomb velocity: largest s'_j(0) sigma_v,j, the velocity noise against the transition width of joint j's
+// sign function s_j (s'(0) = 2 alpha / pi for the smoothed atan sign). Measured on issue 14's 2R (alpha 100,
+// 65536 counts): 0.052 (2 x the cutoff) unbiased, 0.098 (3 x) FV2 -0.24 %, 0.18 (alpha 1000, 1 x) FC2 +0.2 %.
+inline constexpr double kCoulombVelocityNoise = 0.06;
+
 struct PipelineSettings {
     Method method = Method::Jacobi;
     double bandwidth = 0.0;              // Hz; 0: estimated (bandwidth.hpp: energy above the noise floor, limited by the noise)
@@ -57,8 +62,10 @@ struct PipelineSettings {
     // differentiators' (or F_q's), put through the torque's filter after the sign function
     // (StateEstimates::qd_coulomb; docs/method.md "Coulomb columns"). 1: the same velocity as the other
     // columns; > 1: a wider one (switches closer to the true reversal, but carries more position noise
-    // into the sign function); 0: off (the sign of the filtered velocity, unfiltered: the bias of issue 14).
-    double coulomb_velocity_ratio = 1.0;
+    // into the sign function); 0: off (the sign of the filtered velocity, unfiltered: the bias of issue 14);
+    // < 0: auto, per joint the widest of 1.5 .. 3 whose noise in the sign function stays within
+    // kCoulombVelocityNoise (alpha sigma_v), else 1.
+    double coulomb_velocity_ratio = -1.0;
     // Lags of the residual autocorrelation accumulated with the factors (JointFactors::lagged; 0: none).
     int residual_lags = kDefaultResidualLags;
     // Only the log's samples [kept_from, kept_to) become equations (both 0: all); the samples around them
@@ -94,7 +101,7 @@ struct PipelineInfo {
     double velocity_window = 0.0, acceleration_window = 0.0;  // Jacobi, s
     double velocity_cutoff = 0.0, acceleration_cutoff = 0.0;  // achieved, Hz
     double prefilter_cutoff = 0.0;                            // Butterworth F_q, Hz
-    double coulomb_velocity_cutoff = 0.0;                     // Hz, the Coulomb columns' velocity (0: off)
+    std::vector<double> coulomb_velocity_cutoffs;             // Hz per joint, the Coulomb columns' velocity (empty: off)
     double decimation_cutoff = 0.0;
     int decimation = 1;
     std::size_t first = 0, last = 0;  // valid derivative range [first, last) of input samples
@@ -157,7 +164,10 @@ struct StateEstimates {
 // Resolves automatic choices (bandwidth, cutoffs, windows, decimation) and checks that the log is long
 // enough; InputError names the option or the file otherwise.
 PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& settings);
-StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& settings, PipelineInfo& info);
+// `model`, if given, lets the automatic Coulomb velocity (PipelineSettings::coulomb_velocity_ratio < 0) see
+// each joint's Coulomb smoothing alpha; without it that velocity is the other columns' (ratio 1).
+StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& settings, PipelineInfo& info,
+                               const robot::RobotModel* model = nullptr);
 // Steps 2-4 on given full-rate states (estimate_states', or a simulation's for the estimators IDIM-IV and
 // DIDIM) with `info` from plan_pipeline on `log`: the same rows, F_p and decimation whatever the states.
 PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& settings, PipelineInfo info,

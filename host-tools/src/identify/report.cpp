@@ -351,7 +351,7 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                      {"velocity_cutoff_hz", i.velocity_cutoff},
                      {"acceleration_cutoff_hz", i.acceleration_cutoff},
                      {"prefilter_cutoff_hz", i.prefilter_cutoff},
-                     {"coulomb_velocity_cutoff_hz", i.coulomb_velocity_cutoff},
+                     {"coulomb_velocity_cutoffs_hz", i.coulomb_velocity_cutoffs},
                      {"decimation_cutoff_hz", i.decimation_cutoff},
                      {"decimation", i.decimation},
                      {"valid_first", i.first},
