@@ -30,7 +30,7 @@ const char* to_string(Method m);
 // Auto Coulomb velocity: largest s'_j(0) sigma_v,j, the velocity noise against the transition width of joint j's
 // sign function s_j (s'(0) = 2 alpha / pi for the smoothed atan sign). Measured on issue 14's 2R (alpha 100,
 // 65536 counts): 0.052 (2 x the cutoff) unbiased, 0.098 (3 x) FV2 -0.24 %, 0.18 (alpha 1000, 1 x) FC2 +0.2 %.
-inline constexpr double kCoulombVelocityNoise = 0.06;
+inline constexpr double kCoulombVelocityNoise = 0.07;
 
 struct PipelineSettings {
     Method method = Method::Jacobi;
@@ -63,7 +63,7 @@ struct PipelineSettings {
     // (StateEstimates::qd_coulomb; docs/method.md "Coulomb columns"). 1: the same velocity as the other
     // columns; > 1: a wider one (switches closer to the true reversal, but carries more position noise
     // into the sign function); 0: off (the sign of the filtered velocity, unfiltered: the bias of issue 14);
-    // < 0: auto, per joint the widest of 1.5 .. 3 whose noise in the sign function stays within
+    // < 0: auto, per joint the wider of 2 or 1.5 whose noise in the sign function stays within
     // kCoulombVelocityNoise (alpha sigma_v), else 1.
     double coulomb_velocity_ratio = -1.0;
     // Lags of the residual autocorrelation accumulated with the factors (JointFactors::lagged; 0: none).
