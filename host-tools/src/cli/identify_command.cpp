@@ -200,7 +200,7 @@ std::vector<identify::SegmentReport> segment_reports(const std::vector<io::LogSe
     std::vector<identify::SegmentReport> reports;
     for (std::size_t s = 0; s < segments.size(); ++s) {
         const io::LogSegment& g = segments[s];
-        reports.push_back({g.first_line, g.last_line, g.duration, g.samples, used[s], why[s]});
+        reports.push_back({g.first_line, g.last_line, g.duration, g.samples, used[s], why[s], 0, ""});
         if (!used[s]) fmt::print(stderr, "jacobid identify [{}]: {}: segment {} ({}) not used: {}\n", method, path, s + 1, g.describe(), why[s]);
     }
     return reports;

@@ -140,13 +140,13 @@ void run(SimulateOptions o) {
     (void)robot_column_names(robot, "t");
     for (const char* prefix : {"q_ref", "qd_ref"}) {
         for (int k = 1; k <= n; ++k) {
-            const std::string reference = fmt::format("{}{}", prefix, k);
+            const std::string name = fmt::format("{}{}", prefix, k);
             for (std::size_t j = 0; j < robot.joints.size(); ++j) {
                 for (const std::string* column : {&robot.joints[j].position_column, &robot.joints[j].torque_column}) {
-                    if (*column == reference) {
+                    if (*column == name) {
                         throw InputError(fmt::format("{}: joint {} ({}) reads column '{}', which is the reference column simulate writes for joint "
                                                      "{}; give it another name",
-                                                     robot.source, j + 1, robot.joints[j].name, reference, k));
+                                                     robot.source, j + 1, robot.joints[j].name, name, k));
                     }
                 }
             }

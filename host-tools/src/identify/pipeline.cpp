@@ -92,10 +92,9 @@ double coulomb_slope(const robot::RobotModel& model, int joint) {
 // within kCoulombVelocityNoise (of the sign's transition width); 1 otherwise, or when s'_j(0) or the model
 // is unknown. sigma_q,j is the bandwidth estimate's white position noise. Not wider than 2: on issue 14's
 // experiment 2.5 and 3 left the ZZ2 bias where 2 had it and added the noise bias (docs/method.md).
-std::vector<double> coulomb_ratios(const robot::RobotModel* model, const LogColumns& log, const PipelineSettings& s, const PipelineInfo& info,
-                                   double ratio, const std::function<double(double)>& noise_gain) {
+std::vector<double> automatic_coulomb_ratios(const robot::RobotModel* model, const LogColumns& log, const PipelineSettings& s,
+                                             const PipelineInfo& info, const std::function<double(double)>& noise_gain) {
     const std::size_t joints = log.q.size();
-    if (ratio > 0.0) return std::vector<double>(joints, ratio);
     std::vector<double> ratios(joints, 1.0);
     if (!model || model->joint_count() != static_cast<int>(joints)) return ratios;
     const BandwidthEstimate estimate =
@@ -116,7 +115,47 @@ std::vector<double> coulomb_ratios(const robot::RobotModel* model, const LogColu
     return ratios;
 }
 
+// The Coulomb columns' velocity cutoff at `ratio` x the pipeline's (the differentiators' or F_q's), below 0.4 fs.
+double coulomb_cutoff(const PipelineSettings& s, const PipelineInfo& info, double ts, double ratio) {
+    return std::min(ratio * (s.method == Method::Jacobi ? info.differentiator_cutoff : info.prefilter_cutoff), 0.4 / ts);
+}
+
+// White-noise gain ||w||_2 of the Coulomb velocity estimate at `ratio`: the Jacobi kernel's weights, or the
+// impulse response of the forward-backward Butterworth followed by the central difference.
+double coulomb_noise_gain(const PipelineSettings& s, const PipelineInfo& info, double ts, std::size_t n, double ratio) {
+    const double cutoff = coulomb_cutoff(s, info, ts, ratio);
+    double sum = 0.0;
+    if (s.method == Method::Jacobi) {
+        for (double w : coulomb_velocity_kernel(s, ts, n, cutoff)) sum += w * w;
+        return std::sqrt(sum);
+    }
+    const Lowpass f = signal::design_butterworth_or_throw(s.butterworth_order, cutoff, ts, "Coulomb velocity prefilter");
+    const std::size_t half = static_cast<std::size_t>(std::ceil(20.0 / (cutoff * ts))) + 2;
+    std::vector<double> x(2 * half + 1, 0.0), y(x.size()), d(x.size());
+    x[half] = 1.0;
+    std::vector<double> w;
+    filtfilt_or_throw(f, x.data(), y.data(), x.size(), w);
+    euler_first_derivative(Span<const double>(y), ts, Span<double>(d));
+    for (std::size_t k = 1; k + 1 < d.size(); ++k) sum += d[k] * d[k];
+    return std::sqrt(sum);
+}
+
 }  // namespace
+
+std::vector<double> coulomb_velocity_ratios(const robot::RobotModel* model, const LogColumns& log, const PipelineSettings& s,
+                                            const PipelineInfo& info) {
+    const std::size_t joints = log.q.size();
+    if (s.measured_velocity || s.coulomb_velocity_ratio == 0.0) return {};
+    if (!s.coulomb_velocity_ratios.empty()) {
+        if (s.coulomb_velocity_ratios.size() != joints) {
+            throw InputError(fmt::format("{}: {} Coulomb velocity ratios imposed on {} joints", log.source, s.coulomb_velocity_ratios.size(), joints));
+        }
+        return s.coulomb_velocity_ratios;
+    }
+    if (s.coulomb_velocity_ratio > 0.0) return std::vector<double>(joints, s.coulomb_velocity_ratio);
+    return automatic_coulomb_ratios(model, log, s, info,
+                                    [&](double ratio) { return coulomb_noise_gain(s, info, log.sample_period, log.samples(), ratio); });
+}
 
 const char* to_string(Method m) { return m == Method::Jacobi ? "jacobi" : "butterworth"; }
 
@@ -227,7 +266,10 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     e.qdd.assign(joints, std::vector<double>(n, 0.0));
     e.tau.resize(joints);
     std::vector<double> smoothing;  // Jacobi: the velocity kernel's low-pass, for a measured velocity
-    const double coulomb_ratio = s.measured_velocity ? 0.0 : s.coulomb_velocity_ratio;
+    // The Coulomb columns' velocity per joint (empty: off), chosen before the estimates so that an imposed
+    // plan (validation, segments, several logs) carries it.
+    const std::vector<double> ratios = coulomb_velocity_ratios(model, log, s, info);
+    info.coulomb_velocity_ratios = ratios;
     info.coulomb_velocity_cutoffs.clear();
     if (s.method == Method::Jacobi) {
         KernelParams pv = jacobi_params(s, 1, ts), pa = jacobi_params(s, 2, ts);
@@ -260,19 +302,13 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
             std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
                       e.tau[j].begin() + static_cast<std::ptrdiff_t>((ws.size() - 1) / 2));
         }
-        if (coulomb_ratio != 0.0) {
+        if (!ratios.empty()) {
             // The Coulomb columns' velocity: a Jacobi velocity kernel at the joint's ratio x the cutoff.
-            auto kernel = [&](double ratio) { return coulomb_velocity_kernel(s, ts, n, std::min(ratio * info.differentiator_cutoff, 0.4 / ts)); };
-            const std::vector<double> ratios = coulomb_ratios(model, log, s, info, coulomb_ratio, [&](double ratio) {
-                double sum = 0.0;
-                for (double w : kernel(ratio)) sum += w * w;
-                return std::sqrt(sum);
-            });
             e.torque_fir = ws;
             e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
             info.coulomb_velocity_cutoffs.assign(joints, 0.0);
             for (std::size_t j = 0; j < joints; ++j) {
-                const std::vector<double> wc = kernel(ratios[j]);
+                const std::vector<double> wc = coulomb_velocity_kernel(s, ts, n, coulomb_cutoff(s, info, ts, ratios[j]));
                 if (wc.size() > n) throw InputError(fmt::format("{}: {} samples are shorter than the Coulomb velocity kernel", log.source, n));
                 info.coulomb_velocity_cutoffs[j] = find_cutoff(Span<const double>(wc), ts, 1).frequency;
                 const std::size_t hc = (wc.size() - 1) / 2;
@@ -299,29 +335,16 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
             euler_first_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qd[j]));
             euler_second_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qdd[j]));
         }
-        if (coulomb_ratio != 0.0) {
+        if (!ratios.empty()) {
             // The Coulomb columns' velocity: central differences of the positions through a Butterworth of
             // the same order at the joint's ratio x F_q's cutoff (the columns then go through F_q like the torque).
-            auto cutoff_for = [&](double ratio) { return std::min(ratio * info.prefilter_cutoff, 0.4 / ts); };
-            const std::vector<double> ratios = coulomb_ratios(model, log, s, info, coulomb_ratio, [&](double ratio) {
-                // White-noise gain: the impulse response of F_q (forward-backward) and the central difference.
-                const Lowpass f = signal::design_butterworth_or_throw(s.butterworth_order, cutoff_for(ratio), ts, "Coulomb velocity prefilter");
-                const std::size_t half = static_cast<std::size_t>(std::ceil(20.0 / (cutoff_for(ratio) * ts))) + 2;
-                std::vector<double> x(2 * half + 1, 0.0), y(x.size()), d(x.size());
-                x[half] = 1.0;
-                std::vector<double> w;
-                filtfilt_or_throw(f, x.data(), y.data(), x.size(), w);
-                euler_first_derivative(Span<const double>(y), ts, Span<double>(d));
-                double sum = 0.0;
-                for (std::size_t k = 1; k + 1 < d.size(); ++k) sum += d[k] * d[k];
-                return std::sqrt(sum);
-            });
             e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
             info.coulomb_velocity_cutoffs.assign(joints, 0.0);
             std::vector<double> qf(n);
             for (std::size_t j = 0; j < joints; ++j) {
-                const Lowpass fc = signal::design_butterworth_or_throw(s.butterworth_order, cutoff_for(ratios[j]), ts, "Coulomb velocity prefilter");
-                info.coulomb_velocity_cutoffs[j] = cutoff_for(ratios[j]);
+                const double cutoff = coulomb_cutoff(s, info, ts, ratios[j]);
+                const Lowpass fc = signal::design_butterworth_or_throw(s.butterworth_order, cutoff, ts, "Coulomb velocity prefilter");
+                info.coulomb_velocity_cutoffs[j] = cutoff;
                 filtfilt_or_throw(fc, log.q[j]->data(), qf.data(), n, workspace);
                 euler_first_derivative(Span<const double>(qf), ts, Span<double>(e.qd_coulomb[j]));
             }

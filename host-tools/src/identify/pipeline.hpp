@@ -66,6 +66,9 @@ struct PipelineSettings {
     // < 0: auto, per joint the wider of 2 or 1.5 whose noise in the sign function stays within
     // kCoulombVelocityNoise (alpha sigma_v), else 1.
     double coulomb_velocity_ratio = -1.0;
+    // Per joint, imposed (a validation log, the segments or logs of one identification: the plan's choice,
+    // PipelineInfo::coulomb_velocity_ratios); non-empty overrides the automatic choice, not a 0 (off).
+    std::vector<double> coulomb_velocity_ratios;
     // Lags of the residual autocorrelation accumulated with the factors (JointFactors::lagged; 0: none).
     int residual_lags = kDefaultResidualLags;
     // Only the log's samples [kept_from, kept_to) become equations (both 0: all); the samples around them
@@ -102,6 +105,7 @@ struct PipelineInfo {
     double velocity_cutoff = 0.0, acceleration_cutoff = 0.0;  // achieved, Hz
     double prefilter_cutoff = 0.0;                            // Butterworth F_q, Hz
     std::vector<double> coulomb_velocity_cutoffs;             // Hz per joint, the Coulomb columns' velocity (empty: off)
+    std::vector<double> coulomb_velocity_ratios;              // the ratios behind them (empty: off)
     double decimation_cutoff = 0.0;
     int decimation = 1;
     std::size_t first = 0, last = 0;  // valid derivative range [first, last) of input samples
@@ -164,6 +168,11 @@ struct StateEstimates {
 // Resolves automatic choices (bandwidth, cutoffs, windows, decimation) and checks that the log is long
 // enough; InputError names the option or the file otherwise.
 PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& settings);
+// The Coulomb columns' velocity ratio per joint for `log` (PipelineSettings::coulomb_velocity_ratio[s]; empty:
+// off): imposed, given, or chosen from the joints' position noise and Coulomb slopes (without a model: 1).
+// `info` from plan_pipeline on `log` (or the plan imposed on it).
+std::vector<double> coulomb_velocity_ratios(const robot::RobotModel* model, const LogColumns& log, const PipelineSettings& settings,
+                                            const PipelineInfo& info);
 // `model`, if given, lets the automatic Coulomb velocity (PipelineSettings::coulomb_velocity_ratio < 0) see
 // each joint's Coulomb smoothing alpha; without it that velocity is the other columns' (ratio 1).
 StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& settings, PipelineInfo& info,

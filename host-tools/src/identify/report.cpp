@@ -37,6 +37,12 @@ std::string settings_line(const PipelineInfo& i) {
         s += fmt::format(", Butterworth prefilter {:.3g} Hz + central Euler differences", i.prefilter_cutoff);
     }
     s += fmt::format(", F_p {:.3g} Hz, decimation {}", i.decimation_cutoff, i.decimation);
+    if (!i.coulomb_velocity_cutoffs.empty()) {
+        // Per joint, the velocity inside the Coulomb sign function (docs/method.md, "Coulomb columns").
+        std::string cutoffs;
+        for (double f : i.coulomb_velocity_cutoffs) cutoffs += fmt::format("{}{:.3g}", cutoffs.empty() ? "" : " ", f);
+        s += fmt::format(", Coulomb velocity {} Hz", cutoffs);
+    }
     return s;
 }
 

@@ -60,6 +60,9 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
     // Threads left over when there are fewer pieces than threads go inside each piece's pipeline.
     PipelineSettings fixed = plan.fixed;
     fixed.threads = std::max(1, threads / static_cast<int>(std::max<std::size_t>(1, segments.size())));
+    // The Coulomb columns' velocity too is chosen once, on the longest piece with the model as smoothed:
+    // each piece choosing from its own noise estimate made a log split at a gap differ from its halves.
+    if (fixed.coulomb_velocity_ratios.empty()) fixed.coulomb_velocity_ratios = coulomb_velocity_ratios(&model, segments[plan.reference], fixed, plan.info);
     const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) {
         const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
         parts[s] = run_pipeline(model, aligned.log, fixed);

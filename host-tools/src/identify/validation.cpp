@@ -18,6 +18,7 @@ PipelineSettings validation_settings(const PipelineSettings& identification, con
     v.acceleration_window = info.acceleration_window;
     v.differentiator_cutoff = info.differentiator_cutoff;
     v.decimation_cutoff = info.decimation_cutoff;
+    v.coulomb_velocity_ratios = info.coulomb_velocity_ratios;
     v.progress = false;
     v.kept_from = v.kept_to = 0;  // another log: all of it
     return v;
