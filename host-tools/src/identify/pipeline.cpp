@@ -524,21 +524,27 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             const bool fir = !e.torque_fir.empty();
             const std::size_t reach = fir ? (e.torque_fir.size() - 1) / 2 : info.first;
             const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
-            Eigen::MatrixXd D(joints, c);
-            std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
             for (auto& col : coulomb_raw) col.resize(xlen);
-            for (std::size_t k = x0; k < x1; ++k) {
-                for (int j = 0; j < joints; ++j) {
-                    const auto js = static_cast<std::size_t>(j);
-                    qs[js] = e.q[js][k];
-                    qds[js] = e.qd_coulomb[js][k];
-                    qdds[js] = e.qdd[js][k];
+            // A second regressor evaluation per sample (the model gives its columns only together), split
+            // by sample ranges over the threads like the first one.
+            run_or_rethrow(regressor_ranges, [&](std::size_t range) {
+                Eigen::MatrixXd D(joints, c);
+                std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
+                for (std::size_t k = x0 + xlen * range / regressor_ranges; k < x0 + xlen * (range + 1) / regressor_ranges; ++k) {
+                    for (int j = 0; j < joints; ++j) {
+                        const auto js = static_cast<std::size_t>(j);
+                        qs[js] = e.q[js][k];
+                        qds[js] = e.qd_coulomb[js][k];
+                        qdds[js] = e.qdd[js][k];
+                    }
+                    model.regressor(qs.data(), qds.data(), qdds.data(), D);
+                    for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
+                        for (int j = 0; j < joints; ++j) {
+                            coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)][k - x0] = D(j, coulomb_columns[ci]);
+                        }
+                    }
                 }
-                model.regressor(qs.data(), qds.data(), qdds.data(), D);
-                for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
-                    for (int j = 0; j < joints; ++j) coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)][k - x0] = D(j, coulomb_columns[ci]);
-                }
-            }
+            });
             std::vector<double> filtered(xlen);
             for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
                 for (int j = 0; j < joints; ++j) {

@@ -29,7 +29,8 @@ const char* to_string(Method m);
 
 // Auto Coulomb velocity: largest s'_j(0) sigma_v,j, the velocity noise against the transition width of joint j's
 // sign function s_j (s'(0) = 2 alpha / pi for the smoothed atan sign). Measured on issue 14's 2R (alpha 100,
-// 65536 counts): 0.052 (2 x the cutoff) unbiased, 0.098 (3 x) FV2 -0.24 %, 0.18 (alpha 1000, 1 x) FC2 +0.2 %.
+// 65536 counts): 0.052 (2 x the cutoff) unbiased, 0.098 (3 x) FV2 -0.24 %, 0.18 (alpha 1000, 1 x) FC2 +0.2 %;
+// the budget is the midpoint between the unbiased and the biased case.
 inline constexpr double kCoulombVelocityNoise = 0.07;
 
 struct PipelineSettings {

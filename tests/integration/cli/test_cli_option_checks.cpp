@@ -136,6 +136,10 @@ TEST(CliOptionValues, IdentificationValuesAreRefused) {
         {identify + "--time-tolerance nan", "--time-tolerance", "in [0, 1]"},
         {identify + "--kappa inf", "--kappa", "finite"},
         {identify + "--velocity-window -0.1", "--velocity-window", "> 0"},
+        {identify + "--coulomb-velocity-ratio 11", "--coulomb-velocity-ratio", "auto or a number in [0, 10]"},
+        {identify + "--coulomb-velocity-ratio -1", "--coulomb-velocity-ratio", "'-1'"},
+        {identify + "--coulomb-velocity-ratio 2x", "--coulomb-velocity-ratio", "'2x'"},
+        {identify + "--coulomb-velocity-ratio nan", "--coulomb-velocity-ratio", "'nan'"},
         {diagnose + "--alpha 1", "--alpha", "in (0, 1)"},
         {diagnose + "--horizon nan", "--horizon", "> 0"},
     });
