@@ -107,12 +107,19 @@ LsSolution iv_solution(const RowCollector& measured, const RowCollector& instrum
 EstimatorRun identify_iv(const ReferenceSimulation& simulation, const EstimatorSettings& settings, const LsSolution& start, LsSolution& solution) {
     const LogColumns& log = simulation.log;
     PipelineInfo info = simulation.info;
-    RowCollector measured;
-    fold_states(simulation.model, log, simulation.pipeline, info, estimate_states(log, simulation.pipeline, info), &measured);
+    StateEstimates estimates = estimate_states(log, simulation.pipeline, info);
+    // The Coulomb columns s(alpha qd) of a noisy velocity are not the true columns plus zero-mean noise (their
+    // expectation is a flatter sign), which no instrument undoes: the measured rows take them from the
+    // simulated velocity, through the torque's filter like the torque (StateEstimates::qd_coulomb), so they
+    // are exogenous and identical in both matrices (docs/method.md, "Estimators"). With the Coulomb
+    // columns off (--coulomb-velocity-ratio 0) the measured velocity stays, as before.
+    const bool simulated_coulomb = !estimates.qd_coulomb.empty();
     return iterate_estimator(settings, start, [&](const LsSolution& current) {
-        RowCollector instruments;
-        fold_states(simulation.model, log, simulation.pipeline, simulation.info,
-                    simulation.states(simulable_parameters(current, Estimator::Iv)), &instruments);
+        const StateEstimates simulated = simulation.states(simulable_parameters(current, Estimator::Iv));
+        RowCollector measured, instruments;
+        if (simulated_coulomb) estimates.qd_coulomb = simulated.qd;
+        fold_states(simulation.model, log, simulation.pipeline, info, estimates, &measured);
+        fold_states(simulation.model, log, simulation.pipeline, simulation.info, simulated, &instruments);
         return iv_solution(measured, instruments, current);
     }, solution);
 }
