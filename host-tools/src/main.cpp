@@ -43,6 +43,18 @@ int main(int argc, char** argv) {
     jacobid::cli::add_excite_command(app);
 #endif
 
+    // A first word that is no command: CLI11 would only say "A subcommand is required"; name the word and the
+    // commands there are.
+    if (argc > 1 && argv[1][0] != '-') {
+        const std::string word = argv[1];
+        const auto commands = app.get_subcommands([](const CLI::App*) { return true; });
+        const bool known = std::any_of(commands.begin(), commands.end(), [&](const CLI::App* c) { return c->check_name(word); });
+        if (!known) {
+            std::string names;
+            for (const CLI::App* c : commands) names += (names.empty() ? "" : ", ") + c->get_name();
+            return report_input_error(app, "unknown command '" + word + "'; the commands are: " + names + " (jacobid --help)");
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

@@ -260,6 +260,13 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
                                                  o.inputs[k], 1e3 * columns[s].sample_period, o.inputs.front(), 1e3 * period));
                 }
             }
+            // A given --cutoff is refused above the Nyquist frequency (as differentiate does), not clamped to
+            // the shortest windows: the settings line would name another cutoff than the one asked for.
+            const double nyquist = 0.5 / columns[s].sample_period;
+            if (o.pipeline.differentiator_cutoff >= nyquist) {
+                throw InputError(fmt::format("--cutoff {:g} Hz: must be below the Nyquist frequency {:g} Hz of --in {} (sample period {:g} s)",
+                                             o.pipeline.differentiator_cutoff, nyquist, o.inputs[k], columns[s].sample_period));
+            }
             in.pieces.push_back(piece);
             in.names.push_back(name);
             in.columns.push_back(std::move(columns[s]));

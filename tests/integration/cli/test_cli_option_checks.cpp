@@ -89,6 +89,11 @@ TEST(CliParseErrors, AreOneLineErrorsWithExitTwo) {
     const CommandResult none = run_command(kJacobid);
     EXPECT_EQ(none.exit_code, 2);
     EXPECT_EQ(none.err, "jacobid: error: A subcommand is required\n");
+    // A word that is no command is named, with the commands there are (it said "A subcommand is required").
+    const CommandResult unknown = run_command(kJacobid + " frobnicate --in x.csv");
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_EQ(unknown.err.rfind("jacobid: error: unknown command 'frobnicate'; the commands are: kernel, simulate, identify,", 0), 0u) << unknown.err;
+    EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1) << unknown.err;
 }
 
 TEST(CliParseErrors, HelpAndVersionStillExitZero) {
@@ -126,6 +131,8 @@ TEST(CliOptionValues, KernelAndSignalValuesAreRefused) {
 TEST(CliOptionValues, IdentificationValuesAreRefused) {
     const std::string identify = "identify --quiet --robot " + files().robot + " --in " + files().log + " ";
     const std::string diagnose = "diagnose --quiet --robot " + files().robot + " --in " + files().log + " ";
+    // Refused, not clamped to the shortest windows (the settings line named another cutoff).
+    expect_refused(identify + "--cutoff 1e9", {"--cutoff 1e+09 Hz: must be below the Nyquist frequency 500 Hz of --in"});
     expect_values_refused({
         {identify + "--decimation 0", "--decimation", "whole number >= 1"},
         {identify + "--bandwidth -1", "--bandwidth", "> 0"},
