@@ -525,8 +525,8 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             const std::size_t reach = fir ? (e.torque_fir.size() - 1) / 2 : info.first;
             const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
             for (auto& col : coulomb_raw) col.resize(xlen);
-            // A second regressor evaluation per sample (the model gives its columns only together), split
-            // by sample ranges over the threads like the first one.
+            // The Coulomb columns evaluated again per sample (RobotModel::coulomb_columns: alone for the serial
+            // models, the whole regressor otherwise), split by sample ranges over the threads like the regressor.
             run_or_rethrow(regressor_ranges, [&](std::size_t range) {
                 Eigen::MatrixXd D(joints, c);
                 std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
@@ -537,7 +537,7 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                         qds[js] = e.qd_coulomb[js][k];
                         qdds[js] = e.qdd[js][k];
                     }
-                    model.regressor(qs.data(), qds.data(), qdds.data(), D);
+                    model.coulomb_columns(qs.data(), qds.data(), qdds.data(), D);
                     for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
                         for (int j = 0; j < joints; ++j) {
                             coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)][k - x0] = D(j, coulomb_columns[ci]);

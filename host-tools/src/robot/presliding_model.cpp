@@ -32,6 +32,10 @@ void PreslidingModel::regressor(const double* q, const double* qd, const double*
     D.rightCols(D.cols() - p).setZero();
 }
 
+void PreslidingModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
+    nominal_->coulomb_columns(q, qd, qdd, D.leftCols(nominal_->parameter_count()));
+}
+
 void PreslidingModel::integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const {
     const std::size_t joints = q.size();
     const std::size_t n = joints ? q.front()->size() : 0;

@@ -34,6 +34,7 @@ public:
     int parameter_count() const override { return static_cast<int>(names_.size()); }
     const std::vector<std::string>& parameter_names() const override { return names_; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
+    void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
     bool concurrent_regressor() const override { return nominal_->concurrent_regressor(); }
     // The nominal model's, on its parameters: the presliding columns are history columns, 0 in a stateless
     // evaluation, and the simulator applies them as held friction (sim/simulator.cpp).

@@ -38,6 +38,12 @@ public:
     // one object. Models are stateless, so yes; a model that keeps per-call scratch between the two calls
     // says no, and the pipeline then builds its regressor rows on one thread.
     virtual bool concurrent_regressor() const { return true; }
+    // The Coulomb columns (FCj) of regressor(q, qd, qdd) in D; the other columns of D are left unspecified.
+    // The identification evaluates them a second time on a velocity of their own (docs/method.md, "Coulomb
+    // columns"); the default is the whole regressor, a model that can compute them alone overrides it.
+    virtual void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
+        regressor(q, qd, qdd, D);
+    }
 
     // tau = D(q, qd, qdd) X by a route faster than the regressor, if the model has one (it then returns
     // true); the default has none and returns false, and callers use the regressor.

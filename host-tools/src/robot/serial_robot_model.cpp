@@ -23,6 +23,8 @@ public:
                          double* tau) const = 0;
     // The articulated-body forward dynamics of the same standard vector X*.
     virtual std::unique_ptr<DirectForwardDynamics> articulated_body(const std::vector<int>& base_columns, const Eigen::VectorXd& X) const = 0;
+    // Joint j's Coulomb sign function at velocity qd: its FC column's only non-zero entry, in row j.
+    virtual double coulomb(int joint, double qd) const = 0;
 };
 
 namespace {
@@ -109,6 +111,8 @@ public:
         return std::make_unique<ArticulatedBodyRoute<N>>(regressor_, standard_vector(base_columns, X));
     }
 
+    double coulomb(int joint, double qd) const override { return regressor_.coulomb(joint)(qd); }
+
 private:
     // X* with X*[base_columns[b]] = X[b], all other standard entries 0.
     static typename RneaRegressor<N>::Parameters standard_vector(const std::vector<int>& base_columns, const Eigen::VectorXd& X) {
@@ -187,6 +191,20 @@ SerialRobotModel::SerialRobotModel(SerialRobotConfig config, const BaseParameter
         n, standard_names_, base_priority(n, config_.options), prismatic,
         [this](const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> W) { standard_regressor(q, qd, qdd, W); },
         base_settings);
+    for (std::size_t b = 0; b < base_.base_columns.size(); ++b) {
+        for (int j = 0; j < n; ++j) {
+            if (standard_names_[static_cast<std::size_t>(base_.base_columns[b])] == fmt::format("FC{}", j + 1)) {
+                coulomb_columns_.emplace_back(static_cast<int>(b), j);
+            }
+        }
+    }
+}
+
+void SerialRobotModel::coulomb_columns(const double*, const double* qd, const double*, Eigen::Ref<Eigen::MatrixXd> D) const {
+    for (const auto& [column, joint] : coulomb_columns_) {
+        D.col(column).setZero();
+        D(joint, column) = evaluator_->coulomb(joint, qd[joint]);
+    }
 }
 
 SerialRobotModel::~SerialRobotModel() = default;

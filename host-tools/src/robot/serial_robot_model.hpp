@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <vector>
+#include <utility>
 
 #include "jacobid/robot/kinematic_chain.hpp"
 #include "jacobid/robot/standard_parameters.hpp"
@@ -40,6 +41,8 @@ public:
     int parameter_count() const override { return static_cast<int>(base_.base_columns.size()); }
     const std::vector<std::string>& parameter_names() const override { return base_.base_names; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
+    // The FCj base columns alone (each the standard FC column of its joint: s_j(qd_j) in row j).
+    void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
     // Newton-Euler with the base values placed on their standard columns (W_std X* = W_base X): exact, O(n).
     bool inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const override;
     // Featherstone's articulated-body algorithm on the same standard vector (base values on their columns):
@@ -64,6 +67,7 @@ private:
     SerialRobotConfig config_;
     std::vector<std::string> standard_names_;
     std::unique_ptr<Evaluator> evaluator_;
+    std::vector<std::pair<int, int>> coulomb_columns_;  // (base column, joint) of every FCj base column
     BaseParameterSet base_;
 };
 

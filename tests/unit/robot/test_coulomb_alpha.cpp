@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -81,6 +82,43 @@ TEST(CoulombAlpha, SerialModelColumnsUseEachJointsAlpha) {
     EXPECT_DOUBLE_EQ(D(1, fc2), smooth_sign(600.0, 0.002));
     EXPECT_EQ(D(1, fc1), 0.0);
     EXPECT_EQ(D(0, fc2), 0.0);
+}
+
+// RobotModel::coulomb_columns (the identification's second pass on the Coulomb velocity): the serial model
+// computes the FCj columns alone; they must be the whole regressor's FCj columns, for 6-axis arms with
+// per-joint alphas and through the presliding wrapper, and the 2R's sign function written out.
+TEST(CoulombAlpha, CoulombColumnsAloneAreTheRegressorsColumns) {
+    for (const char* name : {"puma560.yaml", "ur5_like.yaml", "planar2r_mdh.yaml"}) {
+        auto d = robot::load_robot_description(test::example_robot(name));
+        d.coulomb.model = robot::CoulombModel::SmoothAtan;
+        d.coulomb_alpha.clear();
+        for (std::size_t j = 0; j < d.joints.size(); ++j) d.coulomb_alpha.push_back(10.0 * static_cast<double>(j + 1));
+        for (const bool presliding : {false, true}) {
+            d.presliding = presliding;
+            const auto model = robot::make_robot_model(d);
+            const int n = model->joint_count(), p = model->parameter_count();
+            std::vector<double> q(static_cast<std::size_t>(n)), qd(q), qdd(q);
+            for (int k = 0; k < 20; ++k) {
+                for (int j = 0; j < n; ++j) {
+                    q[static_cast<std::size_t>(j)] = std::sin(0.7 * k + j);
+                    qd[static_cast<std::size_t>(j)] = 0.05 * std::cos(1.3 * k + 2 * j);
+                    qdd[static_cast<std::size_t>(j)] = std::sin(0.4 * k - j);
+                }
+                Eigen::MatrixXd full(n, p), alone = Eigen::MatrixXd::Constant(n, p, 7.0);
+                model->regressor(q.data(), qd.data(), qdd.data(), full);
+                model->coulomb_columns(q.data(), qd.data(), qdd.data(), alone);
+                int found = 0;
+                for (int j = 0; j < n; ++j) {
+                    const int fc = model->parameter_index("FC" + std::to_string(j + 1));
+                    if (fc < 0) continue;
+                    ++found;
+                    EXPECT_EQ(alone.col(fc), full.col(fc)) << name << " FC" << j + 1;
+                    EXPECT_DOUBLE_EQ(full(j, fc), smooth_sign(10.0 * (j + 1), qd[static_cast<std::size_t>(j)])) << name;
+                }
+                EXPECT_EQ(found, n) << name << ": every joint has its Coulomb column";
+            }
+        }
+    }
 }
 
 }  // namespace
