@@ -86,9 +86,11 @@ void add_pipeline_rate_options(CLI::App* cmd, identify::PipelineSettings& pipeli
                }
                pipeline.coulomb_velocity_ratio = ratio;
            },
-           "the Coulomb columns' velocity cutoff as a multiple of the differentiators' (F_q's); the columns then go through the "
-           "torque's filter like the torque. auto (default): per joint the wider of 2 or 1.5 whose position noise stays within "
-           "0.06 of the sign's transition width, else 1; 1: the other columns' velocity; 0: off (docs/method.md)")
+           fmt::format("the Coulomb columns' velocity cutoff as a multiple of the differentiators' (F_q's); the columns then go "
+                       "through the torque's filter like the torque. auto (default): per joint the wider of 2 or 1.5 whose position "
+                       "noise stays within {:g} of the sign's transition width, else 1; 1: the other columns' velocity; 0: off "
+                       "(docs/method.md)",
+                       identify::kCoulombVelocityNoise))
         ->default_str("auto");
 }
 

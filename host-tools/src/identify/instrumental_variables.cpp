@@ -114,13 +114,17 @@ EstimatorRun identify_iv(const ReferenceSimulation& simulation, const EstimatorS
     // are exogenous and identical in both matrices (docs/method.md, "Estimators"). With the Coulomb
     // columns off (--coulomb-velocity-ratio 0) the measured velocity stays, as before.
     const bool simulated_coulomb = !estimates.qd_coulomb.empty();
+    RowCollector fixed_measured;  // without simulated Coulomb columns the measured rows do not change: folded once
+    if (!simulated_coulomb) fold_states(simulation.model, log, simulation.pipeline, info, estimates, &fixed_measured);
     return iterate_estimator(settings, start, [&](const LsSolution& current) {
         const StateEstimates simulated = simulation.states(simulable_parameters(current, Estimator::Iv));
         RowCollector measured, instruments;
-        if (simulated_coulomb) estimates.qd_coulomb = simulated.qd;
-        fold_states(simulation.model, log, simulation.pipeline, info, estimates, &measured);
+        if (simulated_coulomb) {
+            estimates.qd_coulomb = simulated.qd;
+            fold_states(simulation.model, log, simulation.pipeline, info, estimates, &measured);
+        }
         fold_states(simulation.model, log, simulation.pipeline, simulation.info, simulated, &instruments);
-        return iv_solution(measured, instruments, current);
+        return iv_solution(simulated_coulomb ? measured : fixed_measured, instruments, current);
     }, solution);
 }
 

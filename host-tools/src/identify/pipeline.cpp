@@ -7,6 +7,7 @@
 #include <chrono>
 #include <exception>
 #include <functional>
+#include <map>
 #include <cmath>
 #include <utility>
 
@@ -59,6 +60,18 @@ void filtfilt_or_throw(const Lowpass& sos, const double* x, double* y, std::size
     workspace.resize(sosfiltfilt_workspace_size(sos));
     const FilterStatus status = sosfiltfilt(sos, Span<const double>(x, n), Span<double>(y, n), Span<double>(workspace));
     if (status != FilterStatus::Ok) throw InputError(fmt::format("zero-phase filter on {} samples: {}", n, describe(status)));
+}
+
+// The FIR `weights` (odd length L) over `x`: output k belongs to input sample k + (L - 1) / 2 and is written
+// there in `target` (full length; the (L - 1) / 2 samples at each end are left as they are). Returns the
+// number of outputs. `scratch` holds at least x.size() values.
+std::size_t centered_fir(const std::vector<double>& weights, const std::vector<double>& x, std::vector<double>& scratch, std::vector<double>& target,
+                         const std::string& source) {
+    const std::size_t outputs = x.size() - weights.size() + 1;
+    const BatchStatus status = signal::differentiate_batch(Span<const double>(weights), Span<const double>(x), Span<double>(scratch.data(), outputs));
+    if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", source, describe(status)));
+    std::copy(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(outputs), target.begin() + static_cast<std::ptrdiff_t>((weights.size() - 1) / 2));
+    return outputs;
 }
 
 // A Jacobi velocity kernel (the pipeline's kappa, mu, q) whose cutoff is closest to `cutoff`.
@@ -284,40 +297,27 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
         if (s.measured_velocity) smoothing = ws;
         std::vector<double> out(n);
         for (std::size_t j = 0; j < joints; ++j) {
-            // The central estimate of output k belongs to input sample k + (L - 1) / 2 (odd L).
-            for (auto [weights, target] : {std::pair{&wv, &e.qd[j]}, std::pair{&wa, &e.qdd[j]}}) {
-                const std::size_t outputs = n - weights->size() + 1;
-                const BatchStatus status = signal::differentiate_batch(Span<const double>(*weights), Span<const double>(*log.q[j]),
-                                                                       Span<double>(out.data(), outputs));
-                if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
-                std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
-                          target->begin() + static_cast<std::ptrdiff_t>((weights->size() - 1) / 2));
-            }
+            centered_fir(wv, *log.q[j], out, e.qd[j], log.source);
+            centered_fir(wa, *log.q[j], out, e.qdd[j], log.source);
             e.q[j] = *log.q[j];
             e.tau[j].assign(n, 0.0);
-            const std::size_t outputs = n - ws.size() + 1;
-            const BatchStatus status = signal::differentiate_batch(Span<const double>(ws), Span<const double>(*log.tau[j]),
-                                                                   Span<double>(out.data(), outputs));
-            if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
-            std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs),
-                      e.tau[j].begin() + static_cast<std::ptrdiff_t>((ws.size() - 1) / 2));
+            centered_fir(ws, *log.tau[j], out, e.tau[j], log.source);
         }
         if (!ratios.empty()) {
             // The Coulomb columns' velocity: a Jacobi velocity kernel at the joint's ratio x the cutoff.
             e.torque_fir = ws;
             e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
             info.coulomb_velocity_cutoffs.assign(joints, 0.0);
+            std::map<double, std::vector<double>> kernels;  // one design per distinct ratio (joints usually share one)
             for (std::size_t j = 0; j < joints; ++j) {
-                const std::vector<double> wc = coulomb_velocity_kernel(s, ts, n, coulomb_cutoff(s, info, ts, ratios[j]));
+                auto [it, designed] = kernels.try_emplace(ratios[j]);
+                if (designed) it->second = coulomb_velocity_kernel(s, ts, n, coulomb_cutoff(s, info, ts, ratios[j]));
+                const std::vector<double>& wc = it->second;
                 if (wc.size() > n) throw InputError(fmt::format("{}: {} samples are shorter than the Coulomb velocity kernel", log.source, n));
                 info.coulomb_velocity_cutoffs[j] = find_cutoff(Span<const double>(wc), ts, 1).frequency;
                 const std::size_t hc = (wc.size() - 1) / 2;
-                const std::size_t outputs = n - wc.size() + 1;
-                const BatchStatus status = signal::differentiate_batch(Span<const double>(wc), Span<const double>(*log.q[j]),
-                                                                       Span<double>(out.data(), outputs));
-                if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
                 auto& v = e.qd_coulomb[j];
-                std::copy(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(outputs), v.begin() + static_cast<std::ptrdiff_t>(hc));
+                const std::size_t outputs = centered_fir(wc, *log.q[j], out, v, log.source);
                 std::fill(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(hc), v[hc]);
                 std::fill(v.begin() + static_cast<std::ptrdiff_t>(hc + outputs), v.end(), v[hc + outputs - 1]);
             }
@@ -460,6 +460,15 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             if (error) std::rethrow_exception(error);
         }
     };
+    // One sample's state for a regressor call, with the velocity from `qd` (e.qd, or the Coulomb columns' own).
+    auto load_state = [&](std::size_t k, const std::vector<std::vector<double>>& qd, std::vector<double>& qs, std::vector<double>& qds,
+                          std::vector<double>& qdds) {
+        for (std::size_t j = 0; j < qs.size(); ++j) {
+            qs[j] = e.q[j][k];
+            qds[j] = qd[j][k];
+            qdds[j] = e.qdd[j][k];
+        }
+    };
     std::vector<int> coulomb_columns;  // the FCj columns, when their velocity is given (StateEstimates::qd_coulomb)
     std::vector<std::vector<double>> coulomb_raw;
     const std::size_t full_length = e.q.empty() ? 0 : e.q.front().size();
@@ -503,12 +512,7 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
             for (std::size_t i = len * range / regressor_ranges; i < len * (range + 1) / regressor_ranges; ++i) {
                 const std::size_t k = e0 + i;
-                for (int j = 0; j < joints; ++j) {
-                    const auto js = static_cast<std::size_t>(j);
-                    qs[js] = e.q[js][k];
-                    qds[js] = e.qd[js][k];
-                    qdds[js] = e.qdd[js][k];
-                }
+                load_state(k, e.qd, qs, qds, qdds);
                 model.regressor(qs.data(), qds.data(), qdds.data(), D);
                 if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
                 for (int j = 0; j < joints; ++j) {
@@ -531,12 +535,7 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                 Eigen::MatrixXd D(joints, c);
                 std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
                 for (std::size_t k = x0 + xlen * range / regressor_ranges; k < x0 + xlen * (range + 1) / regressor_ranges; ++k) {
-                    for (int j = 0; j < joints; ++j) {
-                        const auto js = static_cast<std::size_t>(j);
-                        qs[js] = e.q[js][k];
-                        qds[js] = e.qd_coulomb[js][k];
-                        qdds[js] = e.qdd[js][k];
-                    }
+                    load_state(k, e.qd_coulomb, qs, qds, qdds);
                     model.coulomb_columns(qs.data(), qds.data(), qdds.data(), D);
                     for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
                         for (int j = 0; j < joints; ++j) {
@@ -549,6 +548,12 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
                 for (int j = 0; j < joints; ++j) {
                     const auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
+                    auto& target = buffer[static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci])];
+                    // A Coulomb column is zero outside its own joint's row: a filter of zeros is zeros.
+                    if (std::all_of(raw.begin(), raw.end(), [](double v) { return v == 0.0; })) {
+                        std::fill(target.begin(), target.begin() + static_cast<std::ptrdiff_t>(e1 - e0), 0.0);
+                        continue;
+                    }
                     std::size_t shift = 0;  // filtered[m] belongs to sample x0 + m + shift
                     if (fir) {
                         const BatchStatus status = signal::differentiate_batch(Span<const double>(e.torque_fir), Span<const double>(raw),
@@ -558,7 +563,6 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                     } else {
                         filtfilt_or_throw(coulomb_fq, raw.data(), filtered.data(), xlen, workspaces[0]);
                     }
-                    auto& target = buffer[static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci])];
                     for (std::size_t k = e0; k < e1; ++k) target[k - e0] = filtered[k - x0 - shift];
                 }
             }

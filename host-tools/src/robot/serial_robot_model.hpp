@@ -7,8 +7,8 @@
 // for printing the relations and for turning true standard values into true base values.
 #include <memory>
 #include <string>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "jacobid/robot/kinematic_chain.hpp"
 #include "jacobid/robot/standard_parameters.hpp"
