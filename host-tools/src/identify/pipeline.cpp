@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <exception>
 #include <functional>
@@ -23,6 +24,7 @@
 #include "jacobid/kernel_design.hpp"
 #include "signal/baseline_response.hpp"
 #include "signal/fft_convolver.hpp"
+#include "signal/interleaved_filtfilt.hpp"
 
 namespace jacobid::identify {
 namespace {
@@ -455,6 +457,9 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
     ParallelForOptions pool;
     pool.threads = threads;
     std::vector<std::vector<double>> workspaces(static_cast<std::size_t>(threads));
+    std::vector<signal::InterleavedFiltfilt> lane_filters(static_cast<std::size_t>(threads), signal::InterleavedFiltfilt(fp));
+    std::vector<char> column_used(columns);
+    std::vector<std::size_t> used_columns;
     auto run_or_rethrow = [&](std::size_t jobs, const std::function<void(std::size_t)>& job) {
         for (const auto& error : parallel_for(jobs, pool, job)) {
             if (error) std::rethrow_exception(error);
@@ -567,8 +572,28 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                 }
             }
         }
+        // F_p on every column that holds anything (a column of zeros, e.g. a link's parameter in an earlier
+        // joint's row, filters to zeros and stays as the regressor wrote it), kFiltfiltLanes columns at a
+        // time (interleaved_filtfilt.hpp: each column's numbers are sosfiltfilt's, whatever its block).
         run_or_rethrow(ranges, [&](std::size_t t) {
-            for (std::size_t col = t; col < columns; col += ranges) filtfilt_or_throw(fp, buffer[col].data(), buffer[col].data(), len, workspaces[t]);
+            for (std::size_t col = t; col < columns; col += ranges) {
+                const auto& x = buffer[col];
+                column_used[col] = std::any_of(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(len), [](double v) { return v != 0.0; });
+            }
+        });
+        used_columns.clear();
+        for (std::size_t col = 0; col < columns; ++col) {
+            if (column_used[col]) used_columns.push_back(col);
+        }
+        const std::size_t blocks = (used_columns.size() + signal::kFiltfiltLanes - 1) / signal::kFiltfiltLanes;
+        run_or_rethrow(ranges, [&](std::size_t t) {
+            std::array<double*, signal::kFiltfiltLanes> signals{};
+            for (std::size_t b = t; b < blocks; b += ranges) {
+                const std::size_t from = b * signal::kFiltfiltLanes;
+                const std::size_t count = std::min(signal::kFiltfiltLanes, used_columns.size() - from);
+                for (std::size_t l = 0; l < count; ++l) signals[l] = buffer[used_columns[from + l]].data();
+                lane_filters[t].filter_in_place(signals.data(), count, len);
+            }
         });
         const auto t1 = Clock::now();
         regressor_seconds += std::chrono::duration<double>(t1 - t0).count();
