@@ -16,6 +16,7 @@
 #include "core/parallel_for.hpp"
 #include "identify/bandwidth.hpp"
 #include "identify/running_qr.hpp"
+#include "identify/state_source.hpp"
 #include "identify/torque_smoothing.hpp"
 #include "jacobid/baseline/butterworth.hpp"
 #include "jacobid/baseline/euler_difference.hpp"
@@ -155,6 +156,37 @@ double coulomb_noise_gain(const PipelineSettings& s, const PipelineInfo& info, d
     return std::sqrt(sum);
 }
 
+// The Jacobi kernels of a planned log (windows in `info`), and the cutoffs they achieve into `info`:
+// velocity, acceleration, the torque smoothing (the velocity kernel's low-pass: torque_smoothing.hpp, so that
+// Y and the regressor see the same filter in F_p's band), and per joint the Coulomb columns' velocity at
+// `ratios` x the cutoff (empty ratios: off).
+JacobiKernels design_jacobi_kernels(const LogColumns& log, const PipelineSettings& s, PipelineInfo& info, const std::vector<double>& ratios) {
+    const double ts = log.sample_period;
+    const std::size_t n = log.samples();
+    JacobiKernels k;
+    KernelParams pv = jacobi_params(s, 1, ts), pa = jacobi_params(s, 2, ts);
+    pv.window = info.velocity_window;
+    pa.window = info.acceleration_window;
+    k.velocity = design_or_throw(pv);
+    k.acceleration = design_or_throw(pa);
+    info.velocity_cutoff = find_cutoff(Span<const double>(k.velocity), ts, 1).frequency;
+    info.acceleration_cutoff = find_cutoff(Span<const double>(k.acceleration), ts, 2).frequency;
+    k.torque = torque_smoothing_kernel(k.velocity, ts);
+    if (ratios.empty()) return k;
+    const std::size_t joints = log.q.size();
+    info.coulomb_velocity_cutoffs.assign(joints, 0.0);
+    std::map<double, std::vector<double>> designs;  // one design per distinct ratio (joints usually share one)
+    for (std::size_t j = 0; j < joints; ++j) {
+        auto [it, designed] = designs.try_emplace(ratios[j]);
+        if (designed) it->second = coulomb_velocity_kernel(s, ts, n, coulomb_cutoff(s, info, ts, ratios[j]));
+        const std::vector<double>& wc = it->second;
+        if (wc.size() > n) throw InputError(fmt::format("{}: {} samples are shorter than the Coulomb velocity kernel", log.source, n));
+        info.coulomb_velocity_cutoffs[j] = find_cutoff(Span<const double>(wc), ts, 1).frequency;
+        k.coulomb.push_back(wc);
+    }
+    return k;
+}
+
 }  // namespace
 
 std::vector<double> coulomb_velocity_ratios(const robot::RobotModel* model, const LogColumns& log, const PipelineSettings& s,
@@ -287,36 +319,21 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     info.coulomb_velocity_ratios = ratios;
     info.coulomb_velocity_cutoffs.clear();
     if (s.method == Method::Jacobi) {
-        KernelParams pv = jacobi_params(s, 1, ts), pa = jacobi_params(s, 2, ts);
-        pv.window = info.velocity_window;
-        pa.window = info.acceleration_window;
-        const std::vector<double> wv = design_or_throw(pv), wa = design_or_throw(pa);
-        info.velocity_cutoff = find_cutoff(Span<const double>(wv), ts, 1).frequency;
-        info.acceleration_cutoff = find_cutoff(Span<const double>(wa), ts, 2).frequency;
-        // The torque through the velocity kernel's own low-pass (torque_smoothing.hpp), so that Y and the
-        // regressor see the same filter in F_p's band.
-        const std::vector<double> ws = torque_smoothing_kernel(wv, ts);
-        if (s.measured_velocity) smoothing = ws;
+        JacobiKernels kernels = design_jacobi_kernels(log, s, info, ratios);
+        if (s.measured_velocity) smoothing = kernels.torque;
         std::vector<double> out(n);
         for (std::size_t j = 0; j < joints; ++j) {
-            centered_fir(wv, *log.q[j], out, e.qd[j], log.source);
-            centered_fir(wa, *log.q[j], out, e.qdd[j], log.source);
+            centered_fir(kernels.velocity, *log.q[j], out, e.qd[j], log.source);
+            centered_fir(kernels.acceleration, *log.q[j], out, e.qdd[j], log.source);
             e.q[j] = *log.q[j];
             e.tau[j].assign(n, 0.0);
-            centered_fir(ws, *log.tau[j], out, e.tau[j], log.source);
+            centered_fir(kernels.torque, *log.tau[j], out, e.tau[j], log.source);
         }
         if (!ratios.empty()) {
-            // The Coulomb columns' velocity: a Jacobi velocity kernel at the joint's ratio x the cutoff.
-            e.torque_fir = ws;
+            e.torque_fir = kernels.torque;
             e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
-            info.coulomb_velocity_cutoffs.assign(joints, 0.0);
-            std::map<double, std::vector<double>> kernels;  // one design per distinct ratio (joints usually share one)
             for (std::size_t j = 0; j < joints; ++j) {
-                auto [it, designed] = kernels.try_emplace(ratios[j]);
-                if (designed) it->second = coulomb_velocity_kernel(s, ts, n, coulomb_cutoff(s, info, ts, ratios[j]));
-                const std::vector<double>& wc = it->second;
-                if (wc.size() > n) throw InputError(fmt::format("{}: {} samples are shorter than the Coulomb velocity kernel", log.source, n));
-                info.coulomb_velocity_cutoffs[j] = find_cutoff(Span<const double>(wc), ts, 1).frequency;
+                const std::vector<double>& wc = kernels.coulomb[j];
                 const std::size_t hc = (wc.size() - 1) / 2;
                 auto& v = e.qd_coulomb[j];
                 const std::size_t outputs = centered_fir(wc, *log.q[j], out, v, log.source);
@@ -400,11 +417,29 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     return e;
 }
 
+namespace {
+// Steps 2-4 (regressor, F_p, decimation, factors) on the estimates `states` gives chunk by chunk.
+PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, PipelineInfo planned,
+                           const StateSource& states, RowSink* sink);
+}  // namespace
+
 PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, RowSink* sink) {
     PipelineInfo info = plan_pipeline(log, s);
     if (s.progress) {
         fmt::print(stderr, "identify [{}]: {} samples, bandwidth {:.3g} Hz{}, F_p {:.3g} Hz, decimation {}\n", to_string(s.method),
                    log.samples(), info.bandwidth, info.bandwidth_estimated ? " (estimated)" : "", info.decimation_cutoff, info.decimation);
+    }
+    if (s.method == Method::Jacobi && !s.measured_velocity) {
+        // The estimates are computed chunk by chunk as the fold asks for them (state_source.hpp), from the
+        // log's own columns: no full-length estimate is held (an hour of 6-axis data held 0.86 GB of them).
+        const auto start = Clock::now();
+        const std::vector<double> ratios = coulomb_velocity_ratios(&model, log, s, info);
+        info.coulomb_velocity_ratios = ratios;
+        info.coulomb_velocity_cutoffs.clear();
+        const StreamedJacobiStates states(log, design_jacobi_kernels(log, s, info, ratios), info.joint_moves, info.first, info.last);
+        info.seconds_differentiate = seconds_since(start);
+        if (s.progress) fmt::print(stderr, "identify [{}]: kernels in {:.2f} s, derivatives computed chunk by chunk\n", to_string(s.method), info.seconds_differentiate);
+        return fold_source(model, log, s, std::move(info), states, sink);
     }
     const StateEstimates e = estimate_states(log, s, info, &model);
     if (s.progress) fmt::print(stderr, "identify [{}]: derivatives in {:.2f} s\n", to_string(s.method), info.seconds_differentiate);
@@ -413,6 +448,13 @@ PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& lo
 
 PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, PipelineInfo planned,
                            const StateEstimates& e, RowSink* sink) {
+    return fold_source(model, log, s, std::move(planned), HeldStates(e), sink);
+}
+
+namespace {
+
+PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, PipelineInfo planned,
+                           const StateSource& states, RowSink* sink) {
     PipelineOutput out;
     out.info = std::move(planned);
     PipelineInfo& info = out.info;
@@ -465,26 +507,30 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             if (error) std::rethrow_exception(error);
         }
     };
-    // One sample's state for a regressor call, with the velocity from `qd` (e.qd, or the Coulomb columns' own).
+    // The estimates of the chunk's samples (and of the Coulomb filter's reach around them).
+    StateWindow window;
+    // One sample's state for a regressor call, with the velocity from `qd` (window.qd, or the Coulomb columns' own).
     auto load_state = [&](std::size_t k, const std::vector<std::vector<double>>& qd, std::vector<double>& qs, std::vector<double>& qds,
                           std::vector<double>& qdds) {
+        const std::size_t i = k - window.from;
         for (std::size_t j = 0; j < qs.size(); ++j) {
-            qs[j] = e.q[j][k];
-            qds[j] = qd[j][k];
-            qdds[j] = e.qdd[j][k];
+            qs[j] = window.q[j][i];
+            qds[j] = qd[j][i];
+            qdds[j] = window.qdd[j][i];
         }
     };
     std::vector<int> coulomb_columns;  // the FCj columns, when their velocity is given (StateEstimates::qd_coulomb)
     std::vector<std::vector<double>> coulomb_raw;
-    const std::size_t full_length = e.q.empty() ? 0 : e.q.front().size();
+    const std::size_t full_length = states.samples();
+    const std::vector<double>& torque_fir = states.torque_fir();
     Lowpass coulomb_fq{};
-    if (!e.qd_coulomb.empty()) {
+    if (states.has_coulomb_velocity()) {
         for (int j = 0; j < joints; ++j) {
             const int index = model.parameter_index(fmt::format("FC{}", j + 1));
             if (index >= 0) coulomb_columns.push_back(index);
         }
         coulomb_raw.resize(coulomb_columns.size() * static_cast<std::size_t>(joints));
-        if (e.torque_fir.empty()) {
+        if (torque_fir.empty()) {
             coulomb_fq = signal::design_butterworth_or_throw(s.butterworth_order, info.prefilter_cutoff, log.sample_period, "Butterworth prefilter");
         }
     }
@@ -509,6 +555,11 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
         const std::size_t e1 = std::min(a1, c1 + margin);
         const std::size_t len = e1 - e0;
         const auto t0 = Clock::now();
+        // The Coulomb columns are filtered like the torque: their estimates reach `reach` samples further.
+        const bool fir = !torque_fir.empty();
+        const std::size_t reach = coulomb_columns.empty() ? 0 : fir ? (torque_fir.size() - 1) / 2 : info.first;
+        const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
+        states.load(x0, x1, window, pool);
         for (auto& col : buffer) col.resize(len);
         const auto ranges = static_cast<std::size_t>(threads);
         const std::size_t regressor_ranges = model.concurrent_regressor() ? ranges : 1;
@@ -517,22 +568,19 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
             std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
             for (std::size_t i = len * range / regressor_ranges; i < len * (range + 1) / regressor_ranges; ++i) {
                 const std::size_t k = e0 + i;
-                load_state(k, e.qd, qs, qds, qdds);
+                load_state(k, window.qd, qs, qds, qdds);
                 model.regressor(qs.data(), qds.data(), qdds.data(), D);
                 if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
                 for (int j = 0; j < joints; ++j) {
                     const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
                     for (int p = 0; p < c; ++p) buffer[base + static_cast<std::size_t>(p)][i] = D(j, p);
-                    buffer[base + static_cast<std::size_t>(c)][i] = e.tau[static_cast<std::size_t>(j)][k];
+                    buffer[base + static_cast<std::size_t>(c)][i] = window.tau[static_cast<std::size_t>(j)][k - window.from];
                 }
             }
         });
         if (!coulomb_columns.empty()) {
             // The Coulomb columns s(alpha qd) on the wider velocity, then through the torque's own filter
             // (StateEstimates::qd_coulomb), on [e0, e1) plus the filter's reach on each side.
-            const bool fir = !e.torque_fir.empty();
-            const std::size_t reach = fir ? (e.torque_fir.size() - 1) / 2 : info.first;
-            const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
             for (auto& col : coulomb_raw) col.resize(xlen);
             // The Coulomb columns evaluated again per sample (RobotModel::coulomb_columns: alone for the serial
             // models, the whole regressor otherwise), split by sample ranges over the threads like the regressor.
@@ -540,7 +588,7 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                 Eigen::MatrixXd D(joints, c);
                 std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
                 for (std::size_t k = x0 + xlen * range / regressor_ranges; k < x0 + xlen * (range + 1) / regressor_ranges; ++k) {
-                    load_state(k, e.qd_coulomb, qs, qds, qdds);
+                    load_state(k, window.qd_coulomb, qs, qds, qdds);
                     model.coulomb_columns(qs.data(), qds.data(), qdds.data(), D);
                     for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
                         for (int j = 0; j < joints; ++j) {
@@ -561,8 +609,8 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                     }
                     std::size_t shift = 0;  // filtered[m] belongs to sample x0 + m + shift
                     if (fir) {
-                        const BatchStatus status = signal::differentiate_batch(Span<const double>(e.torque_fir), Span<const double>(raw),
-                                                                               Span<double>(filtered.data(), xlen - e.torque_fir.size() + 1));
+                        const BatchStatus status = signal::differentiate_batch(Span<const double>(torque_fir), Span<const double>(raw),
+                                                                               Span<double>(filtered.data(), xlen - torque_fir.size() + 1));
                         if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
                         shift = reach;
                     } else {
@@ -635,9 +683,9 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                     const auto js = static_cast<std::size_t>(j);
                     for (int p = 0; p < c; ++p) decimated.w(j, p) = row[static_cast<std::size_t>(p)];
                     decimated.y[j] = row[static_cast<std::size_t>(c)];
-                    decimated.q[j] = e.q[js][k];
-                    decimated.qd[j] = e.qd[js][k];
-                    decimated.qdd[j] = e.qdd[js][k];
+                    decimated.q[j] = window.q[js][k - window.from];
+                    decimated.qd[j] = window.qd[js][k - window.from];
+                    decimated.qdd[j] = window.qdd[js][k - window.from];
                 }
             }
             if (sink) {
@@ -678,5 +726,7 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
     }
     return out;
 }
+
+}  // namespace
 
 }  // namespace jacobid::identify
