@@ -20,6 +20,7 @@ Catalogue candidate_catalogue(const sim::EffectContext& context, const Catalogue
         add({EffectKind::CoulombOffset, j, 0.0, 0});
         add({EffectKind::CoulombAsymmetry, j, 0.0, 0});
         for (double vs : settings.stribeck_velocities) add({EffectKind::Stribeck, j, vs, 0});
+        for (double xp : settings.presliding_displacements) add({EffectKind::Presliding, j, 0.0, 0, xp});
         add({EffectKind::ViscousNonlinear, j, 0.0, 0});
         for (int k = 2; k <= settings.max_cogging_order; ++k) add({EffectKind::Cogging, j, 0.0, k});
         add({EffectKind::RotorInertia, j, 0.0, 0});

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The candidate effects the diagnosis tries, each with its hyper-parameter on a grid: Stribeck velocities
-// (a geometric grid, 0.02-0.5 rad/s), cogging orders 2..max (order 1 on joint 1 is what a tilted base does,
+// (a geometric grid, 0.02-0.5 rad/s), presliding displacements (x_p of a Dahl state, a factor-2 grid
+// 5e-5-3.2e-3 rad: the range identify's presliding_displacement auto searches), cogging orders 2..max (order 1 on joint 1 is what a tilted base does,
 // and the gravity candidate covers it), one term per joint for the others, gravity once. torque_delay has
 // no columns: the selection searches it by shifting the torque channel.
 #include <string>
@@ -13,6 +14,7 @@ namespace jacobid::diagnose {
 
 struct CatalogueSettings {
     std::vector<double> stribeck_velocities{0.02, 0.025, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.1, 0.12, 0.14, 0.17, 0.2, 0.25, 0.3, 0.4, 0.5};
+    std::vector<double> presliding_displacements{5e-5, 1e-4, 2e-4, 4e-4, 8e-4, 1.6e-3, 3.2e-3};
     int max_cogging_order = 30;
     bool torque_delay = true;
 };

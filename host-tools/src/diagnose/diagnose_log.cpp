@@ -15,7 +15,8 @@ Diagnosis diagnose_log(const robot::RobotDescription& robot, const robot::RobotM
     std::vector<std::string> names;
     for (const auto& j : robot.joints) names.push_back(j.name);
     if (smoothed.choice) fitted.coulomb_alpha = smoothed.choice->alphas();
-    const sim::EffectContext context{model.model_name(), model.joint_count(), fitted.coulomb, robot::joint_coulomb_signs(fitted)};
+    sim::EffectContext context{model.model_name(), model.joint_count(), fitted.coulomb, robot::joint_coulomb_signs(fitted)};
+    context.presliding_play = robot.presliding_play;  // presliding candidates filter flicker as identify's friction: presliding does
     Diagnosis d = run_diagnosis(smoothed.get(model), context, log, validation, settings, progress);
     d.joint_names = names;
     if (smoothed.choice) d.notes.push_back(identify::describe(*smoothed.choice, names));

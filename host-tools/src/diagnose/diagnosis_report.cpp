@@ -90,6 +90,7 @@ nlohmann::json to_json(const Diagnosis& d) {
                             {"coefficients", std::vector<double>(e.coefficients.data(), e.coefficients.data() + e.coefficients.size())},
                             {"selection", test_json(e.test)}};
         if (e.term.kind == sim::EffectKind::Stribeck) x["velocity"] = e.term.velocity;
+        if (e.term.kind == sim::EffectKind::Presliding) x["displacement"] = e.term.displacement;
         if (e.term.kind == sim::EffectKind::Cogging) x["order"] = e.term.order;
         j["effects"].push_back(x);
     }
@@ -139,6 +140,11 @@ std::string format_text(const Diagnosis& d) {
     if (d.effects.empty()) s += "  none\n";
     for (const auto& e : d.effects) {
         s += fmt::format("  {:<28} {:>10.4g} +- {} {}\n", effect_label(e), e.value, spread(e.std), sim::effect_unit(e.term.kind));
+        if (e.term.kind == sim::EffectKind::Presliding) {
+            // The model option that carries it into identify, simulate and the exported model.
+            s += fmt::format("    in identify and simulate: friction: {{presliding: dahl, presliding_displacement: {:g}}} (identifies FD{})\n",
+                             e.term.displacement, e.term.joint + 1);
+        }
     }
     s += "\nGap before -> after, per joint:\n";
     const std::size_t joints = d.before.residual_rms.size();

@@ -22,15 +22,37 @@ HorizonResult simulate_horizons(const robot::RobotModel& model, const Eigen::Vec
     r.rms_error.assign(nj, 0.0);
     r.end_error.assign(nj, 0.0);
     std::size_t compared = 0;
-    // Measured torque at time index `at` (fractional), read `delay` later.
-    Eigen::VectorXd tau(n);
-    auto torque = [&](double at) {
-        at += delay / h;
+    // Friction with memory (presliding): its state integrated along the measured positions, as the
+    // identification integrates it, and its torque applied as known beside the measured one (a short open-loop
+    // segment cannot carry the state itself: it starts from an unknown one).
+    std::vector<std::vector<double>> held;  // per joint, full rate; empty: the model has none
+    if (model.history_size() > 0) {
+        std::vector<double> history;
+        model.integrate_history(log.q, history);
+        const auto width = static_cast<std::size_t>(model.history_size());
+        held.assign(nj, std::vector<double>(log.samples(), 0.0));
+        Eigen::MatrixXd D(n, model.parameter_count());
+        for (std::size_t k = 0; k < log.samples(); ++k) {
+            D.setZero();
+            model.history_columns(history.data() + k * width, D);
+            const Eigen::VectorXd f = D * x;
+            for (std::size_t j = 0; j < nj; ++j) held[j][k] = f[static_cast<Eigen::Index>(j)];
+        }
+    }
+    // Linear interpolation of a full-rate column at time index `at` (fractional), clamped to the log.
+    auto interpolate = [&](const std::vector<double>& column, double at) {
         const double clamped = std::clamp(at, 0.0, static_cast<double>(log.samples() - 1));
         const auto i = static_cast<std::size_t>(std::floor(clamped));
         const std::size_t i1 = std::min(i + 1, log.samples() - 1);
         const double f = clamped - static_cast<double>(i);
-        for (std::size_t j = 0; j < nj; ++j) tau[static_cast<Eigen::Index>(j)] = (1.0 - f) * (*log.tau[j])[i] + f * (*log.tau[j])[i1];
+        return (1.0 - f) * column[i] + f * column[i1];
+    };
+    // Measured torque at time index `at` (fractional), read `delay` later, less the held friction at `at`.
+    Eigen::VectorXd tau(n);
+    auto torque = [&](double at) {
+        for (std::size_t j = 0; j < nj; ++j) {
+            tau[static_cast<Eigen::Index>(j)] = interpolate(*log.tau[j], at + delay / h) - (held.empty() ? 0.0 : interpolate(held[j], at));
+        }
     };
     Eigen::VectorXd q(n), qd(n), kq[4], kv[4], qs(n), vs(n);
     for (auto& k : kq) k.resize(n);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sim/augmented_model.hpp"
 
+#include "robot/presliding_model.hpp"
+
 namespace jacobid::sim {
 
 AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext context, std::vector<EffectTerm> terms)
@@ -10,6 +12,37 @@ AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext c
         terms_.push_back(t);
         first_column_.push_back(static_cast<int>(names_.size()));
         for (auto& name : t.column_names()) names_.push_back(std::move(name));
+        if (effect_has_history(t.kind)) history_terms_.push_back(terms_.size() - 1);
+    }
+}
+
+void AugmentedModel::integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const {
+    const auto nominal_width = static_cast<std::size_t>(nominal_.history_size());
+    if (history_terms_.empty()) {
+        nominal_.integrate_history(q, state);
+        return;
+    }
+    const std::size_t n = q.empty() ? 0 : q.front()->size(), width = static_cast<std::size_t>(history_size());
+    std::vector<double> nominal_state;
+    if (nominal_width > 0) nominal_.integrate_history(q, nominal_state);
+    state.assign(n * width, 0.0);
+    for (std::size_t k = 0; k < n && nominal_width > 0; ++k) {
+        std::copy(nominal_state.begin() + static_cast<std::ptrdiff_t>(k * nominal_width),
+                  nominal_state.begin() + static_cast<std::ptrdiff_t>((k + 1) * nominal_width), state.begin() + static_cast<std::ptrdiff_t>(k * width));
+    }
+    for (std::size_t h = 0; h < history_terms_.size(); ++h) {
+        const EffectTerm& t = terms_[history_terms_[h]];
+        const std::vector<double> s = robot::presliding_states(*q[static_cast<std::size_t>(t.joint)], t.displacement, context_.presliding_play);
+        for (std::size_t k = 0; k < n; ++k) state[k * width + nominal_width + h] = s[k];
+    }
+}
+
+void AugmentedModel::history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const {
+    const int nominal_width = nominal_.history_size();
+    if (nominal_width > 0) nominal_.history_columns(state, D.leftCols(nominal_.parameter_count()));
+    for (std::size_t h = 0; h < history_terms_.size(); ++h) {
+        const std::size_t t = history_terms_[h];
+        D(terms_[t].joint, first_column_[t]) = state[static_cast<std::size_t>(nominal_width) + h];
     }
 }
 

@@ -21,14 +21,12 @@ public:
     const std::vector<std::string>& parameter_names() const override { return names_; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
     bool concurrent_regressor() const override { return nominal_.concurrent_regressor(); }
-    // The nominal model's history columns (presliding friction), so that they are fitted beside the terms.
-    int history_size() const override { return nominal_.history_size(); }
-    void integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const override {
-        nominal_.integrate_history(q, state);
-    }
-    void history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const override {
-        nominal_.history_columns(state, D.leftCols(nominal_.parameter_count()));
-    }
+    // History columns: the nominal model's (presliding friction), then one state per presliding term (its
+    // joint's Dahl state at the term's x_p, through the play operator of EffectContext::presliding_play),
+    // so that both are fitted beside the other terms.
+    int history_size() const override { return nominal_.history_size() + static_cast<int>(history_terms_.size()); }
+    void integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const override;
+    void history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const override;
 
     const robot::RobotModel& nominal() const { return nominal_; }
     const std::vector<EffectTerm>& terms() const { return terms_; }
@@ -40,6 +38,7 @@ private:
     EffectContext context_;
     std::vector<EffectTerm> terms_;
     std::vector<int> first_column_;
+    std::vector<std::size_t> history_terms_;  // indices into terms_ of the presliding terms
     std::vector<std::string> names_;
 };
 

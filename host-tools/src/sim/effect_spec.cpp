@@ -24,6 +24,7 @@ std::vector<std::string> allowed_keys(EffectKind kind) {
         case EffectKind::Cogging: return {"joint", "amplitude", "value", "order", "phase"};
         case EffectKind::Gravity: return {"tilt", "direction", "mx1"};
         case EffectKind::TorqueDelay: return {"value"};
+        case EffectKind::Presliding: return {"joint", "value", "displacement"};
         default: return {"joint", "value"};
     }
 }
@@ -105,6 +106,13 @@ EffectSpec build(const std::string& name, const std::vector<std::pair<std::strin
             if (given.count("velocity")) s.velocity = given["velocity"];
             if (!(s.velocity > 0.0)) throw InputError(fmt::format("{}: velocity must be > 0 rad/s", where("velocity")));
             break;
+        case EffectKind::Presliding:
+            s.value = need("value");
+            if (given.count("displacement")) s.displacement = given["displacement"];
+            if (!(s.displacement > 0.0 && s.displacement <= 1.0)) {
+                throw InputError(fmt::format("{}: displacement must be within (0, 1] rad", where("displacement")));
+            }
+            break;
         case EffectKind::TorqueDelay:
             s.value = need("value");
             if (!(s.value >= 0.0 && s.value <= 1.0)) throw InputError(fmt::format("{}: delay must be within [0, 1] s", where("value")));
@@ -177,7 +185,7 @@ std::vector<EffectSpec> load_effects_file(const std::string& path, int joints) {
     return parse_effects_yaml(yaml::read_input_file<InputError>(path, "--effects file"), path, joints);
 }
 
-EffectTerm term_of(const EffectSpec& spec) { return {spec.kind, spec.joint, spec.velocity, spec.order}; }
+EffectTerm term_of(const EffectSpec& spec) { return {spec.kind, spec.joint, spec.velocity, spec.order, spec.displacement}; }
 
 Eigen::VectorXd injected_coefficients(const EffectSpec& spec, const robot::RobotModel& nominal, const Eigen::VectorXd& x) {
     switch (spec.kind) {
@@ -207,6 +215,7 @@ nlohmann::json to_json(const EffectSpec& s) {
     j["value"] = s.value;
     j["unit"] = effect_unit(s.kind);
     if (s.kind == EffectKind::Stribeck) j["velocity"] = s.velocity;
+    if (s.kind == EffectKind::Presliding) j["displacement"] = s.displacement;
     if (s.kind == EffectKind::Cogging) {
         j["order"] = s.order;
         j["phase"] = s.phase;

@@ -19,6 +19,7 @@ constexpr KindInfo kKinds[] = {
     {EffectKind::Stribeck, "stribeck", "N.m"},                  {EffectKind::ViscousNonlinear, "viscous_nonlinear", "N.m s^2/rad^2"},
     {EffectKind::Gravity, "gravity", "N.m"},                    {EffectKind::Cogging, "cogging", "N.m"},
     {EffectKind::RotorInertia, "rotor_inertia", "kg m^2"},      {EffectKind::TorqueDelay, "torque_delay", "s"},
+    {EffectKind::Presliding, "presliding", "N.m"},
 };
 
 const KindInfo& info(EffectKind kind) {
@@ -42,6 +43,8 @@ std::optional<EffectKind> effect_kind(const std::string& name) {
 
 bool effect_has_joint(EffectKind kind) { return kind != EffectKind::Gravity && kind != EffectKind::TorqueDelay; }
 
+bool effect_has_history(EffectKind kind) { return kind == EffectKind::Presliding; }
+
 int EffectTerm::column_count() const {
     switch (kind) {
         case EffectKind::Cogging: return 2;
@@ -56,6 +59,7 @@ std::string EffectTerm::label() const {
     if (joint >= 0) s += fmt::format(" j{}", joint + 1);
     if (kind == EffectKind::Stribeck) s += fmt::format(" vs={:g} rad/s", velocity);
     if (kind == EffectKind::Cogging) s += fmt::format(" k={}", order);
+    if (kind == EffectKind::Presliding) s += fmt::format(" xp={:g} rad", displacement);
     return s;
 }
 
@@ -63,6 +67,7 @@ std::vector<std::string> EffectTerm::column_names() const {
     const std::string base = fmt::format("{}{}", effect_name(kind), joint >= 0 ? std::to_string(joint + 1) : std::string());
     switch (kind) {
         case EffectKind::Stribeck: return {fmt::format("{}_vs{:g}", base, velocity)};
+        case EffectKind::Presliding: return {fmt::format("{}_xp{:g}", base, displacement)};
         case EffectKind::Cogging: return {fmt::format("{}_k{}_sin", base, order), fmt::format("{}_k{}_cos", base, order)};
         case EffectKind::Gravity: return {base + "_a1", base + "_b1", base + "_a2", base + "_b2"};
         case EffectKind::TorqueDelay: return {};
@@ -114,6 +119,7 @@ void term_columns(const EffectTerm& term, const EffectContext& context, const do
             break;
         }
         case EffectKind::TorqueDelay: break;
+        case EffectKind::Presliding: break;  // history column: AugmentedModel::history_columns
     }
 }
 

@@ -14,6 +14,11 @@
 //   viscous_nonlinear  qd_j |qd_j|                         value: N.m s^2 / rad^2
 //   cogging            sin(k q_j), cos(k q_j)              value: amplitude, N.m (k = order, harmonics per rev)
 //   rotor_inertia      qdd_j                               value: kg m^2
+//   presliding         s_j, the joint's Dahl state          value: presliding friction level FD, N.m (x_p = the
+//                      (robot/presliding_model.hpp)        presliding displacement, rad). A history column: s_j
+//                                                          depends on the position path, not on one state, so
+//                                                          term_columns leaves it 0 and the models integrate it
+//                                                          along the positions (AugmentedModel's history)
 // Whole robot:
 //   gravity            planar2r only: a tilted base puts g sin(tilt) into the plane of motion. With
 //                      U = -(a1 cos q1 + b1 sin q1 + a2 cos q12 + b2 sin q12) the columns are
@@ -31,11 +36,11 @@
 
 namespace jacobid::sim {
 
-enum class EffectKind { CoulombOffset, CoulombAsymmetry, Stribeck, ViscousNonlinear, Gravity, Cogging, RotorInertia, TorqueDelay };
+enum class EffectKind { CoulombOffset, CoulombAsymmetry, Stribeck, ViscousNonlinear, Gravity, Cogging, RotorInertia, TorqueDelay, Presliding };
 
 constexpr EffectKind kAllEffects[] = {EffectKind::CoulombOffset, EffectKind::CoulombAsymmetry, EffectKind::Stribeck,
                                       EffectKind::ViscousNonlinear, EffectKind::Gravity,         EffectKind::Cogging,
-                                      EffectKind::RotorInertia,     EffectKind::TorqueDelay};
+                                      EffectKind::RotorInertia,     EffectKind::TorqueDelay,     EffectKind::Presliding};
 
 const char* effect_name(EffectKind kind);
 std::optional<EffectKind> effect_kind(const std::string& name);
@@ -43,6 +48,9 @@ std::optional<EffectKind> effect_kind(const std::string& name);
 const char* effect_unit(EffectKind kind);
 // Effects that act on one joint (all but gravity and torque_delay).
 bool effect_has_joint(EffectKind kind);
+// Effects whose column depends on the path (a state integrated along the positions), not on one sample's
+// q, qd, qdd: presliding.
+bool effect_has_history(EffectKind kind);
 
 // What the columns need to know about the robot.
 struct EffectContext {
@@ -50,6 +58,7 @@ struct EffectContext {
     int joints = 0;
     robot::CoulombSign coulomb{};
     std::vector<robot::CoulombSign> joint_coulomb;  // per joint (friction.alpha per joint or auto); empty: coulomb
+    double presliding_play = 2e-4;  // rad: the play operator's total width for presliding states (friction: presliding_play)
     const robot::CoulombSign& sign(int joint) const {
         return static_cast<std::size_t>(joint) < joint_coulomb.size() ? joint_coulomb[static_cast<std::size_t>(joint)] : coulomb;
     }
@@ -61,6 +70,7 @@ struct EffectTerm {
     int joint = -1;        // 0-based; -1 for whole-robot effects
     double velocity = 0;   // stribeck: vs in rad/s
     int order = 0;         // cogging: harmonic order per revolution
+    double displacement = 0;  // presliding: x_p in rad
     int column_count() const;
     // A readable label, e.g. "cogging j2 k=6" (joints 1-based).
     std::string label() const;
@@ -71,7 +81,7 @@ struct EffectTerm {
 // Whether the term exists for this robot (gravity needs the planar kinematics of planar2r).
 bool term_applicable(const EffectTerm& term, const EffectContext& context, std::string* why_not = nullptr);
 
-// Fills the term's columns (joints x column_count) at one state.
+// Fills the term's columns (joints x column_count) at one state (zeros for a history effect).
 void term_columns(const EffectTerm& term, const EffectContext& context, const double* q, const double* qd, const double* qdd,
                   Eigen::Ref<Eigen::MatrixXd> columns);
 

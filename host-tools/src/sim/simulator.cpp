@@ -17,29 +17,48 @@
 namespace jacobid::sim {
 namespace {
 
-// Presliding friction of a PreslidingModel: each joint's Dahl state integrated along the true positions (no
-// quantization, no play), the joints feel FDj s_j, which the controller's torque then carries into the log
-// (docs/method.md, "Presliding friction (Dahl)").
+// Presliding friction: each Dahl state (a PreslidingModel's, one per joint, and an injected presliding
+// effect's) integrated along the true positions (no quantization, no play); its joint feels FD s, which the
+// controller's torque then carries into the log (docs/method.md, "Presliding friction (Dahl)").
 class DahlFriction final : public HeldFriction {
 public:
-    DahlFriction(const robot::PreslidingModel& model, const Eigen::VectorXd& parameters) : first_(model.first_presliding_column()) {
-        for (int j = 0; j < model.joint_count(); ++j) {
-            dahl_.emplace_back(model.settings().displacement[static_cast<std::size_t>(j)]);
-            level_.push_back(parameters[first_ + j]);
-        }
+    void add(int joint, double displacement, double level) {
+        joint_.push_back(joint);
+        dahl_.emplace_back(displacement);
+        level_.push_back(level);
     }
+    bool empty() const { return dahl_.empty(); }
     void step(const Eigen::VectorXd& before, const Eigen::VectorXd& after, Eigen::VectorXd& torque) override {
-        for (std::size_t j = 0; j < dahl_.size(); ++j) {
-            const auto je = static_cast<Eigen::Index>(j);
-            torque[je] = level_[j] * dahl_[j].step(after[je] - before[je]);
+        torque.setZero();
+        for (std::size_t i = 0; i < dahl_.size(); ++i) {
+            const auto je = static_cast<Eigen::Index>(joint_[i]);
+            torque[je] += level_[i] * dahl_[i].step(after[je] - before[je]);
         }
     }
 
 private:
-    int first_;
+    std::vector<int> joint_;
     std::vector<robot::DahlState> dahl_;
     std::vector<double> level_;
 };
+
+// The presliding friction of `model` at `parameters` (nullptr when it has none).
+std::unique_ptr<DahlFriction> presliding_friction(const robot::RobotModel& model, const Eigen::VectorXd& parameters) {
+    auto dahl = std::make_unique<DahlFriction>();
+    const auto* augmented = dynamic_cast<const AugmentedModel*>(&model);
+    if (const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(augmented ? &augmented->nominal() : &model)) {
+        for (int j = 0; j < presliding->joint_count(); ++j) {
+            dahl->add(j, presliding->settings().displacement[static_cast<std::size_t>(j)], parameters[presliding->first_presliding_column() + j]);
+        }
+    }
+    if (augmented) {
+        for (std::size_t t = 0; t < augmented->terms().size(); ++t) {
+            const EffectTerm& term = augmented->terms()[t];
+            if (term.kind == EffectKind::Presliding) dahl->add(term.joint, term.displacement, parameters[augmented->term_column(t)]);
+        }
+    }
+    return dahl->empty() ? nullptr : std::move(dahl);
+}
 
 std::size_t steps_per_output(const SimulationSettings& s) {
     const double ratio = s.control_rate * s.substeps / s.output_rate;
@@ -109,9 +128,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     sample.tau_measured.resize(n);
     sample.q_ref.resize(n);
     sample.qd_ref.resize(n);
-    const auto* augmented = dynamic_cast<const AugmentedModel*>(&model);
-    const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(augmented ? &augmented->nominal() : &model);
-    std::unique_ptr<DahlFriction> dahl = presliding ? std::make_unique<DahlFriction>(*presliding, parameters) : nullptr;
+    const std::unique_ptr<DahlFriction> dahl = presliding_friction(model, parameters);
     // True parameters no rigid body can have (a negative inertia) leave no dynamics to integrate.
     run_closed_loop(
         dynamics, q0, Eigen::VectorXd::Zero(n), gains, loop, [&](double t, ReferenceSample& ref) { settings.reference ? settings.reference(t, ref) : trajectory.evaluate(t, ref); },

@@ -20,7 +20,8 @@ struct EffectCase {
 // Realistic magnitudes (docs/diagnose.md): offset 0.2 N.m; asymmetry 0.1 N.m = 23 % of FC1 = 0.431; Stribeck
 // 0.3 N.m above Coulomb at vs = 0.09 rad/s (between the search grid points 0.08 and 0.1); qd|qd| 0.01 (0.04-0.09 N.m at the moves' 2-3
 // rad/s); base tilted 3 deg with 1.5 kg m on link 1; cogging 0.15 N.m at 6 per rev; rotor inertia
-// 0.05 kg m^2 on joint 2 (joint 1's regroups into ZZ1R); torque channel 3 ms late.
+// 0.05 kg m^2 on joint 2 (joint 1's regroups into ZZ1R); torque channel 3 ms late; presliding friction (a Dahl
+// state, issue 15) of 0.3 N.m on joint 1 at x_p = 6e-4 rad (between the search grid points 4e-4 and 8e-4).
 const EffectCase kCases[] = {
     {"coulomb_offset", "coulomb_offset:joint=1,value=0.2", 1},
     {"coulomb_asymmetry", "coulomb_asymmetry:joint=1,value=0.1", 1},
@@ -30,6 +31,7 @@ const EffectCase kCases[] = {
     {"cogging", "cogging:joint=2,amplitude=0.15,order=6,phase=40", 2},
     {"rotor_inertia", "rotor_inertia:joint=2,value=0.05", 2},
     {"torque_delay", "torque_delay:value=0.003", 0},
+    {"presliding", "presliding:joint=1,value=0.3,displacement=6e-4", 1},
 };
 
 // gtest prints parameters in ctest's test names; the effect name reads better than the bytes.

@@ -116,6 +116,34 @@ TEST(EffectInjection, TorqueDelayShiftsTheLoggedTorqueOnly) {
     }
 }
 
+TEST(EffectInjection, PreslidingIsTheDahlStateAlongTheTruePositions) {
+    // Dahl's law ds/dx = (1 - s sgn(dx)) / x_p solved exactly between samples of the true position (s moves
+    // towards the motion's sign by 1 - exp(-|dx| / x_p)), written out here. The simulator integrates it at its
+    // substeps and holds it over each step, so the two agree to what one output sample of motion moves it.
+    const States s = simulate_states("presliding", "--effect presliding:joint=2,value=0.25,displacement=8e-4");
+    ASSERT_EQ(s.truth["effects"].size(), 1u);
+    EXPECT_EQ(s.truth["effects"][0]["displacement"], 8e-4);
+    const auto& q2 = s.table.column("q2");
+    double state = 0.0, squared = 0.0, reference = 0.0;
+    std::size_t saturated = 0;
+    for (std::size_t k = 1; k < q2.size(); ++k) {
+        const double dx = q2[k] - q2[k - 1];
+        const double sign = dx > 0.0 ? 1.0 : dx < 0.0 ? -1.0 : 0.0;
+        if (sign != 0.0) state = sign + (state - sign) * std::exp(-std::abs(dx) / 8e-4);
+        const auto got = unexplained(s, k);
+        ASSERT_NEAR(got[0], 0.0, 1e-9) << "joint 1 has no effect, sample " << k;
+        const double want = 0.25 * state;
+        squared += (got[1] - want) * (got[1] - want);
+        reference += want * want;
+        if (std::abs(state) > 0.999) {
+            ++saturated;
+            ASSERT_NEAR(got[1], want, 0.01 * 0.25) << "sliding, sample " << k;  // sliding: FD sgn(qd)
+        }
+    }
+    EXPECT_GT(saturated, q2.size() / 2);
+    EXPECT_LT(std::sqrt(squared / reference), 0.05);
+}
+
 TEST(EffectInjection, BadEffectsNameTheToken) {
     const std::string out = " --out " + scratch("bad.csv") + " --duration 1";
     const std::string sim = std::string(JACOBID_EXECUTABLE) + " simulate --robot " + diagnose_robot_yaml() + out;

@@ -34,7 +34,18 @@ TEST(EffectSpec, ParsesEveryEffect) {
     EXPECT_EQ(s.value, 0.004);
     s = parse_effect("gravity:tilt=30,mx1=2", 2);
     EXPECT_NEAR(s.value, 9.80665 * 0.5 * 2.0, 1e-12);  // g sin(30 deg) mx1
+    s = parse_effect("presliding:joint=2,value=0.4", 2);
+    EXPECT_EQ(s.kind, EffectKind::Presliding);
+    EXPECT_EQ(s.displacement, 5e-4);  // the default x_p
+    EXPECT_EQ(parse_effect("presliding:joint=1,value=0.4,displacement=1e-3", 2).displacement, 1e-3);
+    EXPECT_EQ(to_json(s)["displacement"], 5e-4);
+    EXPECT_EQ(term_of(s).displacement, 5e-4);
     for (EffectKind k : kAllEffects) EXPECT_EQ(effect_kind(effect_name(k)), k);
+}
+
+TEST(EffectSpec, APreslidingDisplacementMustBePositive) {
+    EXPECT_NE(error_of("presliding:joint=1,value=0.3,displacement=0").find("displacement must be within (0, 1] rad"), std::string::npos);
+    EXPECT_NE(error_of("presliding:joint=1,value=0.3,displacement=-1e-4").find("key 'displacement'"), std::string::npos);
 }
 
 TEST(EffectSpec, ErrorsNameTheToken) {
