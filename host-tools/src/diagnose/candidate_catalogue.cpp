@@ -2,6 +2,7 @@
 #include "diagnose/candidate_catalogue.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace jacobid::diagnose {
 
@@ -21,6 +22,11 @@ Catalogue candidate_catalogue(const sim::EffectContext& context, const Catalogue
         add({EffectKind::CoulombAsymmetry, j, 0.0, 0});
         for (double vs : settings.stribeck_velocities) add({EffectKind::Stribeck, j, vs, 0});
         for (double xp : settings.presliding_displacements) add({EffectKind::Presliding, j, 0.0, 0, xp});
+        const robot::CoulombSign& own = context.sign(j);
+        for (double a : settings.coulomb_alphas) {
+            const bool same = own.model == robot::CoulombModel::SmoothAtan && std::abs(a / own.alpha - 1.0) < 0.01;
+            if (!same) add({EffectKind::CoulombSmoothing, j, 0.0, 0, 0.0, a});
+        }
         add({EffectKind::ViscousNonlinear, j, 0.0, 0});
         for (int k = 2; k <= settings.max_cogging_order; ++k) add({EffectKind::Cogging, j, 0.0, k});
         add({EffectKind::RotorInertia, j, 0.0, 0});

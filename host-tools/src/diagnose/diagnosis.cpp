@@ -140,10 +140,7 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
             e.std = accepted.std;
         } else if (fit.ok) {
             std::size_t t = 0;
-            while (t < augmented.terms().size() && !(augmented.terms()[t].kind == e.term.kind && augmented.terms()[t].joint == e.term.joint &&
-                                                      augmented.terms()[t].order == e.term.order && augmented.terms()[t].velocity == e.term.velocity)) {
-                ++t;
-            }
+            while (t < augmented.terms().size() && !augmented.terms()[t].same_as(e.term)) ++t;
             const Eigen::Index first = augmented.term_column(t), k = e.term.column_count();
             e.coefficients = fit.x.segment(first, k);
             const Eigen::MatrixXd cov = sigma2 * (rows / n_eff) * fit.inverse.block(first, first, k, k);

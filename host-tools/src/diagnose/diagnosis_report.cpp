@@ -91,6 +91,7 @@ nlohmann::json to_json(const Diagnosis& d) {
                             {"selection", test_json(e.test)}};
         if (e.term.kind == sim::EffectKind::Stribeck) x["velocity"] = e.term.velocity;
         if (e.term.kind == sim::EffectKind::Presliding) x["displacement"] = e.term.displacement;
+        if (e.term.kind == sim::EffectKind::CoulombSmoothing) x["alpha"] = e.term.alpha;
         if (e.term.kind == sim::EffectKind::Cogging) x["order"] = e.term.order;
         j["effects"].push_back(x);
     }
@@ -131,7 +132,7 @@ std::string format_text(const Diagnosis& d) {
         const auto& st = d.selection.steps[k];
         s += fmt::format("  step {}: {} candidates, n_eff {:.0f} of {:.0f} rows\n", k + 1, st.tested, st.n_eff, st.rows);
         for (const auto& t : st.top) {
-            s += fmt::format("    {:<28} value {:>10.4g} +- {:<9} chi2 {:>9.1f}  adj. p {:>8.2g}  held-out {:+6.1f} %  {}\n", t.label(), t.value,
+            s += fmt::format("    {:<38} value {:>10.4g} +- {:<9} chi2 {:>9.1f}  adj. p {:>8.2g}  held-out {:+6.1f} %  {}\n", t.label(), t.value,
                              spread(t.std), t.chi2, t.adjusted_p, -100.0 * t.gain,
                              t.accepted() ? "pass" : (t.significant ? "fails held-out" : "not significant"));
         }
@@ -139,7 +140,11 @@ std::string format_text(const Diagnosis& d) {
     s += "\nNamed effects:\n";
     if (d.effects.empty()) s += "  none\n";
     for (const auto& e : d.effects) {
-        s += fmt::format("  {:<28} {:>10.4g} +- {} {}\n", effect_label(e), e.value, spread(e.std), sim::effect_unit(e.term.kind));
+        s += fmt::format("  {:<38} {:>10.4g} +- {} {}\n", effect_label(e), e.value, spread(e.std), sim::effect_unit(e.term.kind));
+        if (e.term.kind == sim::EffectKind::CoulombSmoothing) {
+            s += fmt::format("    in identify and simulate: friction: alpha {:g} for joint {} (a list, one alpha per joint, or alpha: auto)\n",
+                             e.term.alpha, e.term.joint + 1);
+        }
         if (e.term.kind == sim::EffectKind::Presliding) {
             // The model option that carries it into identify, simulate and the exported model.
             s += fmt::format("    in identify and simulate: friction: {{presliding: dahl, presliding_displacement: {:g}}} (identifies FD{})\n",

@@ -214,8 +214,7 @@ SelectionResult select_effects(const sim::AugmentedModel& catalogue, const Decim
             if (vgrams) vgrams->set_y(validation->shifted_ys(result.delay));
         } else {
             for (std::size_t i = 0; i < catalogue.terms().size(); ++i) {
-                if (same_slot(catalogue.terms()[i], a.term) && catalogue.terms()[i].velocity == a.term.velocity &&
-                    catalogue.terms()[i].displacement == a.term.displacement) {
+                if (catalogue.terms()[i].same_as(a.term)) {
                     used[i] = true;
                     model = with(model, catalogue.term_column(i), a.term.column_count());
                 }

@@ -25,6 +25,7 @@ std::vector<std::string> allowed_keys(EffectKind kind) {
         case EffectKind::Gravity: return {"tilt", "direction", "mx1"};
         case EffectKind::TorqueDelay: return {"value"};
         case EffectKind::Presliding: return {"joint", "value", "displacement"};
+        case EffectKind::CoulombSmoothing: return {"joint", "value", "alpha"};
         default: return {"joint", "value"};
     }
 }
@@ -106,6 +107,11 @@ EffectSpec build(const std::string& name, const std::vector<std::pair<std::strin
             if (given.count("velocity")) s.velocity = given["velocity"];
             if (!(s.velocity > 0.0)) throw InputError(fmt::format("{}: velocity must be > 0 rad/s", where("velocity")));
             break;
+        case EffectKind::CoulombSmoothing:
+            s.value = need("value");
+            if (given.count("alpha")) s.alpha = given["alpha"];
+            if (!(s.alpha > 0.0)) throw InputError(fmt::format("{}: alpha must be > 0 s/rad", where("alpha")));
+            break;
         case EffectKind::Presliding:
             s.value = need("value");
             if (given.count("displacement")) s.displacement = given["displacement"];
@@ -185,7 +191,7 @@ std::vector<EffectSpec> load_effects_file(const std::string& path, int joints) {
     return parse_effects_yaml(yaml::read_input_file<InputError>(path, "--effects file"), path, joints);
 }
 
-EffectTerm term_of(const EffectSpec& spec) { return {spec.kind, spec.joint, spec.velocity, spec.order, spec.displacement}; }
+EffectTerm term_of(const EffectSpec& spec) { return {spec.kind, spec.joint, spec.velocity, spec.order, spec.displacement, spec.alpha}; }
 
 Eigen::VectorXd injected_coefficients(const EffectSpec& spec, const robot::RobotModel& nominal, const Eigen::VectorXd& x) {
     switch (spec.kind) {
@@ -216,6 +222,7 @@ nlohmann::json to_json(const EffectSpec& s) {
     j["unit"] = effect_unit(s.kind);
     if (s.kind == EffectKind::Stribeck) j["velocity"] = s.velocity;
     if (s.kind == EffectKind::Presliding) j["displacement"] = s.displacement;
+    if (s.kind == EffectKind::CoulombSmoothing) j["alpha"] = s.alpha;
     if (s.kind == EffectKind::Cogging) {
         j["order"] = s.order;
         j["phase"] = s.phase;

@@ -13,6 +13,7 @@
 //   viscous_nonlinear  joint, value (N.m s^2/rad^2, times qd |qd|)
 //   cogging            joint, amplitude (N.m; alias value), order (per rev; default 6), phase (deg; default 0)
 //   rotor_inertia      joint, value (kg m^2)
+//   coulomb_smoothing  joint, value (N.m, a Coulomb level at another smoothing), alpha (s/rad; default 100)
 //   presliding         joint, value (N.m, the Dahl level FD), displacement (rad, x_p; default 5e-4); the state is
 //                      integrated along the true positions as with friction: {presliding: dahl}
 //   gravity            tilt (deg), direction (deg, in-plane direction of the gravity component; default 0),
@@ -36,6 +37,7 @@ struct EffectSpec {
     double value = 0.0;      // the magnitude as the diagnosis reports it (for gravity: g sin(tilt) mx1)
     double velocity = 0.1;   // stribeck vs, rad/s
     double displacement = 5e-4;  // presliding x_p, rad
+    double alpha = 100.0;        // coulomb_smoothing alpha', s/rad
     int order = 6;           // cogging harmonics per revolution
     double phase = 0.0;      // cogging phase, deg
     double tilt = 0.0;       // gravity: base tilt, deg

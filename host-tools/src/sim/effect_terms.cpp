@@ -19,7 +19,7 @@ constexpr KindInfo kKinds[] = {
     {EffectKind::Stribeck, "stribeck", "N.m"},                  {EffectKind::ViscousNonlinear, "viscous_nonlinear", "N.m s^2/rad^2"},
     {EffectKind::Gravity, "gravity", "N.m"},                    {EffectKind::Cogging, "cogging", "N.m"},
     {EffectKind::RotorInertia, "rotor_inertia", "kg m^2"},      {EffectKind::TorqueDelay, "torque_delay", "s"},
-    {EffectKind::Presliding, "presliding", "N.m"},
+    {EffectKind::Presliding, "presliding", "N.m"},             {EffectKind::CoulombSmoothing, "coulomb_smoothing", "N.m"},
 };
 
 const KindInfo& info(EffectKind kind) {
@@ -54,12 +54,17 @@ int EffectTerm::column_count() const {
     }
 }
 
+bool EffectTerm::same_as(const EffectTerm& o) const {
+    return kind == o.kind && joint == o.joint && velocity == o.velocity && order == o.order && displacement == o.displacement && alpha == o.alpha;
+}
+
 std::string EffectTerm::label() const {
     std::string s = effect_name(kind);
     if (joint >= 0) s += fmt::format(" j{}", joint + 1);
     if (kind == EffectKind::Stribeck) s += fmt::format(" vs={:g} rad/s", velocity);
     if (kind == EffectKind::Cogging) s += fmt::format(" k={}", order);
     if (kind == EffectKind::Presliding) s += fmt::format(" xp={:g} rad", displacement);
+    if (kind == EffectKind::CoulombSmoothing) s += fmt::format(" alpha={:g} s/rad", alpha);
     return s;
 }
 
@@ -68,6 +73,7 @@ std::vector<std::string> EffectTerm::column_names() const {
     switch (kind) {
         case EffectKind::Stribeck: return {fmt::format("{}_vs{:g}", base, velocity)};
         case EffectKind::Presliding: return {fmt::format("{}_xp{:g}", base, displacement)};
+        case EffectKind::CoulombSmoothing: return {fmt::format("{}_alpha{:g}", base, alpha)};
         case EffectKind::Cogging: return {fmt::format("{}_k{}_sin", base, order), fmt::format("{}_k{}_cos", base, order)};
         case EffectKind::Gravity: return {base + "_a1", base + "_b1", base + "_a2", base + "_b2"};
         case EffectKind::TorqueDelay: return {};
@@ -120,6 +126,7 @@ void term_columns(const EffectTerm& term, const EffectContext& context, const do
         }
         case EffectKind::TorqueDelay: break;
         case EffectKind::Presliding: break;  // history column: AugmentedModel::history_columns
+        case EffectKind::CoulombSmoothing: columns(j, 0) = robot::CoulombSign{robot::CoulombModel::SmoothAtan, term.alpha}(qd[j]); break;
     }
 }
 

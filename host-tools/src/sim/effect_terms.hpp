@@ -14,6 +14,10 @@
 //   viscous_nonlinear  qd_j |qd_j|                         value: N.m s^2 / rad^2
 //   cogging            sin(k q_j), cos(k q_j)              value: amplitude, N.m (k = order, harmonics per rev)
 //   rotor_inertia      qdd_j                               value: kg m^2
+//   coulomb_smoothing  2/pi atan(alpha' qd_j)              value: the Coulomb level carried by a smoothing alpha'
+//                                                          (s/rad) other than the description's, N.m: a
+//                                                          named one says the joint's friction transition is
+//                                                          better described at alpha' (friction: alpha)
 //   presliding         s_j, the joint's Dahl state          value: presliding friction level FD, N.m (x_p = the
 //                      (robot/presliding_model.hpp)        presliding displacement, rad). A history column: s_j
 //                                                          depends on the position path, not on one state, so
@@ -36,11 +40,14 @@
 
 namespace jacobid::sim {
 
-enum class EffectKind { CoulombOffset, CoulombAsymmetry, Stribeck, ViscousNonlinear, Gravity, Cogging, RotorInertia, TorqueDelay, Presliding };
+enum class EffectKind {
+    CoulombOffset, CoulombAsymmetry, Stribeck, ViscousNonlinear, Gravity, Cogging, RotorInertia, TorqueDelay, Presliding, CoulombSmoothing
+};
 
 constexpr EffectKind kAllEffects[] = {EffectKind::CoulombOffset, EffectKind::CoulombAsymmetry, EffectKind::Stribeck,
                                       EffectKind::ViscousNonlinear, EffectKind::Gravity,         EffectKind::Cogging,
-                                      EffectKind::RotorInertia,     EffectKind::TorqueDelay,     EffectKind::Presliding};
+                                      EffectKind::RotorInertia,     EffectKind::TorqueDelay,     EffectKind::Presliding,
+                                      EffectKind::CoulombSmoothing};
 
 const char* effect_name(EffectKind kind);
 std::optional<EffectKind> effect_kind(const std::string& name);
@@ -71,7 +78,10 @@ struct EffectTerm {
     double velocity = 0;   // stribeck: vs in rad/s
     int order = 0;         // cogging: harmonic order per revolution
     double displacement = 0;  // presliding: x_p in rad
+    double alpha = 0;         // coulomb_smoothing: alpha' in s/rad
     int column_count() const;
+    // The same effect with the same hyper-parameters (what the selection names once).
+    bool same_as(const EffectTerm& other) const;
     // A readable label, e.g. "cogging j2 k=6" (joints 1-based).
     std::string label() const;
     // Column names for parameter lists, e.g. "cogging2_k6_sin".

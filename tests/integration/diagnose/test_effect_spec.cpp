@@ -40,6 +40,11 @@ TEST(EffectSpec, ParsesEveryEffect) {
     EXPECT_EQ(parse_effect("presliding:joint=1,value=0.4,displacement=1e-3", 2).displacement, 1e-3);
     EXPECT_EQ(to_json(s)["displacement"], 5e-4);
     EXPECT_EQ(term_of(s).displacement, 5e-4);
+    s = parse_effect("coulomb_smoothing:joint=1,value=0.2,alpha=30", 2);
+    EXPECT_EQ(s.kind, EffectKind::CoulombSmoothing);
+    EXPECT_EQ(term_of(s).alpha, 30.0);
+    EXPECT_EQ(to_json(s)["alpha"], 30.0);
+    EXPECT_NE(error_of("coulomb_smoothing:joint=1,value=0.2,alpha=0").find("alpha must be > 0"), std::string::npos);
     for (EffectKind k : kAllEffects) EXPECT_EQ(effect_kind(effect_name(k)), k);
 }
 
