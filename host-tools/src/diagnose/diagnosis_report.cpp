@@ -145,11 +145,17 @@ std::string format_text(const Diagnosis& d) {
             s += fmt::format("    in identify and simulate: friction: alpha {:g} for joint {} (a list, one alpha per joint, or alpha: auto)\n",
                              e.term.alpha, e.term.joint + 1);
         }
-        if (e.term.kind == sim::EffectKind::Presliding) {
-            // The model option that carries it into identify, simulate and the exported model.
-            s += fmt::format("    in identify and simulate: friction: {{presliding: dahl, presliding_displacement: {:g}}} (identifies FD{})\n",
-                             e.term.displacement, e.term.joint + 1);
-        }
+    }
+    // The model option that carries named presliding into identify, simulate and the exported model: one for
+    // the whole robot (FDj on every joint), with the displacements the diagnosis chose.
+    std::string presliding;
+    for (const auto& e : d.effects) {
+        if (e.term.kind == sim::EffectKind::Presliding) presliding += fmt::format("{}joint {} {:g} rad", presliding.empty() ? "" : ", ", e.term.joint + 1, e.term.displacement);
+    }
+    if (!presliding.empty()) {
+        s += fmt::format("  presliding in identify and simulate: friction: {{presliding: dahl}} (FDj on every joint; presliding_displacement: auto "
+                         "chooses x_p per joint, a list fixes it; chosen here: {})\n",
+                         presliding);
     }
     s += "\nGap before -> after, per joint:\n";
     const std::size_t joints = d.before.residual_rms.size();

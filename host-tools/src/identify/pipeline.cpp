@@ -519,16 +519,13 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
             qdds[j] = window.qdd[j][i];
         }
     };
-    std::vector<int> coulomb_columns;  // the FCj columns, when their velocity is given (StateEstimates::qd_coulomb)
+    std::vector<int> coulomb_columns;  // RobotModel::coulomb_column_indices, when their velocity is given (StateEstimates::qd_coulomb)
     std::vector<std::vector<double>> coulomb_raw;
     const std::size_t full_length = states.samples();
     const std::vector<double>& torque_fir = states.torque_fir();
     Lowpass coulomb_fq{};
     if (states.has_coulomb_velocity()) {
-        for (int j = 0; j < joints; ++j) {
-            const int index = model.parameter_index(fmt::format("FC{}", j + 1));
-            if (index >= 0) coulomb_columns.push_back(index);
-        }
+        coulomb_columns = model.coulomb_column_indices();
         coulomb_raw.resize(coulomb_columns.size() * static_cast<std::size_t>(joints));
         if (torque_fir.empty()) {
             coulomb_fq = signal::design_butterworth_or_throw(s.butterworth_order, info.prefilter_cutoff, log.sample_period, "Butterworth prefilter");

@@ -6,6 +6,15 @@
 
 namespace jacobid::robot {
 
+std::vector<int> RobotModel::coulomb_column_indices() const {
+    std::vector<int> columns;
+    for (int j = 0; j < joint_count(); ++j) {
+        const int index = parameter_index("FC" + std::to_string(j + 1));
+        if (index >= 0) columns.push_back(index);
+    }
+    return columns;
+}
+
 int RobotModel::parameter_index(const std::string& name) const {
     const auto& names = parameter_names();
     const auto it = std::find(names.begin(), names.end(), name);

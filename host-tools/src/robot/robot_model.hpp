@@ -44,6 +44,11 @@ public:
     virtual void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
         regressor(q, qd, qdd, D);
     }
+    // The columns coulomb_columns() is for: every column of the form s(qd_j) with the Coulomb sign function
+    // s, which the identification evaluates on the Coulomb velocity and filters like the torque. By default the
+    // FCj columns (by name); a model with sign-function columns of its own (the diagnosis's coulomb_smoothing
+    // candidates, sim/augmented_model.hpp) lists them too.
+    virtual std::vector<int> coulomb_column_indices() const;
 
     // tau = D(q, qd, qdd) X by a route faster than the regressor, if the model has one (it then returns
     // true); the default has none and returns false, and callers use the regressor.

@@ -16,6 +16,22 @@ AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext c
     }
 }
 
+void AugmentedModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
+    nominal_.coulomb_columns(q, qd, qdd, D.leftCols(nominal_.parameter_count()));
+    for (std::size_t t = 0; t < terms_.size(); ++t) {
+        if (terms_[t].kind != EffectKind::CoulombSmoothing) continue;
+        term_columns(terms_[t], context_, q, qd, qdd, D.middleCols(first_column_[t], terms_[t].column_count()));
+    }
+}
+
+std::vector<int> AugmentedModel::coulomb_column_indices() const {
+    std::vector<int> columns = nominal_.coulomb_column_indices();
+    for (std::size_t t = 0; t < terms_.size(); ++t) {
+        if (terms_[t].kind == EffectKind::CoulombSmoothing) columns.push_back(first_column_[t]);
+    }
+    return columns;
+}
+
 void AugmentedModel::integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const {
     const auto nominal_width = static_cast<std::size_t>(nominal_.history_size());
     if (history_terms_.empty()) {

@@ -21,6 +21,10 @@ public:
     const std::vector<std::string>& parameter_names() const override { return names_; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
     bool concurrent_regressor() const override { return nominal_.concurrent_regressor(); }
+    // The nominal model's Coulomb columns and the coulomb_smoothing terms' (the same s(qd_j) at another alpha),
+    // so that a candidate sees the velocity and the filter the nominal FCj sees (docs/method.md, "Coulomb columns").
+    void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
+    std::vector<int> coulomb_column_indices() const override;
     // History columns: the nominal model's (presliding friction), then one state per presliding term (its
     // joint's Dahl state at the term's x_p, through the play operator of EffectContext::presliding_play),
     // so that both are fitted beside the other terms.

@@ -55,7 +55,15 @@ int EffectTerm::column_count() const {
 }
 
 bool EffectTerm::same_as(const EffectTerm& o) const {
-    return kind == o.kind && joint == o.joint && velocity == o.velocity && order == o.order && displacement == o.displacement && alpha == o.alpha;
+    if (kind != o.kind || joint != o.joint) return false;
+    // Only the hyper-parameter of this kind: the others are whatever their producer left in them.
+    switch (kind) {
+        case EffectKind::Stribeck: return velocity == o.velocity;
+        case EffectKind::Cogging: return order == o.order;
+        case EffectKind::Presliding: return displacement == o.displacement;
+        case EffectKind::CoulombSmoothing: return alpha == o.alpha;
+        default: return true;
+    }
 }
 
 std::string EffectTerm::label() const {

@@ -79,6 +79,12 @@ TEST_P(EachEffectAlone, IsNamedFirstWithinTwentyPercentAndHalvesTheHeldOutError)
     const double truth_value = injected["value"].get<double>();
     EXPECT_NEAR(first["value"].get<double>(), truth_value, 0.2 * std::abs(truth_value)) << first.dump();
     EXPECT_GT(first["std"].get<double>(), 0.0);
+    // The hyper-parameter found on its grid next to the truth's (factor-2 grids: within a factor 2).
+    for (const char* key : {"displacement", "alpha"}) {
+        if (!injected.contains(key)) continue;
+        ASSERT_TRUE(first.contains(key)) << first.dump();
+        EXPECT_LT(std::abs(std::log(first[key].get<double>() / injected[key].get<double>())), std::log(2.0) + 1e-9) << key << ' ' << first.dump();
+    }
     const double before = heldout(d["before"], c.joint), after = heldout(d["after"], c.joint);
     EXPECT_LE(after, 0.5 * before) << "held-out RMS " << before << " -> " << after;
     // The short-horizon simulation error of the affected joint(s) shrinks too.
