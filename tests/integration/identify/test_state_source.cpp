@@ -74,8 +74,9 @@ TEST(StreamedJacobiStates, EveryWindowEqualsTheCenteredSumsOfTheWholeLog) {
     ParallelForOptions pool;
     pool.threads = 2;
     StateWindow w;
-    for (const auto& [from, to] : std::vector<std::pair<std::size_t, std::size_t>>{
+    for (const auto& range : std::vector<std::pair<std::size_t, std::size_t>>{
              {0, 500}, {100, 20'100}, {n - 300, n}, {5000, 5001}, {0, n}, {40, 60}}) {
+        const std::size_t from = range.first, to = range.second;  // named, not bound: lambdas capture them
         states.load(from, to, w, pool);
         ASSERT_EQ(w.from, from);
         ASSERT_EQ(w.to, to);
