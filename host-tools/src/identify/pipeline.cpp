@@ -65,18 +65,6 @@ void filtfilt_or_throw(const Lowpass& sos, const double* x, double* y, std::size
     if (status != FilterStatus::Ok) throw InputError(fmt::format("zero-phase filter on {} samples: {}", n, describe(status)));
 }
 
-// The FIR `weights` (odd length L) over `x`: output k belongs to input sample k + (L - 1) / 2 and is written
-// there in `target` (full length; the (L - 1) / 2 samples at each end are left as they are). Returns the
-// number of outputs. `scratch` holds at least x.size() values.
-std::size_t centered_fir(const std::vector<double>& weights, const std::vector<double>& x, std::vector<double>& scratch, std::vector<double>& target,
-                         const std::string& source) {
-    const std::size_t outputs = x.size() - weights.size() + 1;
-    const BatchStatus status = signal::differentiate_batch(Span<const double>(weights), Span<const double>(x), Span<double>(scratch.data(), outputs));
-    if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", source, describe(status)));
-    std::copy(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(outputs), target.begin() + static_cast<std::ptrdiff_t>((weights.size() - 1) / 2));
-    return outputs;
-}
-
 // A Jacobi velocity kernel (the pipeline's kappa, mu, q) whose cutoff is closest to `cutoff`.
 std::vector<double> coulomb_velocity_kernel(const PipelineSettings& s, double ts, std::size_t n, double cutoff) {
     std::vector<double> scratch(std::max<std::size_t>(std::min<std::size_t>(n, 2'000'001), 3));
@@ -321,24 +309,23 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     if (s.method == Method::Jacobi) {
         JacobiKernels kernels = design_jacobi_kernels(log, s, info, ratios);
         if (s.measured_velocity) smoothing = kernels.torque;
-        std::vector<double> out(n);
         for (std::size_t j = 0; j < joints; ++j) {
-            centered_fir(kernels.velocity, *log.q[j], out, e.qd[j], log.source);
-            centered_fir(kernels.acceleration, *log.q[j], out, e.qdd[j], log.source);
+            centered_fir_range(kernels.velocity, *log.q[j], 0, e.qd[j], 0.0, 0.0, log.source);
+            centered_fir_range(kernels.acceleration, *log.q[j], 0, e.qdd[j], 0.0, 0.0, log.source);
             e.q[j] = *log.q[j];
             e.tau[j].assign(n, 0.0);
-            centered_fir(kernels.torque, *log.tau[j], out, e.tau[j], log.source);
+            centered_fir_range(kernels.torque, *log.tau[j], 0, e.tau[j], 0.0, 0.0, log.source);
         }
         if (!ratios.empty()) {
             e.torque_fir = kernels.torque;
             e.qd_coulomb.assign(joints, std::vector<double>(n, 0.0));
             for (std::size_t j = 0; j < joints; ++j) {
-                const std::vector<double>& wc = kernels.coulomb[j];
-                const std::size_t hc = (wc.size() - 1) / 2;
+                // Held at the first and last outputs beyond them.
+                const std::size_t hc = (kernels.coulomb[j].size() - 1) / 2;
                 auto& v = e.qd_coulomb[j];
-                const std::size_t outputs = centered_fir(wc, *log.q[j], out, v, log.source);
+                centered_fir_range(kernels.coulomb[j], *log.q[j], 0, v, 0.0, 0.0, log.source);
                 std::fill(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(hc), v[hc]);
-                std::fill(v.begin() + static_cast<std::ptrdiff_t>(hc + outputs), v.end(), v[hc + outputs - 1]);
+                std::fill(v.end() - static_cast<std::ptrdiff_t>(hc), v.end(), v[n - hc - 1]);
             }
         }
     } else {

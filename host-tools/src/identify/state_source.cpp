@@ -36,9 +36,8 @@ void copy_range(const std::vector<double>& from_column, std::size_t from, std::v
               to_column.begin());
 }
 
-// The centered FIR `w` (odd length 2h + 1) of x at samples [from, from + out.size()): out[k - from] is the
-// output that belongs to input sample k (the correlation of w with x[k - h .. k + h]) where h <= k < n - h,
-// `before` below that range and `after` above it: what estimate_states' whole-log filter leaves there.
+}  // namespace
+
 void centered_fir_range(const std::vector<double>& w, const std::vector<double>& x, std::size_t from, std::vector<double>& out, double before,
                         double after, const std::string& source) {
     const std::size_t n = x.size(), h = (w.size() - 1) / 2, to = from + out.size();
@@ -50,8 +49,6 @@ void centered_fir_range(const std::vector<double>& w, const std::vector<double>&
                                                            Span<double>(out.data() + (k0 - from), k1 - k0));
     if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", source, describe(status)));
 }
-
-}  // namespace
 
 void HeldStates::load(std::size_t from, std::size_t to, StateWindow& w, const ParallelForOptions& pool) const {
     const std::size_t joints = e_.q.size();

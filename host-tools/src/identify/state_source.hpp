@@ -9,12 +9,20 @@
 //    6-axis data held 0.86 GB of them). An FIR has finite reach: the outputs of a range need the inputs of
 //    that range plus the kernel's half width, all of which the log holds.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/parallel_for.hpp"
 #include "identify/pipeline.hpp"
 
 namespace jacobid::identify {
+
+// The centered FIR `w` (odd length 2h + 1) of x at samples [from, from + out.size()): out[k - from] is the
+// output that belongs to input sample k (the correlation of w with x[k - h .. k + h]) where h <= k < n - h,
+// `before` below that range and `after` above it. The whole log (from 0, out.size() == x.size()) is what
+// estimate_states holds; any range of it is what StreamedJacobiStates computes. InputError names `source`.
+void centered_fir_range(const std::vector<double>& w, const std::vector<double>& x, std::size_t from, std::vector<double>& out, double before,
+                        double after, const std::string& source);
 
 // Per joint, samples [from, to) of the estimates (index k - from).
 struct StateWindow {
