@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <thread>
 #include <nlohmann/json.hpp>
 
@@ -116,8 +117,25 @@ std::optional<identify::PhysicalSettings> physical_settings(const IdentifyOption
 
 // A CSV log (with --on-gap split, one table per segment), or with --can-config a candump capture decoded by
 // the firmware's joint profiles.
+// The columns of a plain CSV that identify reads (identify::log_columns): time, positions and torques, the
+// measured velocities qdJ with --velocity measured, the references q_refJ / qd_refJ with --estimator iv|didim.
+io::CsvColumnFilter identify_columns(const io::LogColumnNames& names, const IdentifyOptions& o) {
+    std::set<std::string> kept = {names.time};
+    kept.insert(names.q.begin(), names.q.end());
+    kept.insert(names.tau.begin(), names.tau.end());
+    const bool references = o.estimator == "iv" || o.estimator == "didim";
+    for (std::size_t j = 1; j <= names.q.size(); ++j) {
+        if (o.velocity == "measured") kept.insert("qd" + std::to_string(j));
+        if (references) kept.insert({"q_ref" + std::to_string(j), "qd_ref" + std::to_string(j)});
+    }
+    return [kept = std::move(kept)](const std::string& name) { return kept.count(name) != 0; };
+}
+
 LogSegments read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
-    if (o.can_config.empty()) return read_log_segments(path, o.log_format, robot_column_names(robot, o.time_column), o.quiet);
+    if (o.can_config.empty()) {
+        const io::LogColumnNames names = robot_column_names(robot, o.time_column);
+        return read_log_segments(path, o.log_format, names, o.quiet, 0.0, identify_columns(names, o));
+    }
     if (!o.log_format.file.empty()) throw InputError("--log-format and --can-config: give one of them");
 #if JACOBID_WITH_FIRMWARE
     firmware::FirmwareConfig fw;
@@ -329,6 +347,8 @@ void run(IdentifyOptions o) {
     if (o.threads < 0) throw InputError(fmt::format("--threads {}: must be >= 0 (0: one per core)", o.threads));
     if (o.threads == 0) o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     o.pipeline.threads = o.threads;  // one log: its regressor, F_p and QR on every thread (several: see run_segmented_pipeline)
+    // The decimated rows kept for the fit plots only serve --report (20 000 rows of 6 x 53 columns: 51 MB).
+    if (o.report.empty()) o.pipeline.plot_rows = 0;
     if (o.drive_gains.enabled) {
         if (o.inputs.size() > 1) {
             throw InputError(fmt::format("--drive-gains with {} --in logs: give the unloaded run as --in and the loaded one as --loaded", o.inputs.size()));

@@ -45,14 +45,15 @@ io::CsvTable read_log_table(const std::string& path, const LogFormatOptions& o, 
     return std::move(read_log_segments(path, o, std::move(names), quiet, period).tables.front());
 }
 
-LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period) {
+LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period,
+                              const io::CsvColumnFilter& keep) {
     LogSegments out;
     out.split = o.on_gap == "split";
     if (o.file.empty()) {
         if (o.read.skip_bad_rows || o.on_gap != "error" || o.read.max_gap > 0.0) {
             throw InputError("--skip-bad-rows, --on-gap and --max-gap apply to logs read with --log-format");
         }
-        out.tables.push_back(io::read_csv(path));
+        out.tables.push_back(io::read_csv(path, {}, keep));
         return out;
     }
     const io::LogFormat format = io::load_log_format(o.file);

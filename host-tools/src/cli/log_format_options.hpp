@@ -43,7 +43,10 @@ struct LogSegments {
     bool split = false;                    // --on-gap split was given
     double grid_period = 0.0;              // s, of every segment's grid (with --log-format)
 };
-LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period = 0.0);
+// `keep`, for a plain CSV (without --log-format), the columns kept (read_csv); the formatted reader keeps only
+// the columns it names anyway.
+LogSegments read_log_segments(const std::string& path, const LogFormatOptions& o, io::LogColumnNames names, bool quiet, double period = 0.0,
+                              const io::CsvColumnFilter& keep = {});
 
 // For a command that reads one continuous table: "--on-gap split is not supported by COMMAND; use interpolate".
 void refuse_split(const LogFormatOptions& o, const std::string& command);

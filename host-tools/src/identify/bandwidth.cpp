@@ -2,6 +2,7 @@
 #include "identify/bandwidth.hpp"
 
 #include "core/errors.hpp"
+#include "core/parallel_for.hpp"
 #include "signal/fftw_planner.hpp"
 
 #include <fftw3.h>
@@ -220,7 +221,7 @@ std::string describe(const BandwidthEstimate& e, double ratio, bool fallback) {
 }  // namespace
 
 BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<double>*>& positions, double sample_period,
-                                            const std::vector<std::string>& names, double cutoff_ratio, double fraction) {
+                                            const std::vector<std::string>& names, double cutoff_ratio, double fraction, int threads) {
     BandwidthEstimate result;
     if (positions.empty() || positions.front()->size() < 16) return result;
     const std::size_t n = positions.front()->size() - 1;  // differences
@@ -243,10 +244,15 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
     const double nu = 2.0 * static_cast<double>(welch.used);
     const double median_to_mean = 1.0 / std::pow(1.0 - 2.0 / (9.0 * nu), 3.0);
 
-    std::vector<Spectrum> spectra;
-    for (std::size_t j = 0; j < positions.size(); ++j) {
+    // Each joint on its own (a few whole-log passes and two selections each: 1.5 s for an hour of 6 joints on
+    // one thread), on up to `threads` threads; nothing is shared, so the result does not depend on them.
+    std::vector<Spectrum> spectra(positions.size());
+    result.joints.resize(positions.size());
+    ParallelForOptions pool;
+    pool.threads = threads;
+    const auto errors = parallel_for(positions.size(), pool, [&](std::size_t j) {
         const std::vector<double>& q = *positions[j];
-        JointBandwidth jb;
+        JointBandwidth& jb = result.joints[j];
         jb.name = j < names.size() ? names[j] : fmt::format("joint {}", j + 1);
         std::vector<double> d(n);
         for (std::size_t k = 0; k < n; ++k) d[k] = q[k + 1] - q[k];
@@ -288,10 +294,12 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
         jb.energy_frequency = energy_frequency(clean, result.resolution, fraction, cutoff_ratio * jb.noise_limit);
         jb.frequency = std::min(jb.energy_frequency, jb.noise_limit);
         jb.used = jb.moving && motion_variance >= kMotionToNoise * s.level * static_cast<double>(bins - 1);
-        result.jumps += jb.jumps;
-        result.joints.push_back(jb);
-        spectra.push_back(std::move(s));
+        spectra[j] = std::move(s);
+    });
+    for (const auto& e : errors) {
+        if (e) std::rethrow_exception(e);
     }
+    for (const auto& jb : result.joints) result.jumps += jb.jumps;
     const bool any_moving = std::any_of(result.joints.begin(), result.joints.end(), [](const JointBandwidth& j) { return j.moving; });
     if (!any_moving) return result;
     // Joints whose motion is lost in their own noise would only add noise; if every moving joint is such a

@@ -20,6 +20,9 @@
 
 namespace jacobid::identify {
 
+// Share of the floor-removed velocity energy below the bandwidth (`fraction`).
+inline constexpr double kMotionEnergyFraction = 0.99;
+
 // Largest share of the acceleration energy (below the differentiator cutoff) the position noise may hold.
 inline constexpr double kAccelerationNoiseShare = 2e-4;
 
@@ -49,9 +52,10 @@ struct BandwidthEstimate {
 };
 
 // `names` label the joints in the description (default "joint 1", ...); `cutoff_ratio` is the
-// differentiator cutoff as a multiple of the bandwidth (PipelineSettings::differentiator_ratio).
+// differentiator cutoff as a multiple of the bandwidth (PipelineSettings::differentiator_ratio); the joints
+// are estimated on up to `threads` threads (the result does not depend on it).
 BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<double>*>& positions, double sample_period,
                                             const std::vector<std::string>& names = {}, double cutoff_ratio = 10.0,
-                                            double fraction = 0.99);
+                                            double fraction = kMotionEnergyFraction, int threads = 1);
 
 }  // namespace jacobid::identify

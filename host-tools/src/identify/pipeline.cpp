@@ -102,7 +102,7 @@ std::vector<double> automatic_coulomb_ratios(const robot::RobotModel* model, con
     std::vector<double> ratios(joints, 1.0);
     if (!model || model->joint_count() != static_cast<int>(joints)) return ratios;
     const BandwidthEstimate estimate =
-        info.bandwidth_estimated ? info.bandwidth_estimate : estimate_motion_bandwidth(log.q, log.sample_period, log.q_names, s.differentiator_ratio);
+        info.bandwidth_estimated ? info.bandwidth_estimate : estimate_motion_bandwidth(log.q, log.sample_period, log.q_names, s.differentiator_ratio, kMotionEnergyFraction, s.threads);
     std::vector<std::pair<double, double>> gains;  // ratio, ||w||_2
     for (double candidate : {2.0, 1.5}) gains.emplace_back(candidate, noise_gain(candidate));
     for (std::size_t j = 0; j < joints; ++j) {
@@ -217,7 +217,7 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
     if (s.bandwidth > 0.0) {
         info.bandwidth = s.bandwidth;
     } else {
-        const BandwidthEstimate b = estimate_motion_bandwidth(log.q, ts, log.q_names, s.differentiator_ratio);
+        const BandwidthEstimate b = estimate_motion_bandwidth(log.q, ts, log.q_names, s.differentiator_ratio, kMotionEnergyFraction, s.threads);
         if (!b.moving) throw InputError(fmt::format("{}: the positions are constant: no parameter can be identified", log.source));
         info.bandwidth = b.frequency;
         info.bandwidth_estimated = true;

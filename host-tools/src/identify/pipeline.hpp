@@ -54,7 +54,7 @@ struct PipelineSettings {
     double min_joint_motion = 1e-3;  // rad: a joint whose position range is smaller "does not move"
     bool progress = false;           // stage timings on stderr
     int threads = 1;                 // threads for the regressor, F_p and the QR of one log (the result does not depend on it)
-    std::size_t chunk = 1 << 16;     // samples per F_p chunk
+    std::size_t chunk = 1 << 15;     // samples per F_p chunk
     std::size_t plot_rows = 20000;   // decimated rows kept for plots
     // The regressor's velocities from the log's measured velocity columns (LogColumns::qd) instead of the
     // differentiated positions (identify --velocity measured); accelerations still come from the positions.

@@ -131,6 +131,36 @@ TEST(MotionBandwidth, AJointLostInItsNoiseIsNotUsed) {
     EXPECT_DOUBLE_EQ(two.frequency, one.frequency);
 }
 
+// The joints are estimated on up to `threads` threads, each on its own: the estimate is the same, field by
+// field, whatever the thread count (one joint with jumps, one quantized and noisy, one constant).
+TEST(MotionBandwidth, ThreadsDoNotChangeTheEstimate) {
+    const double fs = 1000.0;
+    std::vector<double> jumped = sines(fs, 30.0), still = sines(fs, 30.0, {{0.005, 9.0, 0.0}});
+    for (std::size_t k = 12'000; k < jumped.size(); ++k) jumped[k] += 1.5;
+    std::mt19937 rng(5);
+    std::normal_distribution<double> noise(0.0, 0.01);
+    for (double& x : still) x = 0.01 * std::round((x + noise(rng)) / 0.01);
+    const std::vector<double> constant(jumped.size(), 0.25), moving = sines(fs, 30.0);
+    const std::vector<const std::vector<double>*> q = {&jumped, &still, &constant, &moving};
+    const BandwidthEstimate one = estimate_motion_bandwidth(q, 1.0 / fs, {}, 10.0, 0.99, 1);
+    for (const int threads : {2, 3, 8}) {
+        const BandwidthEstimate many = estimate_motion_bandwidth(q, 1.0 / fs, {}, 10.0, 0.99, threads);
+        EXPECT_EQ(many.frequency, one.frequency) << threads;
+        EXPECT_EQ(many.description, one.description) << threads;
+        EXPECT_EQ(many.jumps, one.jumps) << threads;
+        ASSERT_EQ(many.joints.size(), q.size());
+        for (std::size_t j = 0; j < q.size(); ++j) {
+            EXPECT_EQ(many.joints[j].name, one.joints[j].name);
+            EXPECT_EQ(many.joints[j].noise_rms, one.joints[j].noise_rms);
+            EXPECT_EQ(many.joints[j].energy_frequency, one.joints[j].energy_frequency);
+            EXPECT_EQ(many.joints[j].quantization_step, one.joints[j].quantization_step);
+            EXPECT_EQ(many.joints[j].used, one.joints[j].used);
+        }
+    }
+    EXPECT_EQ(one.jumps, 1u);
+    EXPECT_FALSE(one.joints[2].moving);
+}
+
 // Real data (../shared/realdata/pendubot, README there): Unix time ~5 ms non-uniform, q1, q2 (0.01 rad
 // steps); resampled linearly onto 5 ms. With --bandwidth 0.5 / 1 / 2 / 3 Hz the data_06 -> data_08
 // validation relative error is 14.8 / 16.9 / 21.3 / 27.3 % (docs/method.md), best below ~1 Hz.

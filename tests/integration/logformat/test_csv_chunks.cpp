@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "core/errors.hpp"
@@ -107,6 +108,38 @@ TEST(CsvChunks, ErrorsNameTheSameLineWhateverTheChunking) {
             }
         }
     }
+}
+
+// A column the reader is told not to keep (identify keeps the 13 of a simulated 6-axis log's 25 it reads) is
+// still checked cell by cell, but holds nothing: has_column is false for it, as if the file lacked it, and
+// the kept columns hold exactly the values written, whatever the chunking.
+TEST(CsvChunks, ColumnsNotKeptAreCheckedButNotHeld) {
+    const std::string path = write("rows.csv", rows_text(1501, true));
+    const io::CsvColumnFilter keep = [](const std::string& name) { return name != "a"; };
+    for (const auto& chunking : kChunkings) {
+        const io::CsvTable table = io::read_csv(path, chunking, keep);
+        ASSERT_EQ(table.rows(), 1501u);
+        EXPECT_EQ(table.header(), (std::vector<std::string>{"t", "a", "b"}));
+        EXPECT_TRUE(table.has_column("t"));
+        EXPECT_FALSE(table.has_column("a"));
+        EXPECT_TRUE(table.column(1).empty());
+        EXPECT_THROW((void)table.column("a"), std::logic_error);
+        for (std::size_t i = 0; i < 1501; ++i) ASSERT_EQ(table.column("b")[i], -static_cast<double>(i) / 8.0) << i;
+    }
+    // The column not kept is still read: its bad cell is the file's error, on its line.
+    std::string text = rows_text(1501, true);
+    const std::size_t line_start = text.find("\n1.000,") + 1;
+    text.replace(line_start, text.find('\n', line_start) - line_start, "1.000,abc,1");
+    const std::string bad = write("bad_unkept.csv", text);
+    for (const auto& chunking : kChunkings) {
+        try {
+            (void)io::read_csv(bad, chunking, keep);
+            ADD_FAILURE() << "no error for the bad cell of a column not kept";
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()), bad + ":1002: column 'a': expected a number, got 'abc'");
+        }
+    }
+    EXPECT_THROW((void)io::read_csv(path, {}, [](const std::string&) { return false; }), std::logic_error);
 }
 
 }  // namespace
