@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "identify/running_qr.hpp"
 #include "identify/validation.hpp"
 
 namespace jacobid::identify {
@@ -32,6 +33,72 @@ ShiftedTorques shift_torques(const LogColumns& log, double delay) {
     for (std::size_t j = 0; j < log.tau.size(); ++j) s.log.tau[j] = &s.tau[j];
     return s;
 }
+
+namespace {
+
+// The first identification's decimated rows and full-rate filtered torque. The regressor does not see the
+// torque, and every filter the torque goes through (the Jacobi torque smoothing or F_q, then F_p) is linear
+// and time-invariant, so the torque read i samples later gives the same rows W_k with Y = (filtered
+// torque)[k + i]: the shifted identifications need only a QR each, not a regressor and F_p again (they were
+// three of the search's four pipelines, which for a log shorter than max_samples cost 3 x identify's own fold).
+// Compared with filtering the shifted torque itself, only the |i| samples at one end of the record differ
+// (the shift held the end value there); they reach the kept rows only through the filters' cropped end
+// transients (RSS within ~5e-7 relative with Jacobi, ~4e-6 with Butterworth's F_q, which pads the record from
+// its end values; test TorqueDelay.ShiftedRowsEqualTheShiftedTorqueFilteredAgain).
+class DelayRows final : public RowSink {
+public:
+    DelayRows(std::size_t joints, std::size_t samples) : w_(joints), filtered_(joints, std::vector<double>(samples, 0.0)) {}
+
+    void row(const DecimatedRow& r) override {
+        if (!keep_) return;
+        parameters_ = static_cast<std::size_t>(r.w.cols());
+        if ((samples_.size() + 1) * w_.size() * parameters_ > kMaxValues) {
+            keep_ = false;  // too many rows to hold: the search filters each shifted torque instead
+            return;
+        }
+        samples_.push_back(r.sample);
+        for (std::size_t j = 0; j < w_.size(); ++j) {
+            for (std::size_t p = 0; p < parameters_; ++p) w_[j].push_back(r.w(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(p)));
+        }
+    }
+    void filtered_torque(std::size_t first, std::size_t count, const std::vector<const double*>& tau) override {
+        for (std::size_t j = 0; j < tau.size(); ++j) std::copy(tau[j], tau[j] + count, filtered_[j].begin() + static_cast<std::ptrdiff_t>(first));
+        covered_from_ = std::min(covered_from_, first);
+        covered_to_ = std::max(covered_to_, first + count);
+    }
+    // The factors of the torque read `shift` samples later; false when the rows were not kept or a shifted
+    // sample falls outside the filtered range.
+    bool factors(int shift, JointFactors& out) const {
+        if (!keep_ || samples_.empty()) return false;
+        const auto lo = static_cast<long long>(samples_.front()) + shift, hi = static_cast<long long>(samples_.back()) + shift;
+        if (lo < static_cast<long long>(covered_from_) || hi >= static_cast<long long>(covered_to_)) return false;
+        out = {};
+        std::vector<double> row(parameters_ + 1);
+        for (std::size_t j = 0; j < w_.size(); ++j) {
+            RunningQr qr(static_cast<int>(parameters_ + 1));
+            for (std::size_t m = 0; m < samples_.size(); ++m) {
+                std::copy(w_[j].begin() + static_cast<std::ptrdiff_t>(m * parameters_), w_[j].begin() + static_cast<std::ptrdiff_t>((m + 1) * parameters_),
+                          row.begin());
+                row[parameters_] = filtered_[j][static_cast<std::size_t>(static_cast<long long>(samples_[m]) + shift)];
+                qr.add_row(row.data());
+            }
+            out.r.push_back(qr.r());
+            out.rows.push_back(qr.rows());
+        }
+        return true;
+    }
+
+private:
+    static constexpr std::size_t kMaxValues = std::size_t{8} << 20;  // 64 MB of rows
+    std::vector<std::vector<double>> w_;         // per joint, row-major rows x parameters
+    std::vector<std::vector<double>> filtered_;  // per joint, full length
+    std::vector<std::size_t> samples_;
+    std::size_t parameters_ = 0;
+    std::size_t covered_from_ = std::numeric_limits<std::size_t>::max(), covered_to_ = 0;
+    bool keep_ = true;
+};
+
+}  // namespace
 
 TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const LogColumns& full_log, const PipelineSettings& pipeline,
                                           const SolveOptions& solve, const TorqueDelaySettings& settings) {
@@ -60,15 +127,20 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
     quiet.residual_lags = 0;  // only RSS is compared: no standard deviations, no lagged products
     // The first identification fixes the automatic choices (bandwidth, windows, decimation) so that every
     // shifted torque is fitted with the same equations and RSS values are comparable.
-    const PipelineOutput first = run_pipeline(model, log, quiet);
+    DelayRows rows(log.q.size(), log.samples());
+    const PipelineOutput first = run_pipeline(model, log, quiet, &rows);
     quiet = validation_settings(quiet, first.info);
     const std::vector<std::string>& names = model.parameter_names();
     std::size_t equations = 0;
     int parameters = 0;
+    JointFactors shifted;
     const auto rss_at = [&](double d) {
         ++e.evaluations;
-        const PipelineOutput out = d == 0.0 ? first : run_pipeline(model, shift_torques(log, d).log, quiet);
-        const LsSolution s = solve_least_squares(out.factors, names, solve);
+        const int samples = static_cast<int>(std::lround(d / h));
+        const JointFactors& factors = d == 0.0                        ? first.factors
+                                      : rows.factors(samples, shifted) ? shifted
+                                                                       : (shifted = run_pipeline(model, shift_torques(log, d).log, quiet).factors);
+        const LsSolution s = solve_least_squares(factors, names, solve);
         equations = s.equations;
         parameters = s.identified_count;
         return s.residual_norm * s.residual_norm;

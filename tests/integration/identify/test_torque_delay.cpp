@@ -16,6 +16,7 @@
 
 #include "identify/log_columns.hpp"
 #include "identify/torque_delay.hpp"
+#include "identify/validation.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"
@@ -132,6 +133,41 @@ TEST(TorqueDelay, LongLogsAreSearchedOnTheirFirstSamples) {
     EXPECT_EQ(e.samples_used, 20000u);
     EXPECT_NEAR(e.delay, 0.002, 0.0001);
     EXPECT_TRUE(e.compensated);
+}
+
+// The search's shifted identifications reuse the first one's rows with the filtered torque read i samples
+// later (the filters are linear and time-invariant). Reference: the shifted torque filtered itself, i.e. the
+// pipeline run again on shift_torques' log with the first run's plan, as the search did before. They differ
+// only by the |i| samples at one end of the record, which the shift holds at the end value: those reach the
+// kept rows through the filters' cropped end transients (decayed to ~1e-3), so RSS agrees to ~5e-7 relative
+// (Jacobi) and ~4e-6 (Butterworth: F_q pads the record from its end values) here, where a shift off by one
+// sample would change it by a factor of 10 to 100.
+TEST(TorqueDelay, ShiftedRowsEqualTheShiftedTorqueFilteredAgain) {
+    const std::string log = path("late_rows.csv");
+    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const jacobid::robot::RobotDescription d = jacobid::robot::load_robot_description(robot());
+    const auto model = jacobid::robot::make_robot_model(d);
+    const jacobid::io::CsvTable table = jacobid::io::read_csv(log);
+    const jacobid::identify::LogColumns columns = jacobid::identify::log_columns(table, d, "t", jacobid::io::kDefaultTimeTolerance);
+    for (const auto method : {jacobid::identify::Method::Jacobi, jacobid::identify::Method::Butterworth}) {
+        jacobid::identify::PipelineSettings settings;
+        settings.method = method;
+        settings.residual_lags = 0;
+        settings.plot_rows = 0;
+        const auto e = jacobid::identify::estimate_torque_delay(*model, columns, settings, {});
+        ASSERT_GE(e.grid.size(), 4u);
+        const auto first = jacobid::identify::run_pipeline(*model, columns, settings);
+        const auto imposed = jacobid::identify::validation_settings(settings, first.info);
+        for (std::size_t g = 0; g < e.grid.size(); ++g) {
+            if (e.grid[g] == 0.0) continue;
+            const auto shifted = jacobid::identify::shift_torques(columns, e.grid[g]);
+            const auto again = jacobid::identify::run_pipeline(*model, shifted.log, imposed);
+            const double rss = std::pow(jacobid::identify::solve_least_squares(again.factors, model->parameter_names(), {}).residual_norm, 2);
+            EXPECT_NEAR(e.rss[g], rss, 1e-5 * rss) << jacobid::identify::to_string(method) << " shift " << e.grid[g];
+        }
+        EXPECT_NEAR(e.delay, 0.002, 0.0001);
+    }
 }
 
 namespace {
