@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -118,15 +119,34 @@ TEST(TorqueDelay, TwoMillisecondsLateAndAGivenDelay) {
     EXPECT_NE(bad.err.find("--torque-delay '2ms'"), std::string::npos) << bad.err;
 }
 
+namespace {
+
+// A 2 ms late 2R log read in-process: the model, the table and the log's columns.
+struct LateLog {
+    jacobid::robot::RobotDescription description;
+    std::unique_ptr<jacobid::robot::RobotModel> model;
+    jacobid::io::CsvTable table;
+    jacobid::identify::LogColumns columns;
+};
+std::unique_ptr<LateLog> late_log(const std::string& name) {
+    const std::string log = path(name);
+    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    auto l = std::make_unique<LateLog>();
+    l->description = jacobid::robot::load_robot_description(robot());
+    l->model = jacobid::robot::make_robot_model(l->description);
+    l->table = jacobid::io::read_csv(log);
+    l->columns = jacobid::identify::log_columns(l->table, l->description, "t", jacobid::io::kDefaultTimeTolerance);
+    return l;
+}
+
+}  // namespace
+
 // Long logs are searched on their beginning (TorqueDelaySettings::max_samples): the same offset comes out.
 TEST(TorqueDelay, LongLogsAreSearchedOnTheirFirstSamples) {
-    const std::string log = path("late_lib.csv");
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const jacobid::robot::RobotDescription d = jacobid::robot::load_robot_description(robot());
-    const auto model = jacobid::robot::make_robot_model(d);
-    const jacobid::io::CsvTable table = jacobid::io::read_csv(log);
-    const jacobid::identify::LogColumns columns = jacobid::identify::log_columns(table, d, "t", jacobid::io::kDefaultTimeTolerance);
+    const auto late = late_log("late_lib.csv");
+    const auto& model = late->model;
+    const auto& columns = late->columns;
     jacobid::identify::TorqueDelaySettings settings;
     settings.max_samples = 20000;
     const auto e = jacobid::identify::estimate_torque_delay(*model, columns, {}, {}, settings);
@@ -143,13 +163,9 @@ TEST(TorqueDelay, LongLogsAreSearchedOnTheirFirstSamples) {
 // (Jacobi) and ~4e-6 (Butterworth: F_q pads the record from its end values) here, where a shift off by one
 // sample would change it by a factor of 10 to 100.
 TEST(TorqueDelay, ShiftedRowsEqualTheShiftedTorqueFilteredAgain) {
-    const std::string log = path("late_rows.csv");
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const jacobid::robot::RobotDescription d = jacobid::robot::load_robot_description(robot());
-    const auto model = jacobid::robot::make_robot_model(d);
-    const jacobid::io::CsvTable table = jacobid::io::read_csv(log);
-    const jacobid::identify::LogColumns columns = jacobid::identify::log_columns(table, d, "t", jacobid::io::kDefaultTimeTolerance);
+    const auto late = late_log("late_rows.csv");
+    const auto& model = late->model;
+    const auto& columns = late->columns;
     for (const auto method : {jacobid::identify::Method::Jacobi, jacobid::identify::Method::Butterworth}) {
         jacobid::identify::PipelineSettings settings;
         settings.method = method;
