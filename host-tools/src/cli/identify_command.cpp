@@ -115,22 +115,23 @@ std::optional<identify::PhysicalSettings> physical_settings(const IdentifyOption
     return s;
 }
 
-// A CSV log (with --on-gap split, one table per segment), or with --can-config a candump capture decoded by
-// the firmware's joint profiles.
 // The columns of a plain CSV that identify reads (identify::log_columns): time, positions and torques, the
 // measured velocities qdJ with --velocity measured, the references q_refJ / qd_refJ with --estimator iv|didim.
 io::CsvColumnFilter identify_columns(const io::LogColumnNames& names, const IdentifyOptions& o) {
     std::set<std::string> kept = {names.time};
     kept.insert(names.q.begin(), names.q.end());
     kept.insert(names.tau.begin(), names.tau.end());
-    const bool references = o.estimator == "iv" || o.estimator == "didim";
-    for (std::size_t j = 1; j <= names.q.size(); ++j) {
-        if (o.velocity == "measured") kept.insert("qd" + std::to_string(j));
-        if (references) kept.insert({"q_ref" + std::to_string(j), "qd_ref" + std::to_string(j)});
+    if (o.velocity == "measured") kept.insert(names.qd.begin(), names.qd.end());
+    if (o.estimator == "iv" || o.estimator == "didim") {
+        for (std::size_t j = 0; j < names.q.size(); ++j) {
+            for (const std::string& column : identify::reference_column_names(j)) kept.insert(column);
+        }
     }
     return [kept = std::move(kept)](const std::string& name) { return kept.count(name) != 0; };
 }
 
+// A CSV log (with --on-gap split, one table per segment), or with --can-config a candump capture decoded by
+// the firmware's joint profiles.
 LogSegments read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
     if (o.can_config.empty()) {
         const io::LogColumnNames names = robot_column_names(robot, o.time_column);

@@ -3,6 +3,8 @@
 
 #include <fmt/core.h>
 
+#include <array>
+
 #include "core/errors.hpp"
 #include "io/printable_text.hpp"
 #include "io/time_axis.hpp"
@@ -13,6 +15,10 @@ std::optional<io::PositionBounds> position_bounds(const robot::RobotDescription&
     const robot::JointDescription& joint = robot.joints[j];
     if (!joint.limits_given || !(joint.upper_limit > joint.lower_limit)) return std::nullopt;
     return io::PositionBounds{joint.lower_limit, joint.upper_limit, fmt::format("joint {} ({})", j + 1, joint.name)};
+}
+
+std::array<std::string, 2> reference_column_names(std::size_t j) {
+    return {"q_ref" + std::to_string(j + 1), "qd_ref" + std::to_string(j + 1)};
 }
 
 LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
@@ -50,10 +56,9 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
         const std::string name = "qd" + std::to_string(j);  // as io::LogColumnNames and simulate --states name them
         log.qd.push_back(table.has_column(name) ? &table.column(name) : nullptr);
         // As simulate writes them (and --log-format's references: name them).
-        for (auto [prefix, list] : {std::pair{"q_ref", &log.q_ref}, std::pair{"qd_ref", &log.qd_ref}}) {
-            const std::string column = prefix + std::to_string(j);
-            list->push_back(table.has_column(column) ? &table.column(column) : nullptr);
-        }
+        const std::array<std::string, 2> references = reference_column_names(j - 1);
+        log.q_ref.push_back(table.has_column(references[0]) ? &table.column(references[0]) : nullptr);
+        log.qd_ref.push_back(table.has_column(references[1]) ? &table.column(references[1]) : nullptr);
     }
     return log;
 }

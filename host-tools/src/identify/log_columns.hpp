@@ -2,6 +2,7 @@
 #pragma once
 // The joints' position and torque columns of a CSV log, as a robot description names them, with the
 // log's uniform time axis checked and the positions within the joints' bounds (shared by `jacobid identify` and `jacobid diagnose`).
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,10 @@ namespace jacobid::identify {
 // Where joint j's logged positions may be (io/position_bounds.hpp): nullopt when the description gives
 // no limits for it (the defaults are not checked).
 std::optional<io::PositionBounds> position_bounds(const robot::RobotDescription& robot, std::size_t j);
+
+// The reference columns of joint j (0-based) that log_columns reads when the table has them, as jacobid
+// simulate writes them: q_ref{j+1}, qd_ref{j+1} (what IDIM-IV and DIDIM simulate along).
+std::array<std::string, 2> reference_column_names(std::size_t j);
 
 // Pointers into `table` (which must outlive the result). InputError names the file and a missing column,
 // or the time column's first non-uniform step. grid_period > 0 (a segment of a split log, on that grid): a
