@@ -57,12 +57,21 @@ HorizonResult simulate_horizons(const robot::RobotModel& model, const Eigen::Vec
     Eigen::VectorXd q(n), qd(n), kq[4], kv[4], qs(n), vs(n);
     for (auto& k : kq) k.resize(n);
     for (auto& k : kv) k.resize(n);
-    // False when the model has no acceleration there (inertia matrix not positive definite).
+    // Why a stage of the integration cannot go on: the reason is decided where the stage fails, from the
+    // state it was given (never from a stage not yet computed, whose vectors hold nothing meaningful).
+    const char* failure = nullptr;
     auto derivative = [&](double at, const Eigen::VectorXd& qq, const Eigen::VectorXd& vv, Eigen::VectorXd& dq, Eigen::VectorXd& dv) {
         torque(at);
         dq = vv;
-        if (!qq.allFinite() || !vv.allFinite()) return false;
-        return dynamics.accelerations(qq.data(), vv.data(), tau.data(), dv.data());
+        if (!qq.allFinite() || !vv.allFinite()) {
+            failure = "no finite state";
+            return false;
+        }
+        if (!dynamics.accelerations(qq.data(), vv.data(), tau.data(), dv.data())) {
+            failure = "the identified inertia matrix is not positive definite along the path";
+            return false;
+        }
+        return true;
     };
     std::vector<double> sum(nj), last(nj), end(nj, 0.0);
     std::size_t kept = 0;
@@ -86,9 +95,7 @@ HorizonResult simulate_horizons(const robot::RobotModel& model, const Eigen::Vec
             vs = qd + h * kv[2];
             ok = ok && derivative(at + 1.0, qs, vs, kq[3], kv[3]);
             if (!ok) {
-                const bool finite = q.allFinite() && qd.allFinite() && qs.allFinite() && vs.allFinite();
-                diverged = {log.start_time + static_cast<double>(k0) * h, static_cast<double>(step) * h, -1,
-                            finite ? "the identified inertia matrix is not positive definite along the path" : "no finite state"};
+                diverged = {log.start_time + static_cast<double>(k0) * h, static_cast<double>(step) * h, -1, failure};
                 break;
             }
             q += h / 6.0 * (kq[0] + 2.0 * kq[1] + 2.0 * kq[2] + kq[3]);
