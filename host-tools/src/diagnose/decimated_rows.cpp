@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "identify/row_collector.hpp"
+
 namespace jacobid::diagnose {
 using identify::sample_at;
 
@@ -22,47 +24,6 @@ std::vector<Eigen::VectorXd> DecimatedRows::shifted_ys(double delay) const {
     return out;
 }
 
-namespace {
-
-// Keeps every row run_pipeline folds into the least squares, with its sample index and state, and the
-// full-rate filtered torque the rows' Y are sampled from (for shifted_y).
-class RowCollector final : public identify::RowSink {
-public:
-    RowCollector(DecimatedRows& out, std::size_t joints, std::size_t samples)
-        : out_(out), w_(joints), state_(joints), y_(joints) {
-        out_.tau_filtered.assign(joints, std::vector<double>(samples, 0.0));
-    }
-    void row(const identify::DecimatedRow& r) override {
-        out_.t.push_back(r.t);
-        out_.sample.push_back(r.sample);
-        for (std::size_t j = 0; j < y_.size(); ++j) {
-            const auto je = static_cast<Eigen::Index>(j);
-            for (Eigen::Index p = 0; p < r.w.cols(); ++p) w_[j].push_back(r.w(je, p));
-            y_[j].push_back(r.y[je]);
-            state_[j].insert(state_[j].end(), {r.q[je], r.qd[je], r.qdd[je]});
-        }
-    }
-    void filtered_torque(std::size_t first, std::size_t count, const std::vector<const double*>& tau) override {
-        for (std::size_t j = 0; j < tau.size(); ++j) std::copy(tau[j], tau[j] + count, out_.tau_filtered[j].begin() + static_cast<std::ptrdiff_t>(first));
-    }
-    // Row-major buffers into the per-joint matrices.
-    void finish(Eigen::Index columns) {
-        using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-        const auto m = static_cast<Eigen::Index>(out_.t.size());
-        for (std::size_t j = 0; j < y_.size(); ++j) {
-            out_.w.push_back(Eigen::Map<const RowMajor>(w_[j].data(), m, columns));
-            out_.y.push_back(Eigen::Map<const Eigen::VectorXd>(y_[j].data(), m));
-            out_.state.push_back(Eigen::Map<const RowMajor>(state_[j].data(), m, 3));
-        }
-    }
-
-private:
-    DecimatedRows& out_;
-    std::vector<std::vector<double>> w_, state_, y_;
-};
-
-}  // namespace
-
 DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::LogColumns& log, const identify::PipelineSettings& settings) {
     identify::PipelineSettings s = settings;
     s.plot_rows = 0;  // the rows come through the collector
@@ -71,9 +32,22 @@ DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::Log
     DecimatedRows r;
     r.names = model.parameter_names();
     r.sample_period = log.sample_period;
-    RowCollector collector(r, static_cast<std::size_t>(model.joint_count()), log.samples());
+    const auto joints = static_cast<std::size_t>(model.joint_count());
+    identify::RowCollectorSettings keep;
+    keep.torque_and_states = true;
+    identify::RowCollector collector(joints, log.samples(), keep);
     r.info = identify::run_pipeline(model, log, s, &collector).info;
-    collector.finish(model.parameter_count());
+    // Row-major buffers into the per-joint matrices.
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    const auto m = static_cast<Eigen::Index>(collector.rows());
+    r.t = collector.times();
+    r.sample = collector.samples();
+    for (std::size_t j = 0; j < joints; ++j) {
+        r.w.push_back(Eigen::Map<const RowMajor>(collector.w(j).data(), m, model.parameter_count()));
+        r.y.push_back(Eigen::Map<const Eigen::VectorXd>(collector.y(j).data(), m));
+        r.state.push_back(Eigen::Map<const RowMajor>(collector.states(j).data(), m, 3));
+    }
+    r.tau_filtered = std::move(collector.filtered_torque());
     // Outside the valid derivative range [first, last) the filtered torque holds its end values.
     for (auto& tf : r.tau_filtered) {
         const std::size_t a0 = r.info.first, a1 = r.info.last;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "identify/row_collector.hpp"
 #include "identify/running_qr.hpp"
 #include "identify/validation.hpp"
 
@@ -36,7 +37,9 @@ ShiftedTorques shift_torques(const LogColumns& log, double delay) {
 
 namespace {
 
-// The first identification's decimated rows and full-rate filtered torque. The regressor does not see the
+// The factors of the torque read `shift` samples later, from the first identification's decimated rows and
+// full-rate filtered torque (RowCollector); false when the rows were not kept or a shifted sample falls
+// outside the filtered range. The regressor does not see the
 // torque, and every filter the torque goes through (the Jacobi torque smoothing or F_q, then F_p) is linear
 // and time-invariant, so the torque read i samples later gives the same rows W_k with Y = (filtered
 // torque)[k + i]: the shifted identifications need only a QR each, not a regressor and F_p again (they were
@@ -45,58 +48,28 @@ namespace {
 // (the shift held the end value there); they reach the kept rows only through the filters' cropped end
 // transients (RSS within ~5e-7 relative with Jacobi, ~4e-6 with Butterworth's F_q, which pads the record from
 // its end values; test TorqueDelay.ShiftedRowsEqualTheShiftedTorqueFilteredAgain).
-class DelayRows final : public RowSink {
-public:
-    DelayRows(std::size_t joints, std::size_t samples) : w_(joints), filtered_(joints, std::vector<double>(samples, 0.0)) {}
-
-    void row(const DecimatedRow& r) override {
-        if (!keep_) return;
-        parameters_ = static_cast<std::size_t>(r.w.cols());
-        if ((samples_.size() + 1) * w_.size() * parameters_ > kMaxValues) {
-            keep_ = false;  // too many rows to hold: the search filters each shifted torque instead
-            return;
+bool shifted_factors(const RowCollector& rows, int shift, JointFactors& out) {
+    if (!rows.complete() || rows.rows() == 0) return false;
+    const std::vector<std::size_t>& samples = rows.samples();
+    const auto lo = static_cast<long long>(samples.front()) + shift, hi = static_cast<long long>(samples.back()) + shift;
+    if (lo < static_cast<long long>(rows.covered_from()) || hi >= static_cast<long long>(rows.covered_to())) return false;
+    out = {};
+    const std::size_t p = rows.parameters();
+    std::vector<double> row(p + 1);
+    for (std::size_t j = 0; j < rows.joints(); ++j) {
+        RunningQr qr(static_cast<int>(p + 1));
+        const std::vector<double>& w = rows.w(j);
+        const std::vector<double>& filtered = rows.filtered_torque()[j];
+        for (std::size_t m = 0; m < samples.size(); ++m) {
+            std::copy(w.begin() + static_cast<std::ptrdiff_t>(m * p), w.begin() + static_cast<std::ptrdiff_t>((m + 1) * p), row.begin());
+            row[p] = filtered[static_cast<std::size_t>(static_cast<long long>(samples[m]) + shift)];
+            qr.add_row(row.data());
         }
-        samples_.push_back(r.sample);
-        for (std::size_t j = 0; j < w_.size(); ++j) {
-            for (std::size_t p = 0; p < parameters_; ++p) w_[j].push_back(r.w(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(p)));
-        }
+        out.r.push_back(qr.r());
+        out.rows.push_back(qr.rows());
     }
-    void filtered_torque(std::size_t first, std::size_t count, const std::vector<const double*>& tau) override {
-        for (std::size_t j = 0; j < tau.size(); ++j) std::copy(tau[j], tau[j] + count, filtered_[j].begin() + static_cast<std::ptrdiff_t>(first));
-        covered_from_ = std::min(covered_from_, first);
-        covered_to_ = std::max(covered_to_, first + count);
-    }
-    // The factors of the torque read `shift` samples later; false when the rows were not kept or a shifted
-    // sample falls outside the filtered range.
-    bool factors(int shift, JointFactors& out) const {
-        if (!keep_ || samples_.empty()) return false;
-        const auto lo = static_cast<long long>(samples_.front()) + shift, hi = static_cast<long long>(samples_.back()) + shift;
-        if (lo < static_cast<long long>(covered_from_) || hi >= static_cast<long long>(covered_to_)) return false;
-        out = {};
-        std::vector<double> row(parameters_ + 1);
-        for (std::size_t j = 0; j < w_.size(); ++j) {
-            RunningQr qr(static_cast<int>(parameters_ + 1));
-            for (std::size_t m = 0; m < samples_.size(); ++m) {
-                std::copy(w_[j].begin() + static_cast<std::ptrdiff_t>(m * parameters_), w_[j].begin() + static_cast<std::ptrdiff_t>((m + 1) * parameters_),
-                          row.begin());
-                row[parameters_] = filtered_[j][static_cast<std::size_t>(static_cast<long long>(samples_[m]) + shift)];
-                qr.add_row(row.data());
-            }
-            out.r.push_back(qr.r());
-            out.rows.push_back(qr.rows());
-        }
-        return true;
-    }
-
-private:
-    static constexpr std::size_t kMaxValues = std::size_t{8} << 20;  // 64 MB of rows
-    std::vector<std::vector<double>> w_;         // per joint, row-major rows x parameters
-    std::vector<std::vector<double>> filtered_;  // per joint, full length
-    std::vector<std::size_t> samples_;
-    std::size_t parameters_ = 0;
-    std::size_t covered_from_ = std::numeric_limits<std::size_t>::max(), covered_to_ = 0;
-    bool keep_ = true;
-};
+    return true;
+}
 
 }  // namespace
 
@@ -127,7 +100,9 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
     quiet.residual_lags = 0;  // only RSS is compared: no standard deviations, no lagged products
     // The first identification fixes the automatic choices (bandwidth, windows, decimation) so that every
     // shifted torque is fitted with the same equations and RSS values are comparable.
-    DelayRows rows(log.q.size(), log.samples());
+    RowCollectorSettings keep;
+    keep.max_values = std::size_t{8} << 20;  // 64 MB of rows; past it the search filters each shifted torque instead
+    RowCollector rows(log.q.size(), log.samples(), keep);
     const PipelineOutput first = run_pipeline(model, log, quiet, &rows);
     quiet = validation_settings(quiet, first.info);
     const std::vector<std::string>& names = model.parameter_names();
@@ -138,7 +113,7 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
         ++e.evaluations;
         const int samples = static_cast<int>(std::lround(d / h));
         const JointFactors& factors = d == 0.0                        ? first.factors
-                                      : rows.factors(samples, shifted) ? shifted
+                                      : shifted_factors(rows, samples, shifted) ? shifted
                                                                        : (shifted = run_pipeline(model, shift_torques(log, d).log, quiet).factors);
         const LsSolution s = solve_least_squares(factors, names, solve);
         equations = s.equations;
