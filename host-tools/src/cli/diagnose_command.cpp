@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "cli/command.hpp"
 #include "cli/diagnose_options.hpp"
@@ -26,7 +27,8 @@ namespace jacobid::cli {
 namespace {
 
 struct DiagnoseOptions {
-    std::string robot, in, validate, report;
+    std::string robot, validate, report;
+    std::vector<std::string> inputs;  // --in, once per log
     std::string format = "table";
     std::string output = "-";
     std::string time_column = "t";
@@ -38,15 +40,31 @@ struct DiagnoseOptions {
 };
 
 void run(DiagnoseOptions o) {
-    check_outputs({{"--output", o.output}}, {{"--robot", o.robot}, {"--in", o.in}, {"--validate", o.validate}, {"--log-format", o.log_format.file}});
+    std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--validate", o.validate}, {"--log-format", o.log_format.file}};
+    for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
+    check_outputs({{"--output", o.output}}, read_files);
     check_output_directory({"--report", o.report});  // written after the work: checked before it
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
-    const io::CsvTable table = read_log_table(o.in, o.log_format, robot_column_names(robot, o.time_column), o.quiet);
-    const identify::LogColumns log = identify::log_columns(table, robot, o.time_column, o.time_tolerance);
-    refuse_oversized_search(o.settings, log, *model);
+    // Several logs (--in a --in b) are diagnosed together, on one sample period (the first log's).
+    std::vector<io::CsvTable> tables;
+    tables.reserve(o.inputs.size());  // the columns point into the tables: no reallocation
+    std::vector<identify::LogColumns> logs;
+    for (const std::string& in : o.inputs) {
+        const double period = logs.empty() ? 0.0 : logs.front().sample_period;
+        tables.push_back(read_log_table(in, o.log_format, robot_column_names(robot, o.time_column), o.quiet, period));
+        logs.push_back(identify::log_columns(tables.back(), robot, o.time_column, o.time_tolerance));
+        if (std::abs(logs.back().sample_period - logs.front().sample_period) > 1e-9 * logs.front().sample_period) {
+            throw InputError(fmt::format("--in {}: sample period {} s differs from {} s of --in {}: logs diagnosed together need one", in,
+                                         logs.back().sample_period, logs.front().sample_period, o.inputs.front()));
+        }
+    }
+    const identify::LogColumns& log = logs.front();
+    std::size_t samples = 0;
+    for (const auto& l : logs) samples += l.samples();
+    refuse_oversized_search(o.settings, log, *model, samples);
     std::unique_ptr<io::CsvTable> vtable;
     identify::LogColumns vlog;
     if (!o.validate.empty()) {
@@ -61,7 +79,7 @@ void run(DiagnoseOptions o) {
     };
     o.settings.selection.search_delay = !o.no_delay;
     o.settings.catalogue.torque_delay = !o.no_delay;
-    const diagnose::Diagnosis d = diagnose::diagnose_log(robot, *model, log, o.validate.empty() ? nullptr : &vlog, o.settings, progress);
+    const diagnose::Diagnosis d = diagnose::diagnose_log(robot, *model, logs, o.validate.empty() ? nullptr : &vlog, o.settings, progress);
     write_output(o.output, o.format == "json" ? diagnose::to_json(d).dump(2) + "\n" : diagnose::format_text(d));
     if (!o.report.empty()) {
         diagnose::write_report(o.report, d);
@@ -79,7 +97,12 @@ void add_diagnose_command(CLI::App& app) {
         "coulomb_asymmetry, stribeck, viscous_nonlinear, gravity, cogging, rotor_inertia, torque_delay), add it and show the gap "
         "shrink on held-out data");
     cmd->add_option("--robot", o->robot, "robot description (YAML, as for identify)")->required();
-    cmd->add_option("--in", o->in, "log (CSV: time column, the joints' position and torque columns)")->required();
+    cmd->add_option("--in", o->inputs,
+                    "log (CSV: time column, the joints' position and torque columns); repeat it (--in a.csv --in b.csv) to diagnose several "
+                    "logs together: each keeps its own edges, their equations are stacked as identify stacks them")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->required();
     cmd->add_option("--validate", o->validate, "held-out log for the selection and the before/after figures (default: blocked cross-validation)");
     cmd->add_option("--format", o->format, "table (text) or json")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
     cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();

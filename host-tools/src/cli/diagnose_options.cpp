@@ -39,9 +39,11 @@ void add_diagnose_search_options(CLI::App* cmd, diagnose::DiagnoseSettings& sett
 // The search's sizes that follow from the options and the log, refused before the search allocates them.
 // The bounds are far above any real use: 1000 folds (5 is the default), a delay grid of 20001 one-sample
 // shifts (+-10 s at 1 kHz), 100000 cogging candidates (30 orders per joint is the default).
-void refuse_oversized_search(const diagnose::DiagnoseSettings& settings, const identify::LogColumns& log, const robot::RobotModel& model) {
+void refuse_oversized_search(const diagnose::DiagnoseSettings& settings, const identify::LogColumns& log, const robot::RobotModel& model,
+                             std::size_t total_samples) {
     const auto& s = settings.selection;
-    const double joints = model.joint_count(), columns = model.parameter_count(), samples = static_cast<double>(log.samples());
+    const double joints = model.joint_count(), columns = model.parameter_count();
+    const double samples = static_cast<double>(total_samples > 0 ? total_samples : log.samples());
     // Each fold keeps one Gram matrix per joint.
     refuse_oversized(fmt::format("--folds {}", s.folds), s.folds, 1000, "folds", joints * columns * columns * 8.0, "lower --folds");
     // Each delay candidate re-solves the selection with the torques shifted by one more sample (a cost in time).

@@ -16,7 +16,9 @@ namespace jacobid::cli {
 void add_diagnose_search_options(CLI::App* cmd, diagnose::DiagnoseSettings& settings, bool& no_delay);
 
 // The search's sizes that follow from the settings and the log (folds, delay candidates, cogging candidates),
-// refused with an InputError naming the option before the search allocates them.
-void refuse_oversized_search(const diagnose::DiagnoseSettings& settings, const identify::LogColumns& log, const robot::RobotModel& model);
+// refused with an InputError naming the option before the search allocates them. `total_samples`: of every
+// log diagnosed together (0: `log`'s).
+void refuse_oversized_search(const diagnose::DiagnoseSettings& settings, const identify::LogColumns& log, const robot::RobotModel& model,
+                             std::size_t total_samples = 0);
 
 }  // namespace jacobid::cli

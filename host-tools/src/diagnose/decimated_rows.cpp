@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/core.h>
+
+#include "core/errors.hpp"
 #include "identify/row_collector.hpp"
 
 namespace jacobid::diagnose {
@@ -55,6 +58,55 @@ DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::Log
         std::fill(tf.begin() + static_cast<std::ptrdiff_t>(a1), tf.end(), tf[a1 - 1]);
     }
     return r;
+}
+
+DecimatedRows stacked_decimated_rows(const robot::RobotModel& model, const std::vector<identify::LogColumns>& logs,
+                                     const identify::PipelineSettings& settings, const identify::PipelineInfo& plan) {
+    DecimatedRows all;
+    all.names = model.parameter_names();
+    all.info = plan;
+    all.info.samples = 0;
+    std::size_t offset = 0;  // full-rate samples of the logs before this one
+    double clock = 0.0;      // campaign time at which this log starts
+    identify::PipelineSettings each = settings;
+    each.require_own_equations = false;  // a short log adds its rows to the others': the sum is checked below
+    for (std::size_t l = 0; l < logs.size(); ++l) {
+        DecimatedRows one = decimated_rows(model, logs[l], each);
+        if (l == 0) {
+            all.sample_period = one.sample_period;
+            all.tau_filtered.resize(one.tau_filtered.size());
+            all.w.resize(one.w.size());
+            all.y.resize(one.y.size());
+            all.state.resize(one.state.size());
+            clock = logs[l].start_time;
+        }
+        all.info.samples += one.info.samples;
+        const double shift = clock - logs[l].start_time;
+        for (std::size_t i = 0; i < one.rows(); ++i) {
+            all.t.push_back(one.t[i] + shift);
+            all.sample.push_back(one.sample[i] + offset);
+        }
+        for (std::size_t j = 0; j < one.tau_filtered.size(); ++j) {
+            auto& tf = all.tau_filtered[j];
+            tf.insert(tf.end(), one.tau_filtered[j].begin(), one.tau_filtered[j].end());
+            const auto append = [](auto& to, const auto& from) {
+                to.conservativeResize(to.rows() + from.rows(), from.cols());
+                to.bottomRows(from.rows()) = from;
+            };
+            append(all.w[j], one.w[j]);
+            append(all.y[j], one.y[j]);
+            append(all.state[j], one.state[j]);
+        }
+        offset += logs[l].samples();
+        clock += static_cast<double>(logs[l].samples()) * logs[l].sample_period;
+    }
+    const std::size_t equations = all.rows() * all.y.size();
+    if (equations <= all.names.size()) {
+        throw InputError(fmt::format("--in: only {} equations after decimation in the {} logs for {} columns (the model's parameters and the "
+                                     "candidate effects): the logs are too short",
+                                     equations, logs.size(), all.names.size()));
+    }
+    return all;
 }
 
 }  // namespace jacobid::diagnose

@@ -36,6 +36,14 @@ struct DecimatedRows {
 
 DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::LogColumns& log, const identify::PipelineSettings& settings);
 
+// Several logs' rows one after another (diagnose --in a.csv --in b.csv), each log through `settings` (one plan
+// imposed on all: identify::plan_segments' fixed settings; `plan` is that plan's info). The sample indices
+// and the filtered torque are offset so that each row still reads its own log's torque when shifted in
+// time, and each log's times follow the previous log's last sample (one campaign clock), so that binning
+// the residual by time keeps the logs apart and in order.
+DecimatedRows stacked_decimated_rows(const robot::RobotModel& model, const std::vector<identify::LogColumns>& logs,
+                                     const identify::PipelineSettings& settings, const identify::PipelineInfo& plan);
+
 // Torque columns read later: identify::shift_torques (identify/torque_delay.hpp).
 using identify::ShiftedTorques;
 using identify::shift_torques;

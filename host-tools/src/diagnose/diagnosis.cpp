@@ -7,11 +7,13 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "diagnose/blocked_grams.hpp"
 #include "diagnose/decimated_rows.hpp"
 #include "diagnose/heldout.hpp"
 #include "diagnose/statistics.hpp"
+#include "identify/segmented_pipeline.hpp"
 #include "identify/validation.hpp"
 #include "sim/augmented_model.hpp"
 
@@ -31,17 +33,44 @@ std::vector<int> catalogue_columns(const robot::RobotModel& model, const Decimat
     return cols;
 }
 
-// The identification of `model` on `log` (torque channel read `delay` later), measured against the data.
-ModelSnapshot measure(const robot::RobotModel& model, const identify::LogColumns& log, double delay, const DecimatedRows& train,
-                      const DecimatedRows* validation, const identify::LogColumns& horizon_log, const DiagnoseSettings& s,
-                      const std::vector<double>& weight2) {
+// What every log goes through: the caller's settings for one log; for several, the plan resolved on the
+// longest and imposed on all (plan_segments), the Coulomb columns' velocity included.
+struct LogsPlan {
+    identify::PipelineSettings pipeline;
+    std::optional<identify::SegmentPlan> several;
+};
+
+LogsPlan plan_logs(const robot::RobotModel& model, const std::vector<identify::LogColumns>& logs, const identify::PipelineSettings& settings) {
+    LogsPlan p;
+    p.pipeline = settings;
+    if (logs.size() < 2) return p;
+    p.several = identify::plan_segments(logs, settings, {"--in", "log"});
+    identify::PipelineSettings& fixed = p.several->fixed;
+    if (fixed.coulomb_velocity_ratios.empty()) {
+        fixed.coulomb_velocity_ratios = identify::coulomb_velocity_ratios(&model, logs[p.several->reference], fixed, p.several->info);
+    }
+    p.pipeline = fixed;
+    return p;
+}
+
+// The identification of `model` on `logs` (torque channel read `delay` later), measured against the data.
+ModelSnapshot measure(const robot::RobotModel& model, const std::vector<identify::LogColumns>& logs, const LogsPlan& plan, double delay,
+                      const DecimatedRows& train, const DecimatedRows* validation, const std::vector<identify::LogColumns>& horizon_logs,
+                      const DiagnoseSettings& s, const std::vector<double>& weight2) {
     ModelSnapshot m;
-    const ShiftedTorques shifted = shift_torques(log, delay);
-    identify::PipelineSettings ps = s.pipeline;
+    identify::PipelineSettings ps = plan.pipeline;
     ps.progress = false;
     ps.residual_lags = 0;  // solved with the pooled std below: no lagged products needed
-    const identify::PipelineOutput out = identify::run_pipeline(model, shifted.log, ps);
-    m.solution = identify::solve_least_squares(out.factors, model.parameter_names());
+    if (plan.several) {
+        identify::SegmentPlan quiet = *plan.several;
+        quiet.fixed = ps;
+        quiet.fixed.require_own_equations = false;  // every log's rows are in `train`: every log's equations here
+        m.solution = identify::solve_least_squares(identify::run_segmented_pipeline(model, logs, quiet, delay, ps.threads).merged.factors,
+                                                   model.parameter_names());
+    } else {
+        const ShiftedTorques shifted = shift_torques(logs.front(), delay);
+        m.solution = identify::solve_least_squares(identify::run_pipeline(model, shifted.log, ps).factors, model.parameter_names());
+    }
     m.residual_rms = m.solution.joint_residual_rms;
     const Eigen::VectorXd x = m.solution.x.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
 
@@ -63,9 +92,13 @@ ModelSnapshot measure(const robot::RobotModel& model, const identify::LogColumns
     m.heldout_weighted = heldout.rms(cols);
 
     const identify::PipelineSettings horizon_settings = identify::validation_settings(ps, train.info);
-    identify::PipelineInfo info = identify::plan_pipeline(horizon_log, horizon_settings);
-    const identify::StateEstimates states = identify::estimate_states(horizon_log, horizon_settings, info);
-    m.horizon = simulate_horizons(model, x, horizon_log, states, delay, s.horizon);
+    std::vector<HorizonResult> horizons;
+    for (const identify::LogColumns& horizon_log : horizon_logs) {
+        identify::PipelineInfo info = identify::plan_pipeline(horizon_log, horizon_settings);
+        const identify::StateEstimates states = identify::estimate_states(horizon_log, horizon_settings, info);
+        horizons.push_back(simulate_horizons(model, x, horizon_log, states, delay, s.horizon));
+    }
+    m.horizon = pooled_horizons(horizons);
     return m;
 }
 
@@ -73,12 +106,23 @@ ModelSnapshot measure(const robot::RobotModel& model, const identify::LogColumns
 
 Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectContext& context, const identify::LogColumns& log,
                         const identify::LogColumns* validation, const DiagnoseSettings& s, const Progress& progress) {
+    return run_diagnosis(nominal, context, std::vector<identify::LogColumns>{log}, validation, s, progress);
+}
+
+Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectContext& context, const std::vector<identify::LogColumns>& logs,
+                        const identify::LogColumns* validation, const DiagnoseSettings& s, const Progress& progress) {
+    if (logs.empty()) throw std::logic_error("diagnose: no log");
     const auto start = Clock::now();
     auto say = [&](const std::string& text) {
         if (progress) progress(fmt::format("[{:5.1f} s] {}", std::chrono::duration<double>(Clock::now() - start).count(), text));
     };
     Diagnosis d;
-    d.log_source = log.source;
+    std::size_t samples = 0;
+    for (const identify::LogColumns& log : logs) {
+        d.log_sources.push_back(log.source);
+        d.log_source += (d.log_source.empty() ? "" : ", ") + log.source;
+        samples += log.samples();
+    }
     d.validation_source = validation ? validation->source : "";
     d.model_name = nominal.model_name();
 
@@ -87,16 +131,18 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
     const sim::AugmentedModel cat(nominal, context, catalogue.terms);
     d.catalogue_columns = static_cast<std::size_t>(cat.parameter_count());
     say(fmt::format("regressor of the nominal model ({} parameters) and {} candidate terms ({} columns) on {} samples of {}",
-                    nominal.parameter_count(), catalogue.terms.size(), cat.parameter_count() - nominal.parameter_count(), log.samples(),
-                    log.source));
-    const DecimatedRows train = decimated_rows(cat, log, s.pipeline);
+                    nominal.parameter_count(), catalogue.terms.size(), cat.parameter_count() - nominal.parameter_count(), samples,
+                    d.log_source));
+    const LogsPlan plan = plan_logs(cat, logs, s.pipeline);
+    const DecimatedRows train =
+        plan.several ? stacked_decimated_rows(cat, logs, plan.pipeline, plan.several->info) : decimated_rows(cat, logs.front(), s.pipeline);
     d.info = train.info;
     d.state = train.state;
     d.t = train.t;
     std::unique_ptr<DecimatedRows> vrows;
     if (validation) {
         say(fmt::format("same regressor on the validation log {}", validation->source));
-        vrows = std::make_unique<DecimatedRows>(decimated_rows(cat, *validation, identify::validation_settings(s.pipeline, train.info)));
+        vrows = std::make_unique<DecimatedRows>(decimated_rows(cat, *validation, identify::validation_settings(plan.pipeline, train.info)));
     }
     say(fmt::format("{} decimated rows per joint (decimation {}, F_p {:.3g} Hz); stepwise selection", train.rows(), train.info.decimation,
                     train.info.decimation_cutoff));
@@ -112,10 +158,10 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
     for (double sj : d.selection.joint_sigma) weight2.push_back(1.0 / (sj * sj));
 
     say("re-identifying with the augmented model; short-horizon simulations before and after");
-    const identify::LogColumns& horizon_log = validation ? *validation : log;
-    d.before = measure(nominal, log, 0.0, train, vrows.get(), horizon_log, s, weight2);
+    const std::vector<identify::LogColumns> horizon_logs = validation ? std::vector<identify::LogColumns>{*validation} : logs;
+    d.before = measure(nominal, logs, plan, 0.0, train, vrows.get(), horizon_logs, s, weight2);
     const sim::AugmentedModel augmented(nominal, context, d.selection.terms);
-    d.after = measure(augmented, log, d.delay, train, vrows.get(), horizon_log, s, weight2);
+    d.after = measure(augmented, logs, plan, d.delay, train, vrows.get(), horizon_logs, s, weight2);
 
     // Effect values and honest standard deviations: the weighted LS of the final model on the identification
     // rows, covariance scaled by n / n_eff of its residual.

@@ -43,7 +43,8 @@ struct EffectEstimate {
 };
 
 struct Diagnosis {
-    std::string log_source, validation_source, model_name;
+    std::string log_source, validation_source, model_name;  // log_source: the logs' names joined with ", "
+    std::vector<std::string> log_sources;                   // one per --in
     std::vector<std::string> joint_names;
     identify::PipelineInfo info;
     std::size_t catalogue_columns = 0;
@@ -61,6 +62,13 @@ struct Diagnosis {
 using Progress = std::function<void(const std::string&)>;
 
 Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectContext& context, const identify::LogColumns& log,
+                        const identify::LogColumns* validation, const DiagnoseSettings& settings, const Progress& progress);
+// Several logs diagnosed together (diagnose --in a.csv --in b.csv), as identify stacks them: the automatic
+// choices resolved once on the longest log (identify::plan_segments) and imposed on every log, their rows
+// stacked (stacked_decimated_rows: the selection's blocks and the residual analysis see them one after
+// another), the identifications merged from every log's factors (identify::run_segmented_pipeline), the
+// short-horizon simulations run on each log and pooled. One log is the single-log diagnosis above.
+Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectContext& context, const std::vector<identify::LogColumns>& logs,
                         const identify::LogColumns* validation, const DiagnoseSettings& settings, const Progress& progress);
 
 }  // namespace jacobid::diagnose

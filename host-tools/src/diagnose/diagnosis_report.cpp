@@ -99,6 +99,7 @@ nlohmann::json to_json(const Diagnosis& d) {
     j["after"] = snapshot_json(d.after, d.joint_names);
     j["verdict"] = d.verdict;
     j["log"] = d.log_source;
+    j["logs"] = d.log_sources;  // one per --in (the field "log" joins them)
     j["validation"] = d.validation_source.empty() ? nlohmann::json(nullptr) : nlohmann::json(d.validation_source);
     j["model"] = d.model_name;
     j["torque_delay"] = d.delay;

@@ -129,6 +129,34 @@ HorizonResult simulate_horizons(const robot::RobotModel& model, const Eigen::Vec
     return r;
 }
 
+HorizonResult pooled_horizons(const std::vector<HorizonResult>& parts) {
+    if (parts.size() == 1) return parts.front();
+    HorizonResult r;
+    const std::size_t joints = parts.empty() ? 0 : parts.front().rms_error.size();
+    std::vector<double> rms2(joints, 0.0), end2(joints, 0.0);
+    double kept = 0.0;
+    for (const HorizonResult& p : parts) {
+        r.segments += p.segments;
+        r.diverged += p.diverged;
+        for (const DivergedSegment& d : p.divergences) {
+            if (r.divergences.size() < HorizonResult::kMaxListed) r.divergences.push_back(d);
+        }
+        const auto k = static_cast<double>(p.segments - p.diverged);
+        if (k == 0.0) continue;  // its figures are NaN: nothing compared
+        kept += k;
+        for (std::size_t j = 0; j < joints; ++j) {
+            rms2[j] += k * p.rms_error[j] * p.rms_error[j];
+            end2[j] += k * p.end_error[j] * p.end_error[j];
+        }
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t j = 0; j < joints; ++j) {
+        r.rms_error.push_back(kept > 0.0 ? std::sqrt(rms2[j] / kept) : nan);
+        r.end_error.push_back(kept > 0.0 ? std::sqrt(end2[j] / kept) : nan);
+    }
+    return r;
+}
+
 std::string HorizonResult::divergence_summary() const {
     if (diverged == 0) return "";
     const DivergedSegment& d = divergences.front();

@@ -48,4 +48,9 @@ struct HorizonResult {
 HorizonResult simulate_horizons(const robot::RobotModel& model, const Eigen::VectorXd& x, const identify::LogColumns& log,
                                 const identify::StateEstimates& states, double delay, const HorizonSettings& settings);
 
+// Several logs' results as one (diagnose --in a.csv --in b.csv): segments and divergences added (the first
+// kMaxListed kept, in order), each figure pooled over the segments kept in every log (a segment compares the
+// same number of samples in each, the horizon being the same).
+HorizonResult pooled_horizons(const std::vector<HorizonResult>& parts);
+
 }  // namespace jacobid::diagnose

@@ -701,7 +701,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
     info.seconds_ls = ls_seconds;
     std::size_t equations = 0;
     for (auto r : out.factors.rows) equations += r;
-    if (equations <= static_cast<std::size_t>(c)) {
+    if (s.require_own_equations && equations <= static_cast<std::size_t>(c)) {
         throw InputError(fmt::format("{}: only {} equations after decimation for {} parameters: the log is too short", log.source, equations, c));
     }
     if (s.progress) {

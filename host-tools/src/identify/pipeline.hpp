@@ -76,6 +76,9 @@ struct PipelineSettings {
     // still feed the differentiators and F_p. identify --period: the middle copy of a tiled mean period
     // (periodic_log.hpp).
     std::size_t kept_from = 0, kept_to = 0;
+    // False when this log's equations are stacked with other logs' and the caller checks their sum
+    // (diagnose --in a.csv --in b.csv): a short log then need not hold more equations than parameters alone.
+    bool require_own_equations = true;
 };
 
 // The positions and torques of a log, one column per joint (pointers into a CsvTable).

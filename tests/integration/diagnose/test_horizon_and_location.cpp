@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
+#include "diagnose/decimated_rows.hpp"
 #include "diagnose/horizon_simulation.hpp"
 #include "diagnose/residual_analysis.hpp"
+#include "identify/segmented_pipeline.hpp"
 #include "robot/planar2r_model.hpp"
 #include "sim/simulator.hpp"
 
@@ -105,6 +108,55 @@ TEST(HorizonSimulation, DivergedSegmentsAreReportedAndExcluded) {
     }
     // The right model diverges nowhere.
     EXPECT_EQ(horizons(model, x, log, 0.0).diverged, 0u);
+}
+
+// Several logs' figures pooled (diagnose --in a --in b): by hand, joint 1's RMS over the kept segments of
+// both logs is sqrt((2 x 1^2 + 2 x 3^2) / 4) = sqrt(5); a log whose segments all diverged adds only its count.
+TEST(HorizonSimulation, SeveralLogsArePooledOverTheirKeptSegments) {
+    HorizonResult a, b, c;
+    a.segments = 3, a.diverged = 1, a.rms_error = {1.0, 2.0}, a.end_error = {2.0, 2.0};
+    a.divergences = {{1.0, 0.1, 0, "left the measured path by more than 1 rad"}};
+    b.segments = 2, b.diverged = 0, b.rms_error = {3.0, 4.0}, b.end_error = {4.0, 0.0};
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    c.segments = 1, c.diverged = 1, c.rms_error = {nan, nan}, c.end_error = {nan, nan};
+    c.divergences = {{7.0, 0.0, -1, "no finite state"}};
+    const HorizonResult p = pooled_horizons({a, b, c});
+    EXPECT_EQ(p.segments, 6u);
+    EXPECT_EQ(p.diverged, 2u);
+    ASSERT_EQ(p.divergences.size(), 2u);
+    EXPECT_EQ(p.divergences[1].why, "no finite state");
+    EXPECT_DOUBLE_EQ(p.rms_error[0], std::sqrt(5.0));
+    EXPECT_DOUBLE_EQ(p.rms_error[1], std::sqrt(10.0));
+    EXPECT_DOUBLE_EQ(p.end_error[0], std::sqrt(10.0));
+    EXPECT_DOUBLE_EQ(p.end_error[1], std::sqrt(2.0));
+    const HorizonResult none = pooled_horizons({c, c});
+    EXPECT_TRUE(std::isnan(none.rms_error[0]));
+}
+
+// Two logs' decimated rows stacked: each row keeps its own W and, shifted in time, reads its own log's
+// filtered torque (the sample offsets), exactly as the rows of each log alone do.
+TEST(StackedRows, EachRowReadsItsOwnLogsTorqueWhenShifted) {
+    const robot::Planar2RModel model(robot::Planar2RConfig{0.5, {robot::CoulombModel::SmoothAtan, 100.0}, false, false});
+    const std::vector<double> table = robot::paper_table2_parameters(model);
+    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(table.data(), static_cast<Eigen::Index>(table.size()));
+    const Log a = noise_free_log(model, x, 0.0), b = noise_free_log(model, x, 0.004);
+    const std::vector<identify::LogColumns> logs{a.columns, b.columns};
+    const identify::SegmentPlan plan = identify::plan_segments(logs, identify::PipelineSettings{}, {"--in", "log"});
+    const DecimatedRows ra = decimated_rows(model, a.columns, plan.fixed), rb = decimated_rows(model, b.columns, plan.fixed);
+    const DecimatedRows all = stacked_decimated_rows(model, logs, plan.fixed, plan.info);
+    ASSERT_EQ(all.rows(), ra.rows() + rb.rows());
+    const auto m = static_cast<Eigen::Index>(ra.rows());
+    EXPECT_GT(all.t[ra.rows()], all.t[ra.rows() - 1]) << "the second log's times follow the first's";
+    for (const double delay : {0.0, 0.002, -0.003, 0.0005}) {
+        for (int j = 0; j < 2; ++j) {
+            const Eigen::VectorXd y = all.shifted_y(j, delay), ya = ra.shifted_y(j, delay), yb = rb.shifted_y(j, delay);
+            EXPECT_EQ(y.head(m), ya) << "joint " << j + 1 << ", delay " << delay;
+            EXPECT_EQ(y.tail(y.size() - m), yb) << "joint " << j + 1 << ", delay " << delay;
+            const auto ju = static_cast<std::size_t>(j);
+            EXPECT_EQ(all.w[ju].topRows(m), ra.w[ju]);
+            EXPECT_EQ(all.w[ju].bottomRows(all.w[ju].rows() - m), rb.w[ju]);
+        }
+    }
 }
 
 TEST(ResidualAnalysis, FindsTheHarmonicAndTheVelocityStep) {
