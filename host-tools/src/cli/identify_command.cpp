@@ -132,10 +132,11 @@ io::CsvColumnFilter identify_columns(const io::LogColumnNames& names, const Iden
 
 // A CSV log (with --on-gap split, one table per segment), or with --can-config a candump capture decoded by
 // the firmware's joint profiles.
-LogSegments read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o) {
+// `period` (s, > 0): a raw log (--log-format) is resampled onto that grid instead of its own mean step.
+LogSegments read_log(const std::string& path, const robot::RobotDescription& robot, const IdentifyOptions& o, double period = 0.0) {
     if (o.can_config.empty()) {
         const io::LogColumnNames names = robot_column_names(robot, o.time_column);
-        return read_log_segments(path, o.log_format, names, o.quiet, 0.0, identify_columns(names, o));
+        return read_log_segments(path, o.log_format, names, o.quiet, period, identify_columns(names, o));
     }
     if (!o.log_format.file.empty()) throw InputError("--log-format and --can-config: give one of them");
 #if JACOBID_WITH_FIRMWARE
@@ -250,8 +251,14 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
     in.read.resize(o.inputs.size());
     ParallelForOptions pool;
     pool.threads = o.threads;
-    const std::vector<std::exception_ptr> errors =
-        parallel_for(o.inputs.size(), pool, [&](std::size_t k) { in.read[k] = read_log(o.inputs[k], robot, o); });
+    // Raw logs (--log-format) are resampled onto one grid, the first log's, so that one plan serves them all
+    // (each on its own mean step, the UR10e's Fourier runs differ by up to 2 % and were refused).
+    const bool one_grid = !o.log_format.file.empty() && o.inputs.size() > 1;
+    if (one_grid) in.read[0] = read_log(o.inputs[0], robot, o);
+    const double period = one_grid ? in.read[0].grid_period : 0.0;
+    const std::vector<std::exception_ptr> errors = parallel_for(o.inputs.size(), pool, [&](std::size_t k) {
+        if (!(one_grid && k == 0)) in.read[k] = read_log(o.inputs[k], robot, o, period);
+    });
     for (const auto& e : errors) {
         if (e) std::rethrow_exception(e);  // the first --in that failed, whatever the threads
     }

@@ -165,4 +165,26 @@ TEST(RealData, IdentifyAndValidateARawUr10eLog) {
     EXPECT_LT(rel, 0.15);
 }
 
+// Two raw runs whose mean steps differ (10.49 and 10.65 ms) are identified together on the first one's grid:
+// each resampled onto it (they were refused as logs of different sample periods). The second run's 2974
+// rows over 31.67 s give 3019 samples at 10.49 ms (read off the file: (last - first time) / 10.4927 ms + 1).
+TEST(RealData, TwoRawUr10eRunsAreIdentifiedTogetherOnTheFirstRunsGrid) {
+    REQUIRE_REALDATA();
+    const fs::path robot = jacobid::test::scratch_directory() / "ur10e_two.yaml";
+    std::ofstream(robot) << "model: urdf\nurdf: " << (kRealdata / "ur10e" / "ur10e.urdf").string()
+                         << "\nfriction: {coulomb: smooth, alpha: 100}\n";
+    const fs::path a = kRealdata / "ur10e" / "identification" / "ur-20_02_19_14harm50sec.csv";
+    const fs::path b = kRealdata / "ur10e" / "identification" / "ur-20_02_10-20sec_7harm.csv";
+    const auto r = jacobid_cli("identify --robot " + robot.string() + " --log-format " + (kFormats / "ur10e.yaml").string() + " --in " + a.string() +
+                               " --in " + b.string() + " --format json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find(b.string() + ": 2974 rows read; median step 10 ms; no irregular steps; resampled (cubic spline) onto 3019 samples every 10.49 ms"),
+              std::string::npos)
+        << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["segments"].size(), 2u);
+    for (const auto& s : j["segments"]) EXPECT_TRUE(s["used"].get<bool>()) << s.dump();
+    EXPECT_EQ(j["segments"][1]["samples"], 3019);
+}
+
 }  // namespace
