@@ -5,13 +5,19 @@
 # joint's filtered RMS error over the five logs in which it stands still (position range below 1e-3 rad,
 # the pipeline's motion threshold), the whole-log relative error, and the moving joint's own error.
 #
-#   bash scripts/measure_presliding_ur10e.sh [BUILD_DIR] [OUTPUT_DIR] [REALDATA_DIR] [extra friction keys]
+#   bash scripts/measure_presliding_ur10e.sh [BUILD_DIR] [OUTPUT_DIR] [REALDATA_DIR] [extra friction keys] [one|four]
+# one (default): identified on 14harm50sec; four: on the four unloaded Fourier runs together.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 jacobid=${1:-build}/host-tools/jacobid
 out=${2:-out/presliding_ur10e}
 data=$(cd "${3:-$here/../../shared/realdata}" && pwd)
 extra=${4:-}
+id="$data/ur10e/identification"
+inputs=(--in "$id/ur-20_02_19_14harm50sec.csv")
+if [ "${5:-one}" = four ]; then
+  inputs+=(--in "$id/ur-20_02_12-50sec_12harm.csv" --in "$id/ur-20_02_10-20sec_7harm.csv" --in "$id/ur-20_02_05-20sec_8harm.csv")
+fi
 [ -x "$jacobid" ] || { echo "measure_presliding_ur10e.sh: no jacobid at '$jacobid'" >&2; exit 2; }
 mkdir -p "$out"
 for tag in plain dahl; do
@@ -20,7 +26,7 @@ for tag in plain dahl; do
   printf 'model: urdf\nurdf: %s\ngravity: [0, 0, -9.81]\nfriction: {%s}\nrotor_inertia: true\n' "$data/ur10e/ur10e.urdf" "$friction" > "$out/$tag.yaml"
   for n in 1 2 3 4 5 6; do
     "$jacobid" identify --robot "$out/$tag.yaml" --log-format "$here/../examples/formats/ur10e.yaml" \
-        --in "$data/ur10e/identification/ur-20_02_19_14harm50sec.csv" \
+        "${inputs[@]}" \
         --validate "$data/ur10e/validation/ur-20_01_22-joint_$n.csv" --format json --quiet > "$out/${tag}_joint_$n.json"
   done
 done
