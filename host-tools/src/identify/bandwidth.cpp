@@ -2,6 +2,7 @@
 #include "identify/bandwidth.hpp"
 
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 #include "core/parallel_for.hpp"
 #include "signal/fftw_planner.hpp"
 
@@ -24,8 +25,9 @@ constexpr std::size_t kJumpRun = 3;
 // A joint counts when its motion's position variance is at least 100 x that of its noise floor (RMS 10 x).
 constexpr double kMotionToNoise = 100.0;
 
-double quantile(std::vector<double> v, double p) {
-    if (v.empty()) return 0.0;
+double quantile(const std::vector<double>& values, double p) {
+    if (values.empty()) return 0.0;
+    std::vector<double> v = huge_vector<double>(values.begin(), values.end());
     const auto k = static_cast<std::size_t>(p * static_cast<double>(v.size() - 1));
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
     return v[k];
@@ -35,7 +37,7 @@ double quantile(std::vector<double> v, double p) {
 // on either side; returns how many runs it bridged.
 std::size_t bridge_jumps(std::vector<double>& d) {
     const double median = quantile(d, 0.5);
-    std::vector<double> deviation(d.size());
+    std::vector<double> deviation = huge_vector<double>(d.size());
     for (std::size_t k = 0; k < d.size(); ++k) deviation[k] = std::abs(d[k] - median);
     const double spread = quantile(deviation, 0.99);
     if (!(spread > 0.0)) return 0;  // 99 % of the log at one step: motion and jumps cannot be told apart
@@ -254,7 +256,7 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
         const std::vector<double>& q = *positions[j];
         JointBandwidth& jb = result.joints[j];
         jb.name = j < names.size() ? names[j] : fmt::format("joint {}", j + 1);
-        std::vector<double> d(n);
+        std::vector<double> d = huge_vector<double>(n);
         for (std::size_t k = 0; k < n; ++k) d[k] = q[k + 1] - q[k];
         jb.moving = std::any_of(d.begin(), d.end(), [](double x) { return x != 0.0; });
         Spectrum s;

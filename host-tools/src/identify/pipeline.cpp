@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 #include "core/parallel_for.hpp"
 #include "identify/bandwidth.hpp"
 #include "identify/running_qr.hpp"
@@ -440,6 +441,29 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
 
 namespace {
 
+// One chunk's columns (every joint's regressor columns and torque) in one block, `stride` samples apart:
+// 318 vectors of 0.3 MB for a 6-axis robot were each a separate mapping that glibc returned to the kernel
+// at the end of every identification, so every run faulted its 90 MB in again 4 KB at a time; one block
+// is reused by every chunk and can be backed by huge pages (core/huge_pages.hpp).
+class ChunkColumns {
+public:
+    explicit ChunkColumns(std::size_t columns) : columns_(columns) {}
+    // Room for `samples` per column; the contents are not kept (every chunk writes its columns whole).
+    void fit(std::size_t samples) {
+        if (samples <= stride_) return;
+        stride_ = samples;
+        storage_ = std::vector<double>();
+        storage_.reserve(columns_ * stride_);
+        advise_huge_pages(storage_);  // before the first write, which faults the pages in
+        storage_.resize(columns_ * stride_);
+    }
+    double* operator[](std::size_t column) { return storage_.data() + column * stride_; }
+
+private:
+    std::size_t columns_, stride_ = 0;
+    std::vector<double> storage_;
+};
+
 PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, PipelineInfo planned,
                            const StateSource& states, RowSink* sink) {
     PipelineOutput out;
@@ -478,7 +502,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         lagged.emplace_back(c + 1, s.residual_lags);
     }
     const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
-    std::vector<std::vector<double>> buffer(columns);
+    ChunkColumns buffer(columns);
     // Work split over threads (settings.threads) in three stages per chunk: the regressor by sample ranges,
     // F_p by columns, the running QR by joints. Each piece of arithmetic is the same whatever the thread
     // count (no sum is split), so the result is identical bit for bit.
@@ -544,7 +568,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         const std::size_t reach = coulomb_columns.empty() ? 0 : fir ? (torque_fir.size() - 1) / 2 : info.first;
         const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
         states.load(x0, x1, window, pool);
-        for (auto& col : buffer) col.resize(len);
+        buffer.fit(len);
         const auto ranges = static_cast<std::size_t>(threads);
         const std::size_t regressor_ranges = model.concurrent_regressor() ? ranges : 1;
         run_or_rethrow(regressor_ranges, [&](std::size_t range) {
@@ -585,10 +609,10 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
             for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
                 for (int j = 0; j < joints; ++j) {
                     const auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
-                    auto& target = buffer[static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci])];
+                    double* target = buffer[static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci])];
                     // A Coulomb column is zero outside its own joint's row: a filter of zeros is zeros.
                     if (std::all_of(raw.begin(), raw.end(), [](double v) { return v == 0.0; })) {
-                        std::fill(target.begin(), target.begin() + static_cast<std::ptrdiff_t>(e1 - e0), 0.0);
+                        std::fill(target, target + (e1 - e0), 0.0);
                         continue;
                     }
                     std::size_t shift = 0;  // filtered[m] belongs to sample x0 + m + shift
@@ -609,8 +633,8 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         // time (interleaved_filtfilt.hpp: each column's numbers are sosfiltfilt's, whatever its block).
         run_or_rethrow(ranges, [&](std::size_t t) {
             for (std::size_t col = t; col < columns; col += ranges) {
-                const auto& x = buffer[col];
-                column_used[col] = std::any_of(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(len), [](double v) { return v != 0.0; });
+                const double* x = buffer[col];
+                column_used[col] = std::any_of(x, x + len, [](double v) { return v != 0.0; });
             }
         });
         used_columns.clear();
@@ -623,7 +647,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
             for (std::size_t b = t; b < blocks; b += ranges) {
                 const std::size_t from = b * signal::kFiltfiltLanes;
                 const std::size_t count = std::min(signal::kFiltfiltLanes, used_columns.size() - from);
-                for (std::size_t l = 0; l < count; ++l) signals[l] = buffer[used_columns[from + l]].data();
+                for (std::size_t l = 0; l < count; ++l) signals[l] = buffer[used_columns[from + l]];
                 lane_filters[t].filter_in_place(signals.data(), count, len);
             }
         });
@@ -636,7 +660,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
             const std::size_t lo = c0 == keep0 ? e0 : c0, hi = c1 == keep1 ? e1 : c1;
             for (int j = 0; j < joints; ++j) {
                 const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                torque_piece[static_cast<std::size_t>(j)] = buffer[base + static_cast<std::size_t>(c)].data() + (lo - e0);
+                torque_piece[static_cast<std::size_t>(j)] = buffer[base + static_cast<std::size_t>(c)] + (lo - e0);
             }
             sink->filtered_torque(lo, hi - lo, torque_piece);
         }

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 #include "core/parallel_for.hpp"
 #include "io/printable_text.hpp"
 #include "jacobid/yaml/input_file.hpp"
@@ -240,6 +241,7 @@ public:
     BlockReader(const std::string& path, std::size_t block_bytes)
         : path_(path), in_(path, std::ios::binary), block_bytes_(block_bytes), block_(new char[block_bytes]) {
         if (!in_) throw InputError(fmt::format("{}: cannot open file", path));
+        advise_huge_pages(block_.get(), block_bytes);
     }
     // Appends the next block to `buffer`; false when nothing was left. Starts reading the one after it.
     bool append_to(std::string& buffer) {
@@ -275,7 +277,11 @@ private:
 CsvTable read_csv(const std::string& path, const CsvChunking& chunking, const CsvColumnFilter& keep) {
     const std::uintmax_t size = yaml::checked_input_file_size<InputError>(path, "file");
     BlockReader reader(path, std::max<std::size_t>(1, chunking.block_bytes));
+    // At most a block and the partial line before it: reserved once, so that appending a block never
+    // reallocates (and faults a fresh copy in).
     std::string buffer;
+    buffer.reserve(2 * std::max<std::size_t>(1, chunking.block_bytes) + 1);
+    advise_huge_pages(buffer.data(), buffer.capacity());
     auto read_more = [&] { return reader.append_to(buffer); };
     std::size_t newline = std::string::npos;
     while ((newline = buffer.find('\n')) == std::string::npos && read_more()) {
@@ -290,7 +296,9 @@ CsvTable read_csv(const std::string& path, const CsvChunking& chunking, const Cs
         const double bytes_per_line = static_cast<double>(buffer.size()) / lines;
         const auto estimate = static_cast<std::size_t>(1.02 * static_cast<double>(size) / std::max(1.0, bytes_per_line)) + 16;
         for (std::size_t c = 0; c < table.header().size(); ++c) {
-            if (table.loaded(c)) table.mutable_column(c).reserve(estimate);
+            if (!table.loaded(c)) continue;
+            table.mutable_column(c).reserve(estimate);
+            advise_huge_pages(table.column(c));
         }
     }
     std::size_t line = 2;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/huge_pages.hpp"
 
 namespace jacobid::io {
 
@@ -32,9 +33,9 @@ TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_nam
     // Each step is checked against the median step (robust: a gap or a burst of jitter cannot shift it),
     // so the message names the line of the first bad step; the sample period reported is then taken from
     // the end points, which averages the rounding of individual stamps.
-    std::vector<double> steps(t.size() - 1);
+    std::vector<double> steps = huge_vector<double>(t.size() - 1);
     for (std::size_t i = 0; i + 1 < t.size(); ++i) steps[i] = t[i + 1] - t[i];
-    std::vector<double> sorted = steps;
+    std::vector<double> sorted = huge_vector<double>(steps.begin(), steps.end());
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
     const double median = sorted[sorted.size() / 2];
     require_plausible_sample_period(median, fmt::format("{}: column '{}'", table.source(), column_name));
