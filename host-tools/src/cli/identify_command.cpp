@@ -265,6 +265,8 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
     for (std::size_t k = 0; k < in.read.size(); ++k) {
         const LogSegments& logs = in.read[k];
         std::vector<identify::LogColumns> columns = columns_of(logs, robot, o);
+        // The time stamps have given each piece its period and start: nothing reads them again.
+        for (io::CsvTable& table : in.read[k].tables) table.release(o.time_column);
         for (std::size_t s = 0; s < columns.size(); ++s) {
             identify::SegmentReport piece;
             if (in.several()) piece.log = o.inputs[k];

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "core/free_memory.hpp"
 #include "core/huge_pages.hpp"
 #include "core/parallel_for.hpp"
 #include "identify/bandwidth.hpp"
@@ -502,6 +503,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         lagged.emplace_back(c + 1, s.residual_lags);
     }
     const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
+    return_freed_memory();  // the set-up's whole-log temporaries, before the fold's own buffers
     ChunkColumns buffer(columns);
     // Work split over threads (settings.threads) in three stages per chunk: the regressor by sample ranges,
     // F_p by columns, the running QR by joints. Each piece of arithmetic is the same whatever the thread

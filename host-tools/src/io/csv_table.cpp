@@ -76,6 +76,16 @@ void CsvTable::keep_only(const std::function<bool(const std::string&)>& keep) {
     if (first_loaded_ == loaded_.size()) throw std::logic_error(fmt::format("{}: told to keep none of its {} columns", source_, header_.size()));
 }
 
+void CsvTable::release(const std::string& name) {
+    const auto it = index_.find(name);
+    if (it == index_.end() || !loaded(it->second)) return;
+    const auto others = std::count(loaded_.begin(), loaded_.end(), 1) - 1;
+    if (others == 0) return;
+    std::vector<double>().swap(columns_[it->second]);  // `= {}` would keep the capacity
+    loaded_[it->second] = 0;
+    first_loaded_ = static_cast<std::size_t>(std::find(loaded_.begin(), loaded_.end(), 1) - loaded_.begin());
+}
+
 bool CsvTable::has_column(const std::string& name) const {
     const auto it = index_.find(name);
     return it != index_.end() && loaded(it->second);

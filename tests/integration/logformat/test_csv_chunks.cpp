@@ -142,4 +142,21 @@ TEST(CsvChunks, ColumnsNotKeptAreCheckedButNotHeld) {
     EXPECT_THROW((void)io::read_csv(path, {}, [](const std::string&) { return false; }), std::logic_error);
 }
 
+// A column released after use (identify's time column) frees its values and reads as not kept; the rows are
+// still counted (from the next loaded column), and the last loaded column is never released.
+TEST(CsvChunks, AReleasedColumnIsNoLongerHeld) {
+    io::CsvTable table = io::read_csv(write("release.csv", rows_text(301, true)));
+    table.release("t");
+    EXPECT_FALSE(table.has_column("t"));
+    EXPECT_TRUE(table.column(0).empty());
+    EXPECT_EQ(table.column(0).capacity(), 0u) << "its memory freed, not only emptied";
+    EXPECT_EQ(table.rows(), 301u);
+    EXPECT_EQ(table.column("b")[300], -300.0 / 8.0);
+    table.release("a");
+    table.release("b");  // the last one: kept
+    EXPECT_TRUE(table.has_column("b"));
+    EXPECT_EQ(table.rows(), 301u);
+    table.release("no such column");
+}
+
 }  // namespace
