@@ -12,10 +12,11 @@ void RowCollector::row(const DecimatedRow& r) {
     if (!complete_) return;
     parameters_ = static_cast<std::size_t>(r.w.cols());
     if (settings_.max_values > 0 && (samples_.size() + 1) * w_.size() * parameters_ > settings_.max_values) {
-        complete_ = false;  // too many rows to hold: release what was kept
-        samples_ = {}, t_ = {};
+        complete_ = false;  // too many rows to hold: release what was kept (`= {}` would keep the capacity)
+        std::vector<std::size_t>().swap(samples_);
+        std::vector<double>().swap(t_);
         for (auto* per_joint : {&w_, &y_, &states_}) {
-            for (auto& v : *per_joint) v = {};
+            for (auto& v : *per_joint) std::vector<double>().swap(v);
         }
         return;
     }
