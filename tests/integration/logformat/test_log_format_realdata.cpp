@@ -143,12 +143,17 @@ TEST(RealData, CorruptRowsOfAUr10eLogAreNamedOrSkipped) {
     EXPECT_NE(lenient.err.find("3 irregular steps (first at line 2: 2 ms)"), std::string::npos) << lenient.err;
 }
 
-TEST(RealData, IdentifyAndValidateARawUr10eLog) {
-    REQUIRE_REALDATA();
-    // The URDF is read from the shared folder by a description written to scratch (never copied here).
-    const fs::path robot = jacobid::test::scratch_directory() / "ur10e.yaml";
+// The UR10e's description in scratch: the URDF is read from the shared folder, never copied here.
+fs::path ur10e_robot(const std::string& name) {
+    const fs::path robot = jacobid::test::scratch_directory() / name;
     std::ofstream(robot) << "model: urdf\nurdf: " << (kRealdata / "ur10e" / "ur10e.urdf").string()
                          << "\nfriction: {coulomb: smooth, alpha: 100}\n";
+    return robot;
+}
+
+TEST(RealData, IdentifyAndValidateARawUr10eLog) {
+    REQUIRE_REALDATA();
+    const fs::path robot = ur10e_robot("ur10e.yaml");
     const fs::path log = kRealdata / "ur10e" / "identification" / "ur-20_02_19_14harm50sec.csv";
     const fs::path validation = kRealdata / "ur10e" / "validation" / "ur-20_01_22-joint_2.csv";
     const auto r = jacobid_cli("identify --robot " + robot.string() + " --log-format " + (kFormats / "ur10e.yaml").string() + " --in " +
@@ -170,9 +175,7 @@ TEST(RealData, IdentifyAndValidateARawUr10eLog) {
 // rows over 31.67 s give 3019 samples at 10.49 ms (read off the file: (last - first time) / 10.4927 ms + 1).
 TEST(RealData, TwoRawUr10eRunsAreIdentifiedTogetherOnTheFirstRunsGrid) {
     REQUIRE_REALDATA();
-    const fs::path robot = jacobid::test::scratch_directory() / "ur10e_two.yaml";
-    std::ofstream(robot) << "model: urdf\nurdf: " << (kRealdata / "ur10e" / "ur10e.urdf").string()
-                         << "\nfriction: {coulomb: smooth, alpha: 100}\n";
+    const fs::path robot = ur10e_robot("ur10e_two.yaml");
     const fs::path a = kRealdata / "ur10e" / "identification" / "ur-20_02_19_14harm50sec.csv";
     const fs::path b = kRealdata / "ur10e" / "identification" / "ur-20_02_10-20sec_7harm.csv";
     const auto r = jacobid_cli("identify --robot " + robot.string() + " --log-format " + (kFormats / "ur10e.yaml").string() + " --in " + a.string() +
