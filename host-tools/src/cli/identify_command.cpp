@@ -281,11 +281,11 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
             }
             // One plan (windows, F_p, decimation in samples) serves every piece: the logs must share their sampling.
             if (!in.columns.empty()) {
-                const double period = in.columns.front().sample_period;
-                if (std::abs(columns[s].sample_period - period) > 1e-3 * period) {
+                const double first_period = in.columns.front().sample_period;
+                if (std::abs(columns[s].sample_period - first_period) > 1e-3 * first_period) {
                     throw InputError(fmt::format("--in {}: sampled every {:.6g} ms, but --in {} every {:.6g} ms; logs identified together must share "
                                                  "their sample period (resample one of them)",
-                                                 o.inputs[k], 1e3 * columns[s].sample_period, o.inputs.front(), 1e3 * period));
+                                                 o.inputs[k], 1e3 * columns[s].sample_period, o.inputs.front(), 1e3 * first_period));
                 }
             }
             // A given --cutoff is refused above the Nyquist frequency (as differentiate does), not clamped to

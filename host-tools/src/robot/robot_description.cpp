@@ -199,6 +199,23 @@ std::vector<std::string> presliding_names(const RobotDescription& d) {
     return names;
 }
 
+// ... and the load-dependent Coulomb levels FCLj (every joint; one that gravity never loads has no column).
+std::vector<std::string> load_friction_names(const RobotDescription& d) {
+    std::vector<std::string> names;
+    if (d.coulomb_load != CoulombLoad::none) {
+        for (std::size_t j = 0; j < d.joints.size(); ++j) names.push_back(fmt::format("FCL{}", j + 1));
+    }
+    return names;
+}
+
+// The description's `parameters:` split into those named in `names` (returned) and the rest (kept in `d`).
+std::vector<std::pair<std::string, double>> take_parameters(RobotDescription& d, const std::vector<std::string>& names) {
+    std::vector<std::pair<std::string, double>> taken, kept;
+    for (const auto& entry : d.parameters) (std::find(names.begin(), names.end(), entry.first) == names.end() ? kept : taken).push_back(entry);
+    d.parameters = std::move(kept);
+    return taken;
+}
+
 StandardParameterOptions options_of(const RobotDescription& d) {
     StandardParameterOptions options;
     options.coulomb = d.coulomb;
@@ -252,6 +269,8 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
                               : CoulombModel::SmoothAtan;
         read_auto_or_per_joint(friction, "alpha", "s/rad", d.joints.size(), d.coulomb_alpha_auto, d.coulomb.alpha, d.coulomb_alpha);
         d.friction_offset = friction.boolean("offset", d.friction_offset);
+        const std::string load = friction.choice("coulomb_load", to_string(d.coulomb_load), {"none", "abs", "square"});
+        d.coulomb_load = load == "abs" ? CoulombLoad::abs : load == "square" ? CoulombLoad::square : CoulombLoad::none;
         d.presliding = friction.choice("presliding", d.presliding ? "dahl" : "none", {"none", "dahl"}) == "dahl";
         for (const char* key : {"presliding_displacement", "presliding_play"}) {
             if (friction.has(key) && !d.presliding) friction.fail(key, "needs presliding: dahl");
@@ -275,6 +294,7 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
         if (is_serial(d.model)) {
             for (auto& name : presliding_names(d)) known.push_back(std::move(name));
         }
+        for (auto& name : load_friction_names(d)) known.push_back(std::move(name));
         for (const auto& entry : parameters.node()) {
             if (!entry.first.IsScalar()) parameters.fail(entry.first, "", "expected a parameter name, found a list or map used as a key");
             const std::string name = entry.first.Scalar();
@@ -305,6 +325,19 @@ std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& d) {
 
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
     std::unique_ptr<RobotModel> nominal = make_rigid_body_model(d);
+    if (d.coulomb_load != CoulombLoad::none) {
+        // The reference gravity: the description's own rigid-body values (URDF inertials, `parameters:`).
+        RobotDescription rigid = d;
+        take_parameters(rigid, load_friction_names(d));
+        take_parameters(rigid, presliding_names(d));
+        rigid.coulomb_load = CoulombLoad::none;
+        const Eigen::VectorXd reference = true_parameters(rigid, *nominal);
+        try {
+            nominal = std::make_unique<LoadFrictionModel>(std::move(nominal), d.coulomb_load, reference, joint_coulomb_signs(d));
+        } catch (const std::invalid_argument& e) {
+            throw InputError(fmt::format("{}: friction: coulomb_load: {}", d.source, e.what()));
+        }
+    }
     if (!d.presliding) return nominal;
     return std::make_unique<PreslidingModel>(std::move(nominal), presliding_settings(d));
 }
@@ -365,16 +398,28 @@ Eigen::VectorXd true_parameters(const RobotDescription& d, const RobotModel& mod
     if (const auto* presliding = dynamic_cast<const PreslidingModel*>(&model)) {
         // The rigid-body values, then FDj from `parameters` (0 when not given).
         RobotDescription rigid = d;
-        rigid.parameters.clear();
-        const std::vector<std::string> fd = presliding_names(d);
-        std::vector<std::pair<std::string, double>> levels;
-        for (const auto& entry : d.parameters) {
-            (std::find(fd.begin(), fd.end(), entry.first) == fd.end() ? rigid.parameters : levels).push_back(entry);
-        }
+        const std::vector<std::pair<std::string, double>> levels = take_parameters(rigid, presliding_names(d));
         const Eigen::VectorXd x0 = true_parameters(rigid, presliding->nominal());
         Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
         x.head(x0.size()) = x0;
         for (const auto& [name, value] : levels) x[model.parameter_index(name)] = value;
+        return x;
+    }
+    if (const auto* loaded = dynamic_cast<const LoadFrictionModel*>(&model)) {
+        // The nominal values, then FCLj from `parameters` (0 when not given).
+        RobotDescription rigid = d;
+        const std::vector<std::pair<std::string, double>> levels = take_parameters(rigid, load_friction_names(d));
+        const Eigen::VectorXd x0 = true_parameters(rigid, loaded->nominal());
+        Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
+        x.head(x0.size()) = x0;
+        for (const auto& [name, value] : levels) {
+            const int index = model.parameter_index(name);
+            if (index < 0) {
+                throw InputError(fmt::format("{}: parameters: {}: gravity never loads joint {} under the description's parameters, so it has no "
+                                             "load-dependent Coulomb friction", d.source, name, name.substr(3)));
+            }
+            x[index] = value;
+        }
         return x;
     }
     if (const auto* serial = dynamic_cast<const SerialRobotModel*>(&model)) return serial->base_values(standard_values(d, *serial));
@@ -425,6 +470,7 @@ std::string to_yaml(const RobotDescription& d) {
     out << YAML::Key << "alpha" << YAML::Value;
     emit_auto_or_per_joint(out, d.coulomb_alpha_auto, d.coulomb.alpha, d.coulomb_alpha);
     out << YAML::Key << "offset" << YAML::Value << d.friction_offset;
+    if (d.coulomb_load != CoulombLoad::none) out << YAML::Key << "coulomb_load" << YAML::Value << to_string(d.coulomb_load);
     if (d.presliding) {
         out << YAML::Key << "presliding" << YAML::Value << "dahl" << YAML::Key << "presliding_displacement" << YAML::Value;
         emit_auto_or_per_joint(out, d.presliding_displacement_auto, d.presliding_displacement, d.presliding_displacements);

@@ -11,6 +11,7 @@
 //     coulomb: smooth        # sign | smooth (2/pi atan(alpha qd))
 //     alpha: auto            # s/rad: auto (default: chosen per joint on held-out data), a number, or one per joint
 //     offset: false          # constant friction offset per joint (FOFF1, FOFF2)
+//     coulomb_load: none     # none | abs | square: Coulomb friction growing with the joint's gravity load, FCLj (robot/load_friction_model.hpp)
 //     presliding: none       # none | dahl: presliding friction with memory, FDj s_j (robot/presliding_model.hpp)
 //     presliding_displacement: auto  # rad: auto (chosen per joint on held-out data), a number, or one per joint
 //     presliding_play: 2e-4  # rad: total width of the play operator that removes quantization flicker (0: none)
@@ -42,6 +43,7 @@
 #include "jacobid/robot/kinematic_chain.hpp"
 #include "jacobid/robot/mdh_joint.hpp"
 #include "robot/controller_description.hpp"
+#include "robot/load_friction_model.hpp"
 #include "robot/presliding_model.hpp"
 #include "robot/robot_model.hpp"
 
@@ -67,6 +69,9 @@ struct RobotDescription {
     bool coulomb_alpha_auto = true;
     std::vector<double> coulomb_alpha;  // s/rad per joint (a list in the file, or chosen); empty: coulomb.alpha for all
     bool friction_offset = false;
+    // friction.coulomb_load: abs | square adds FCLj |g_j(q)| s_j(qd_j) (or g_j^2) per joint that gravity loads, g_j
+    // from the description's own parameters (docs/method.md, "Load-dependent Coulomb friction").
+    CoulombLoad coulomb_load = CoulombLoad::none;
     // friction.presliding: dahl (docs/method.md, "Presliding friction (Dahl)"). presliding_displacement:
     // `auto` (the default) lets identify choose x_p per joint on held-out data
     // (identify/presliding_displacement.hpp); until then, and in simulation, the common value applies.
@@ -94,8 +99,8 @@ RobotDescription parse_robot_description(const std::string& yaml_text, const std
 // Each joint's Coulomb sign function: coulomb with the joint's alpha (coulomb_alpha) when given.
 std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& description);
 
-// The model the description names (wrapped in a PreslidingModel with presliding: dahl). InputError for an
-// unknown model.
+// The model the description names (wrapped in a LoadFrictionModel with coulomb_load, then in a
+// PreslidingModel with presliding: dahl). InputError for an unknown model.
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& description);
 // The presliding settings of the description's joints (displacement per joint, play width).
 PreslidingSettings presliding_settings(const RobotDescription& description);

@@ -8,9 +8,12 @@ namespace jacobid::robot {
 
 std::vector<int> RobotModel::coulomb_column_indices() const {
     std::vector<int> columns;
-    for (int j = 0; j < joint_count(); ++j) {
-        const int index = parameter_index("FC" + std::to_string(j + 1));
-        if (index >= 0) columns.push_back(index);
+    // FCj: s_j(qd_j); FCLj (load-dependent Coulomb friction, load_friction_model.hpp): f_j(q) s_j(qd_j).
+    for (const char* prefix : {"FC", "FCL"}) {
+        for (int j = 0; j < joint_count(); ++j) {
+            const int index = parameter_index(prefix + std::to_string(j + 1));
+            if (index >= 0) columns.push_back(index);
+        }
     }
     return columns;
 }

@@ -46,7 +46,7 @@ public:
     }
     // The columns coulomb_columns() is for: every column of the form s(qd_j) with the Coulomb sign function
     // s, which the identification evaluates on the Coulomb velocity and filters like the torque. By default the
-    // FCj columns (by name); a model with sign-function columns of its own (the diagnosis's coulomb_smoothing
+    // FCj columns and the load-dependent FCLj ones (by name); a model with sign-function columns of its own (the diagnosis's coulomb_smoothing
     // candidates, sim/augmented_model.hpp) lists them too.
     virtual std::vector<int> coulomb_column_indices() const;
 

@@ -11,6 +11,7 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/urdf_chain.cpp
   ${CMAKE_CURRENT_LIST_DIR}/urdf_export.cpp
   ${CMAKE_CURRENT_LIST_DIR}/base_parameter_report.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/load_friction_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/presliding_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/simulated_parameters.cpp
 )
