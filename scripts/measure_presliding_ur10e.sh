@@ -5,8 +5,10 @@
 # joint's filtered RMS error over the five logs in which it stands still (position range below 1e-3 rad,
 # the pipeline's motion threshold), the whole-log relative error, and the moving joint's own error.
 #
-#   bash scripts/measure_presliding_ur10e.sh [BUILD_DIR] [OUTPUT_DIR] [REALDATA_DIR] [extra friction keys] [one|four]
-# one (default): identified on 14harm50sec; four: on the four unloaded Fourier runs together.
+#   bash scripts/measure_presliding_ur10e.sh [BUILD_DIR] [OUTPUT_DIR] [REALDATA_DIR] [extra friction keys] [one|four] [dahl|none]
+# one (default): identified on 14harm50sec; four: on the four unloaded Fourier runs together. The compared
+# model ("dahl" in the tables) is the plain one with `presliding: dahl` and the extra keys (default), or with
+# the extra keys alone (none: e.g. ", coulomb_load: abs" against the plain model).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 jacobid=${1:-build}/host-tools/jacobid
@@ -22,7 +24,9 @@ fi
 mkdir -p "$out"
 for tag in plain dahl; do
   friction="coulomb: smooth, alpha: auto, offset: true"
-  [ "$tag" = dahl ] && friction="$friction, presliding: dahl$extra"
+  if [ "$tag" = dahl ]; then
+    if [ "${6:-dahl}" = none ]; then friction="$friction$extra"; else friction="$friction, presliding: dahl$extra"; fi
+  fi
   printf 'model: urdf\nurdf: %s\ngravity: [0, 0, -9.81]\nfriction: {%s}\nrotor_inertia: true\n' "$data/ur10e/ur10e.urdf" "$friction" > "$out/$tag.yaml"
   for n in 1 2 3 4 5 6; do
     "$jacobid" identify --robot "$out/$tag.yaml" --log-format "$here/../examples/formats/ur10e.yaml" \
