@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -116,6 +117,9 @@ void run(SimulateOptions o) {
     for (const auto& token : o.effects) effects.push_back(sim::parse_effect(token, n));
     std::vector<sim::EffectTerm> terms;
     std::vector<Eigen::VectorXd> coefficients;
+    sim::EffectContext context{model->model_name(), n, robot.coulomb, robot::joint_coulomb_signs(robot)};
+    const bool load_effect = std::any_of(effects.begin(), effects.end(), [](const sim::EffectSpec& e) { return e.kind == sim::EffectKind::CoulombLoad; });
+    if (load_effect) context.load = robot::gravity_load_reference(robot);
     for (const auto& e : effects) {
         if (e.kind == sim::EffectKind::TorqueDelay) {
             ms.torque_delay += e.value;
@@ -123,11 +127,11 @@ void run(SimulateOptions o) {
         }
         const sim::EffectTerm term = sim::term_of(e);
         std::string why_not;
-        if (!sim::term_applicable(term, {model->model_name(), n, robot.coulomb, robot::joint_coulomb_signs(robot)}, &why_not)) throw InputError("--effect " + why_not);
+        if (!sim::term_applicable(term, context, &why_not)) throw InputError("--effect " + why_not);
         terms.push_back(term);
         coefficients.push_back(sim::injected_coefficients(e, *model, x));
     }
-    const sim::AugmentedModel truth_model(*model, {model->model_name(), n, robot.coulomb, robot::joint_coulomb_signs(robot)}, terms);
+    const sim::AugmentedModel truth_model(*model, context, terms);
     Eigen::VectorXd x_truth(truth_model.parameter_count());
     x_truth.head(model->parameter_count()) = x;
     for (std::size_t t = 0; t < terms.size(); ++t) {

@@ -27,6 +27,7 @@ Catalogue candidate_catalogue(const sim::EffectContext& context, const Catalogue
             const bool same = own.model == robot::CoulombModel::SmoothAtan && std::abs(a / own.alpha - 1.0) < 0.01;
             if (!same) add({EffectKind::CoulombSmoothing, j, 0.0, 0, 0.0, a});
         }
+        if (context.load) add({EffectKind::CoulombLoad, j, 0.0, 0});
         add({EffectKind::ViscousNonlinear, j, 0.0, 0});
         for (int k = 2; k <= settings.max_cogging_order; ++k) add({EffectKind::Cogging, j, 0.0, k});
         add({EffectKind::RotorInertia, j, 0.0, 0});

@@ -31,6 +31,8 @@ Diagnosis diagnose_log(const robot::RobotDescription& robot, const robot::RobotM
     if (smoothed.choice) fitted.coulomb_alpha = smoothed.choice->alphas();
     sim::EffectContext context{model.model_name(), model.joint_count(), fitted.coulomb, robot::joint_coulomb_signs(fitted)};
     context.presliding_play = robot.presliding_play;  // presliding candidates filter flicker as identify's friction: presliding does
+    // coulomb_load candidates, unless the model already has the FCLj columns they would repeat.
+    if (robot.coulomb_load == robot::CoulombLoad::none) context.load = robot::gravity_load_reference(fitted);
     Diagnosis d = run_diagnosis(smoothed.get(model), context, logs, validation, settings, progress);
     d.joint_names = names;
     if (smoothed.choice) d.notes.push_back(identify::describe(*smoothed.choice, names));

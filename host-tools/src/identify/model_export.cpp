@@ -32,6 +32,7 @@ std::string meaning(const std::string& kind) {
     if (kind == "IA") return "kg.m^2, rotor inertia on the joint axis: MuJoCo's joint armature";
     if (kind == "FOFF") return "N.m, constant torque offset";
     if (kind == "FD") return "N.m, Dahl presliding friction level (jacobid friction presliding: dahl)";
+    if (kind == "FCL") return "N.m per N.m of gravity load, load-dependent Coulomb friction (jacobid friction coulomb_load)";
     return "see docs/identify.md";
 }
 

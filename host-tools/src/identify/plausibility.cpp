@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "robot/load_friction_model.hpp"
 #include "robot/presliding_model.hpp"
 #include "robot/serial_robot_model.hpp"
 
@@ -88,6 +89,8 @@ std::vector<SignConstraint> sign_constraints(const robot::RobotModel& model) {
         for (int j = 0; j < presliding->joint_count(); ++j) out.push_back({presliding->first_presliding_column() + j, "a presliding friction level"});
         return out;
     }
+    // The rigid-body model's constraints; a load-dependent level FCLj may take either sign.
+    if (const auto* loaded = dynamic_cast<const robot::LoadFrictionModel*>(&model)) return sign_constraints(loaded->nominal());
     std::vector<SignConstraint> out;
     const auto& names = model.parameter_names();
     if (const auto* serial = dynamic_cast<const robot::SerialRobotModel*>(&model)) {

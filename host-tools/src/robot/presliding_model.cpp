@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "jacobid/robot/presliding_friction.hpp"
+#include "robot/load_friction_model.hpp"
 
 namespace jacobid::robot {
 
@@ -54,7 +55,9 @@ void PreslidingModel::history_columns(const double* state, Eigen::Ref<Eigen::Mat
 
 const RobotModel& rigid_body(const RobotModel& model) {
     const auto* presliding = dynamic_cast<const PreslidingModel*>(&model);
-    return presliding ? presliding->nominal() : model;
+    const RobotModel& inner = presliding ? presliding->nominal() : model;
+    const auto* loaded = dynamic_cast<const LoadFrictionModel*>(&inner);
+    return loaded ? loaded->nominal() : inner;
 }
 
 std::vector<double> presliding_states(const std::vector<double>& q, double displacement, double play_width, double initial_state) {

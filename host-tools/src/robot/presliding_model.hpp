@@ -56,8 +56,9 @@ private:
     std::vector<std::string> names_;
 };
 
-// The model without its presliding columns (itself when it has none): what regrouping and plausibility
-// checks of the rigid-body parameters look at. The presliding columns come last.
+// The model without its presliding and load-dependent friction columns (itself when it has none): what
+// regrouping and plausibility checks of the rigid-body parameters look at. The appended columns come last
+// (FCLj, then FDj).
 const RobotModel& rigid_body(const RobotModel& model);
 
 // One joint's Dahl state along a position column (the play operator of total width `play_width`, then

@@ -323,17 +323,32 @@ std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& d) {
     return signs;
 }
 
+namespace {
+// `nominal` (the description's rigid-body model) with load-dependent Coulomb friction of `law`, its
+// reference gravity from the description's own rigid-body values (URDF inertials, `parameters:`).
+std::unique_ptr<LoadFrictionModel> with_load_friction(const RobotDescription& d, std::unique_ptr<RobotModel> nominal, CoulombLoad law) {
+    RobotDescription rigid = d;
+    take_parameters(rigid, load_friction_names(d));
+    take_parameters(rigid, presliding_names(d));
+    rigid.coulomb_load = CoulombLoad::none;
+    const Eigen::VectorXd reference = true_parameters(rigid, *nominal);
+    return std::make_unique<LoadFrictionModel>(std::move(nominal), law, reference, joint_coulomb_signs(d));
+}
+}  // namespace
+
+std::shared_ptr<const LoadFrictionModel> gravity_load_reference(const RobotDescription& d) {
+    try {
+        return with_load_friction(d, make_rigid_body_model(d), CoulombLoad::abs);
+    } catch (const std::invalid_argument&) {
+        return nullptr;  // no joint loaded
+    }
+}
+
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& d) {
     std::unique_ptr<RobotModel> nominal = make_rigid_body_model(d);
     if (d.coulomb_load != CoulombLoad::none) {
-        // The reference gravity: the description's own rigid-body values (URDF inertials, `parameters:`).
-        RobotDescription rigid = d;
-        take_parameters(rigid, load_friction_names(d));
-        take_parameters(rigid, presliding_names(d));
-        rigid.coulomb_load = CoulombLoad::none;
-        const Eigen::VectorXd reference = true_parameters(rigid, *nominal);
         try {
-            nominal = std::make_unique<LoadFrictionModel>(std::move(nominal), d.coulomb_load, reference, joint_coulomb_signs(d));
+            nominal = with_load_friction(d, std::move(nominal), d.coulomb_load);
         } catch (const std::invalid_argument& e) {
             throw InputError(fmt::format("{}: friction: coulomb_load: {}", d.source, e.what()));
         }

@@ -102,6 +102,10 @@ std::vector<CoulombSign> joint_coulomb_signs(const RobotDescription& description
 // The model the description names (wrapped in a LoadFrictionModel with coulomb_load, then in a
 // PreslidingModel with presliding: dahl). InputError for an unknown model.
 std::unique_ptr<RobotModel> make_robot_model(const RobotDescription& description);
+// The description's reference gravity loads (its own rigid-body parameters) as a LoadFrictionModel of law
+// abs, whatever its friction: coulomb_load says (what diagnose's coulomb_load candidates and simulate's
+// coulomb_load effect read); null when gravity loads no joint.
+std::shared_ptr<const LoadFrictionModel> gravity_load_reference(const RobotDescription& description);
 // The presliding settings of the description's joints (displacement per joint, play width).
 PreslidingSettings presliding_settings(const RobotDescription& description);
 

@@ -4,6 +4,11 @@
 #include "robot/presliding_model.hpp"
 
 namespace jacobid::sim {
+namespace {
+// Columns of the form f(q) s(qd_j), which the identification evaluates on the Coulomb velocity
+// (RobotModel::coulomb_column_indices).
+bool is_sign_column(EffectKind kind) { return kind == EffectKind::CoulombSmoothing || kind == EffectKind::CoulombLoad; }
+}  // namespace
 
 AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext context, std::vector<EffectTerm> terms)
     : nominal_(nominal), context_(std::move(context)), names_(nominal.parameter_names()) {
@@ -19,7 +24,7 @@ AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext c
 void AugmentedModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
     nominal_.coulomb_columns(q, qd, qdd, D.leftCols(nominal_.parameter_count()));
     for (std::size_t t = 0; t < terms_.size(); ++t) {
-        if (terms_[t].kind != EffectKind::CoulombSmoothing) continue;
+        if (!is_sign_column(terms_[t].kind)) continue;
         term_columns(terms_[t], context_, q, qd, qdd, D.middleCols(first_column_[t], terms_[t].column_count()));
     }
 }
@@ -27,7 +32,7 @@ void AugmentedModel::coulomb_columns(const double* q, const double* qd, const do
 std::vector<int> AugmentedModel::coulomb_column_indices() const {
     std::vector<int> columns = nominal_.coulomb_column_indices();
     for (std::size_t t = 0; t < terms_.size(); ++t) {
-        if (terms_[t].kind == EffectKind::CoulombSmoothing) columns.push_back(first_column_[t]);
+        if (is_sign_column(terms_[t].kind)) columns.push_back(first_column_[t]);
     }
     return columns;
 }

@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace jacobid::sim {
@@ -20,6 +21,7 @@ constexpr KindInfo kKinds[] = {
     {EffectKind::Gravity, "gravity", "N.m"},                    {EffectKind::Cogging, "cogging", "N.m"},
     {EffectKind::RotorInertia, "rotor_inertia", "kg m^2"},      {EffectKind::TorqueDelay, "torque_delay", "s"},
     {EffectKind::Presliding, "presliding", "N.m"},             {EffectKind::CoulombSmoothing, "coulomb_smoothing", "N.m"},
+    {EffectKind::CoulombLoad, "coulomb_load", "N.m/N.m"},
 };
 
 const KindInfo& info(EffectKind kind) {
@@ -101,6 +103,16 @@ bool term_applicable(const EffectTerm& term, const EffectContext& context, std::
         if (why_not) *why_not = fmt::format("{}: joint {} out of range 1..{}", effect_name(term.kind), term.joint + 1, context.joints);
         return false;
     }
+    if (term.kind == EffectKind::CoulombLoad) {
+        const auto* loaded = context.load ? &context.load->loaded_joints() : nullptr;
+        if (!loaded || std::find(loaded->begin(), loaded->end(), term.joint) == loaded->end()) {
+            if (why_not) {
+                *why_not = fmt::format("coulomb_load j{}: gravity never loads joint {} under the description's parameters (a vertical axis, "
+                                       "a horizontal robot, or no inertial parameters)", term.joint + 1, term.joint + 1);
+            }
+            return false;
+        }
+    }
     return true;
 }
 
@@ -135,6 +147,13 @@ void term_columns(const EffectTerm& term, const EffectContext& context, const do
         case EffectKind::TorqueDelay: break;
         case EffectKind::Presliding: break;  // history column: AugmentedModel::history_columns
         case EffectKind::CoulombSmoothing: columns(j, 0) = robot::CoulombSign{robot::CoulombModel::SmoothAtan, term.alpha}(qd[j]); break;
+        case EffectKind::CoulombLoad: {
+            thread_local std::vector<double> factors;  // regressors run on several threads at once
+            factors.resize(static_cast<std::size_t>(context.joints));
+            context.load->load_factors(q, factors.data());
+            columns(j, 0) = factors[static_cast<std::size_t>(j)] * context.sign(j)(qd[j]);
+            break;
+        }
     }
 }
 

@@ -18,6 +18,11 @@
 //                                                          (s/rad) other than the description's, N.m: a
 //                                                          named one says the joint's friction transition is
 //                                                          better described at alpha' (friction: alpha)
+//   coulomb_load       |g_j(q)| s(qd_j)                    value: Coulomb friction per N.m of the joint's gravity
+//                                                          load g_j under the description's parameters (N.m
+//                                                          per N.m; friction: coulomb_load, FCLj,
+//                                                          robot/load_friction_model.hpp); only for joints
+//                                                          gravity loads
 //   presliding         s_j, the joint's Dahl state          value: presliding friction level FD, N.m (x_p = the
 //                      (robot/presliding_model.hpp)        presliding displacement, rad). A history column: s_j
 //                                                          depends on the position path, not on one state, so
@@ -32,22 +37,25 @@
 // s() is the Coulomb sign function of the robot description (exact or smoothed), so an effect reads the
 // velocity exactly as the nominal friction does.
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "jacobid/robot/coulomb_sign.hpp"
+#include "robot/load_friction_model.hpp"
 
 namespace jacobid::sim {
 
 enum class EffectKind {
-    CoulombOffset, CoulombAsymmetry, Stribeck, ViscousNonlinear, Gravity, Cogging, RotorInertia, TorqueDelay, Presliding, CoulombSmoothing
+    CoulombOffset, CoulombAsymmetry, Stribeck, ViscousNonlinear, Gravity, Cogging, RotorInertia, TorqueDelay, Presliding, CoulombSmoothing,
+    CoulombLoad
 };
 
 constexpr EffectKind kAllEffects[] = {EffectKind::CoulombOffset, EffectKind::CoulombAsymmetry, EffectKind::Stribeck,
                                       EffectKind::ViscousNonlinear, EffectKind::Gravity,         EffectKind::Cogging,
                                       EffectKind::RotorInertia,     EffectKind::TorqueDelay,     EffectKind::Presliding,
-                                      EffectKind::CoulombSmoothing};
+                                      EffectKind::CoulombSmoothing, EffectKind::CoulombLoad};
 
 const char* effect_name(EffectKind kind);
 std::optional<EffectKind> effect_kind(const std::string& name);
@@ -66,6 +74,8 @@ struct EffectContext {
     robot::CoulombSign coulomb{};
     std::vector<robot::CoulombSign> joint_coulomb;  // per joint (friction.alpha per joint or auto); empty: coulomb
     double presliding_play = 2e-4;  // rad: the play operator's total width for presliding states (friction: presliding_play)
+    // The reference gravity loads of coulomb_load (the description's parameters, law abs); null: no joint is loaded.
+    std::shared_ptr<const robot::LoadFrictionModel> load;
     const robot::CoulombSign& sign(int joint) const {
         return static_cast<std::size_t>(joint) < joint_coulomb.size() ? joint_coulomb[static_cast<std::size_t>(joint)] : coulomb;
     }
