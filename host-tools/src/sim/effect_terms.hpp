@@ -75,7 +75,7 @@ struct EffectContext {
     std::vector<robot::CoulombSign> joint_coulomb;  // per joint (friction.alpha per joint or auto); empty: coulomb
     double presliding_play = 2e-4;  // rad: the play operator's total width for presliding states (friction: presliding_play)
     // The reference gravity loads of coulomb_load (the description's parameters, law abs); null: no joint is loaded.
-    std::shared_ptr<const robot::LoadFrictionModel> load;
+    std::shared_ptr<const robot::LoadFrictionModel> load{};
     const robot::CoulombSign& sign(int joint) const {
         return static_cast<std::size_t>(joint) < joint_coulomb.size() ? joint_coulomb[static_cast<std::size_t>(joint)] : coulomb;
     }
