@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/errors.hpp"
 #include "sim/closed_loop.hpp"
+#include "sim/dahl_friction.hpp"
 
 namespace jacobid::identify {
 
@@ -79,6 +81,10 @@ StateEstimates simulate_along_reference(const robot::RobotModel& model, const Ei
     e.qdd = e.q;
     for (std::size_t j = 0; j < joints; ++j) e.tau.push_back(*log.tau[j]);
     robot::ForwardDynamics dynamics(model, x);
+    // A model with presliding friction holds FDj s_j along the simulated path, as `simulate` does (the states
+    // start at 0, as the identification's do): without it the simulated motion lacked the held friction the
+    // identified FDj stand for, and the instruments or DIDIM's residual carried it.
+    const std::unique_ptr<sim::DahlFriction> dahl = sim::presliding_friction(model, x);
     sim::run_closed_loop(dynamics, q0, qd0, gains, loop, reference,
                          fmt::format("{}: the identified parameters give an inertia matrix that is not positive definite: the model cannot be simulated "
                                      "along the reference",
@@ -90,7 +96,8 @@ StateEstimates simulate_along_reference(const robot::RobotModel& model, const Ei
                                  e.qd[j][s.index] = (*s.qd)[jj];
                                  e.qdd[j][s.index] = (*s.qdd)[jj];
                              }
-                         });
+                         },
+                         dahl.get());
     return e;
 }
 

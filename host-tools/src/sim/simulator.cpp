@@ -8,57 +8,12 @@
 #include <memory>
 
 #include "core/errors.hpp"
-#include "jacobid/robot/presliding_friction.hpp"
-#include "robot/presliding_model.hpp"
-#include "sim/augmented_model.hpp"
 #include "sim/closed_loop.hpp"
+#include "sim/dahl_friction.hpp"
 #include "sim/torque_delay_line.hpp"
 
 namespace jacobid::sim {
 namespace {
-
-// Presliding friction: each Dahl state (a PreslidingModel's, one per joint, and an injected presliding
-// effect's) integrated along the true positions (no quantization, no play); its joint feels FD s, which the
-// controller's torque then carries into the log (docs/method.md, "Presliding friction (Dahl)").
-class DahlFriction final : public HeldFriction {
-public:
-    void add(int joint, double displacement, double level) {
-        joint_.push_back(joint);
-        dahl_.emplace_back(displacement);
-        level_.push_back(level);
-    }
-    bool empty() const { return dahl_.empty(); }
-    void step(const Eigen::VectorXd& before, const Eigen::VectorXd& after, Eigen::VectorXd& torque) override {
-        torque.setZero();
-        for (std::size_t i = 0; i < dahl_.size(); ++i) {
-            const auto je = static_cast<Eigen::Index>(joint_[i]);
-            torque[je] += level_[i] * dahl_[i].step(after[je] - before[je]);
-        }
-    }
-
-private:
-    std::vector<int> joint_;
-    std::vector<robot::DahlState> dahl_;
-    std::vector<double> level_;
-};
-
-// The presliding friction of `model` at `parameters` (nullptr when it has none).
-std::unique_ptr<DahlFriction> presliding_friction(const robot::RobotModel& model, const Eigen::VectorXd& parameters) {
-    auto dahl = std::make_unique<DahlFriction>();
-    const auto* augmented = dynamic_cast<const AugmentedModel*>(&model);
-    if (const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(augmented ? &augmented->nominal() : &model)) {
-        for (int j = 0; j < presliding->joint_count(); ++j) {
-            dahl->add(j, presliding->settings().displacement[static_cast<std::size_t>(j)], parameters[presliding->first_presliding_column() + j]);
-        }
-    }
-    if (augmented) {
-        for (std::size_t t = 0; t < augmented->terms().size(); ++t) {
-            const EffectTerm& term = augmented->terms()[t];
-            if (term.kind == EffectKind::Presliding) dahl->add(term.joint, term.displacement, parameters[augmented->term_column(t)]);
-        }
-    }
-    return dahl->empty() ? nullptr : std::move(dahl);
-}
 
 std::size_t steps_per_output(const SimulationSettings& s) {
     const double ratio = s.control_rate * s.substeps / s.output_rate;

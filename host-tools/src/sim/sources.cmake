@@ -6,6 +6,7 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/measurement.cpp
   ${CMAKE_CURRENT_LIST_DIR}/closed_loop.cpp
   ${CMAKE_CURRENT_LIST_DIR}/simulator.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/dahl_friction.cpp
   ${CMAKE_CURRENT_LIST_DIR}/can_player.cpp
   ${CMAKE_CURRENT_LIST_DIR}/command_follower.cpp
   ${CMAKE_CURRENT_LIST_DIR}/effect_terms.cpp
