@@ -113,13 +113,6 @@ LoadFrictionModel::LoadFrictionModel(std::unique_ptr<RobotModel> nominal, Coulom
     }
 }
 
-double LoadFrictionModel::gravity_torque(const double* q, int joint) const {
-    std::vector<double> tau(static_cast<std::size_t>(joint_count()));
-    GravityScratch scratch;
-    gravity_torques(*nominal_, gravity_parameters_, q, scratch, tau.data());
-    return tau[static_cast<std::size_t>(joint)];
-}
-
 void LoadFrictionModel::load_factors(const double* q, double* factors) const {
     // One scratch per thread: the pipeline evaluates regressors on several threads at once.
     thread_local GravityScratch scratch;
@@ -127,9 +120,8 @@ void LoadFrictionModel::load_factors(const double* q, double* factors) const {
     for (int j = 0; j < joint_count(); ++j) factors[j] = load_factor(law_, factors[j]);
 }
 
-void LoadFrictionModel::regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
+void LoadFrictionModel::write_load_columns(const double* q, const double* qd, Eigen::Ref<Eigen::MatrixXd> D) const {
     const int p = nominal_->parameter_count();
-    nominal_->regressor(q, qd, qdd, D.leftCols(p));
     D.rightCols(D.cols() - p).setZero();
     thread_local std::vector<double> factors;
     factors.resize(static_cast<std::size_t>(joint_count()));
@@ -140,17 +132,14 @@ void LoadFrictionModel::regressor(const double* q, const double* qd, const doubl
     }
 }
 
+void LoadFrictionModel::regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
+    nominal_->regressor(q, qd, qdd, D.leftCols(nominal_->parameter_count()));
+    write_load_columns(q, qd, D);
+}
+
 void LoadFrictionModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    const int p = nominal_->parameter_count();
-    nominal_->coulomb_columns(q, qd, qdd, D.leftCols(p));
-    D.rightCols(D.cols() - p).setZero();
-    thread_local std::vector<double> factors;
-    factors.resize(static_cast<std::size_t>(joint_count()));
-    load_factors(q, factors.data());
-    for (std::size_t k = 0; k < loaded_.size(); ++k) {
-        const int j = loaded_[k];
-        D(j, p + static_cast<int>(k)) = factors[static_cast<std::size_t>(j)] * sign(j, qd[j]);
-    }
+    nominal_->coulomb_columns(q, qd, qdd, D.leftCols(nominal_->parameter_count()));
+    write_load_columns(q, qd, D);
 }
 
 bool LoadFrictionModel::inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const {

@@ -41,16 +41,17 @@ public:
     std::unique_ptr<DirectForwardDynamics> articulated_body(const Eigen::VectorXd& X) const override;
 
     const RobotModel& nominal() const { return *nominal_; }
-    CoulombLoad law() const { return law_; }
     // The joints (0-based) that have an FCLj column, in column order after the nominal's.
     const std::vector<int>& loaded_joints() const { return loaded_; }
-    // The reference gravity torque of joint j at q, and the load factor (|g| or g^2) its column multiplies s_j by.
-    double gravity_torque(const double* q, int joint) const;
+    // Each joint's load factor at q (|g_j| or g_j^2 of the reference gravity torque), which its column multiplies s_j by.
     void load_factors(const double* q, double* factors) const;
     // s_j(velocity), joint j's Coulomb sign function.
     double sign(int joint, double velocity) const { return signs_[static_cast<std::size_t>(joint)](velocity); }
 
 private:
+    // The FCLj columns at (q, qd) into D (the nominal's columns left as they are).
+    void write_load_columns(const double* q, const double* qd, Eigen::Ref<Eigen::MatrixXd> D) const;
+
     std::unique_ptr<RobotModel> nominal_;
     CoulombLoad law_;
     Eigen::VectorXd gravity_parameters_;  // the reference with its friction and offset entries zeroed

@@ -409,33 +409,32 @@ Eigen::VectorXd standard_values(const RobotDescription& d, const SerialRobotMode
     return standard;
 }
 
+namespace {
+// A wrapper's values: the wrapped model's (`inner`), then the levels it appends (`level_names`: FDj, FCLj) from
+// `parameters` (0 when not given). `why_missing` explains a given level the wrapper has no column for.
+Eigen::VectorXd with_appended_levels(const RobotDescription& d, const std::vector<std::string>& level_names, const RobotModel& inner,
+                                     const RobotModel& model, const char* why_missing) {
+    RobotDescription rigid = d;
+    const std::vector<std::pair<std::string, double>> levels = take_parameters(rigid, level_names);
+    const Eigen::VectorXd x0 = true_parameters(rigid, inner);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
+    x.head(x0.size()) = x0;
+    for (const auto& [name, value] : levels) {
+        const int index = model.parameter_index(name);
+        if (index < 0) throw InputError(fmt::format("{}: parameters: {}: {}", d.source, name, why_missing));
+        x[index] = value;
+    }
+    return x;
+}
+}  // namespace
+
 Eigen::VectorXd true_parameters(const RobotDescription& d, const RobotModel& model) {
     if (const auto* presliding = dynamic_cast<const PreslidingModel*>(&model)) {
-        // The rigid-body values, then FDj from `parameters` (0 when not given).
-        RobotDescription rigid = d;
-        const std::vector<std::pair<std::string, double>> levels = take_parameters(rigid, presliding_names(d));
-        const Eigen::VectorXd x0 = true_parameters(rigid, presliding->nominal());
-        Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
-        x.head(x0.size()) = x0;
-        for (const auto& [name, value] : levels) x[model.parameter_index(name)] = value;
-        return x;
+        return with_appended_levels(d, presliding_names(d), presliding->nominal(), model, "the model has no such presliding level");
     }
     if (const auto* loaded = dynamic_cast<const LoadFrictionModel*>(&model)) {
-        // The nominal values, then FCLj from `parameters` (0 when not given).
-        RobotDescription rigid = d;
-        const std::vector<std::pair<std::string, double>> levels = take_parameters(rigid, load_friction_names(d));
-        const Eigen::VectorXd x0 = true_parameters(rigid, loaded->nominal());
-        Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
-        x.head(x0.size()) = x0;
-        for (const auto& [name, value] : levels) {
-            const int index = model.parameter_index(name);
-            if (index < 0) {
-                throw InputError(fmt::format("{}: parameters: {}: gravity never loads joint {} under the description's parameters, so it has no "
-                                             "load-dependent Coulomb friction", d.source, name, name.substr(3)));
-            }
-            x[index] = value;
-        }
-        return x;
+        return with_appended_levels(d, load_friction_names(d), loaded->nominal(), model,
+                                    "gravity never loads that joint under the description's parameters, so it has no load-dependent Coulomb friction");
     }
     if (const auto* serial = dynamic_cast<const SerialRobotModel*>(&model)) return serial->base_values(standard_values(d, *serial));
     Eigen::VectorXd x = Eigen::VectorXd::Zero(model.parameter_count());
