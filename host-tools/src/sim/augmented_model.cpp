@@ -18,14 +18,24 @@ AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext c
         first_column_.push_back(static_cast<int>(names_.size()));
         for (auto& name : t.column_names()) names_.push_back(std::move(name));
         if (effect_has_history(t.kind)) history_terms_.push_back(terms_.size() - 1);
+        load_terms_ = load_terms_ || t.kind == EffectKind::CoulombLoad;
     }
+}
+
+const double* AugmentedModel::load_factors(const double* q) const {
+    if (!load_terms_) return nullptr;
+    thread_local std::vector<double> factors;  // regressors run on several threads at once
+    factors.resize(static_cast<std::size_t>(context_.joints));
+    context_.load->load_factors(q, factors.data());
+    return factors.data();
 }
 
 void AugmentedModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
     nominal_.coulomb_columns(q, qd, qdd, D.leftCols(nominal_.parameter_count()));
+    const double* factors = load_factors(q);
     for (std::size_t t = 0; t < terms_.size(); ++t) {
         if (!is_sign_column(terms_[t].kind)) continue;
-        term_columns(terms_[t], context_, q, qd, qdd, D.middleCols(first_column_[t], terms_[t].column_count()));
+        term_columns(terms_[t], context_, q, qd, qdd, D.middleCols(first_column_[t], terms_[t].column_count()), factors);
     }
 }
 
@@ -70,8 +80,9 @@ void AugmentedModel::history_columns(const double* state, Eigen::Ref<Eigen::Matr
 void AugmentedModel::regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
     const int c0 = nominal_.parameter_count();
     nominal_.regressor(q, qd, qdd, D.leftCols(c0));
+    const double* factors = load_factors(q);
     for (std::size_t t = 0; t < terms_.size(); ++t) {
-        term_columns(terms_[t], context_, q, qd, qdd, D.middleCols(first_column_[t], terms_[t].column_count()));
+        term_columns(terms_[t], context_, q, qd, qdd, D.middleCols(first_column_[t], terms_[t].column_count()), factors);
     }
 }
 

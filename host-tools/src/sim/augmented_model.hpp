@@ -38,11 +38,15 @@ public:
     int term_column(std::size_t t) const { return first_column_[t]; }
 
 private:
+    // The coulomb_load terms' load factors at q, evaluated once for all of them (null when there are none).
+    const double* load_factors(const double* q) const;
+
     const robot::RobotModel& nominal_;
     EffectContext context_;
     std::vector<EffectTerm> terms_;
     std::vector<int> first_column_;
     std::vector<std::size_t> history_terms_;  // indices into terms_ of the presliding terms
+    bool load_terms_ = false;                  // some term is coulomb_load
     std::vector<std::string> names_;
 };
 

@@ -117,7 +117,7 @@ bool term_applicable(const EffectTerm& term, const EffectContext& context, std::
 }
 
 void term_columns(const EffectTerm& term, const EffectContext& context, const double* q, const double* qd, const double* qdd,
-                  Eigen::Ref<Eigen::MatrixXd> columns) {
+                  Eigen::Ref<Eigen::MatrixXd> columns, const double* load_factors) {
     columns.setZero();
     const int j = term.joint;
     switch (term.kind) {
@@ -148,10 +148,13 @@ void term_columns(const EffectTerm& term, const EffectContext& context, const do
         case EffectKind::Presliding: break;  // history column: AugmentedModel::history_columns
         case EffectKind::CoulombSmoothing: columns(j, 0) = robot::CoulombSign{robot::CoulombModel::SmoothAtan, term.alpha}(qd[j]); break;
         case EffectKind::CoulombLoad: {
-            thread_local std::vector<double> factors;  // regressors run on several threads at once
-            factors.resize(static_cast<std::size_t>(context.joints));
-            context.load->load_factors(q, factors.data());
-            columns(j, 0) = factors[static_cast<std::size_t>(j)] * context.sign(j)(qd[j]);
+            if (!load_factors) {
+                thread_local std::vector<double> factors;  // regressors run on several threads at once
+                factors.resize(static_cast<std::size_t>(context.joints));
+                context.load->load_factors(q, factors.data());
+                load_factors = factors.data();
+            }
+            columns(j, 0) = load_factors[j] * context.sign(j)(qd[j]);
             break;
         }
     }

@@ -101,9 +101,11 @@ struct EffectTerm {
 // Whether the term exists for this robot (gravity needs the planar kinematics of planar2r).
 bool term_applicable(const EffectTerm& term, const EffectContext& context, std::string* why_not = nullptr);
 
-// Fills the term's columns (joints x column_count) at one state (zeros for a history effect).
+// Fills the term's columns (joints x column_count) at one state (zeros for a history effect). `load_factors`:
+// context.load's factors at q when the caller has them (one gravity evaluation serves every coulomb_load term of
+// a sample); null: evaluated here.
 void term_columns(const EffectTerm& term, const EffectContext& context, const double* q, const double* qd, const double* qdd,
-                  Eigen::Ref<Eigen::MatrixXd> columns);
+                  Eigen::Ref<Eigen::MatrixXd> columns, const double* load_factors = nullptr);
 
 // The effect's scalar value from the term's coefficients (amplitude for cogging and gravity), and its
 // standard deviation from their covariance (delta method).
