@@ -446,22 +446,37 @@ namespace {
 // 318 vectors of 0.3 MB for a 6-axis robot were each a separate mapping that glibc returned to the kernel
 // at the end of every identification, so every run faulted its 90 MB in again 4 KB at a time; one block
 // is reused by every chunk and can be backed by huge pages (core/huge_pages.hpp).
+// Only the columns that have held a nonzero value get a slot in the block: a serial robot's joint j row is
+// zero for the parameters of the links before j and for the other joints' friction, about half of the
+// PUMA 560's 318 columns (93 MB of an hour's 140 MB plateau above the log). A column without a slot reads
+// as zeros, which is what the regressor wrote into it before.
 class ChunkColumns {
 public:
-    explicit ChunkColumns(std::size_t columns) : columns_(columns) {}
-    // Room for `samples` per column; the contents are not kept (every chunk writes its columns whole).
-    void fit(std::size_t samples) {
-        if (samples <= stride_) return;
-        stride_ = samples;
-        storage_ = std::vector<double>();
-        storage_.reserve(columns_ * stride_);
-        advise_huge_pages(storage_);  // before the first write, which faults the pages in
-        storage_.resize(columns_ * stride_);
+    static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
+    explicit ChunkColumns(std::size_t columns) : slot_(columns, kNoSlot) {}
+    // Gives `column` a slot; the block must be fitted again before the next write (its contents are lost).
+    void add(std::size_t column) {
+        if (slot_[column] == kNoSlot) slot_[column] = slots_++;
     }
-    double* operator[](std::size_t column) { return storage_.data() + column * stride_; }
+    bool has(std::size_t column) const { return slot_[column] != kNoSlot; }
+    // Room for `samples` per slotted column; the contents are not kept (every chunk writes its columns whole).
+    void fit(std::size_t samples) {
+        if (samples <= stride_ && slots_ == fitted_slots_) return;
+        stride_ = std::max(stride_, samples);
+        fitted_slots_ = slots_;
+        storage_ = std::vector<double>();
+        storage_.reserve(slots_ * stride_);
+        advise_huge_pages(storage_);  // before the first write, which faults the pages in
+        storage_.resize(slots_ * stride_);
+    }
+    // The column's samples, nullptr without a slot.
+    double* operator[](std::size_t column) { return has(column) ? storage_.data() + slot_[column] * stride_ : nullptr; }
+    // Sample i of the column (0 without a slot).
+    double at(std::size_t column, std::size_t i) const { return has(column) ? storage_[slot_[column] * stride_ + i] : 0.0; }
 
 private:
-    std::size_t columns_, stride_ = 0;
+    std::vector<std::size_t> slot_;  // per column
+    std::size_t slots_ = 0, fitted_slots_ = 0, stride_ = 0;
     std::vector<double> storage_;
 };
 
@@ -505,6 +520,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
     const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
     return_freed_memory();  // the set-up's whole-log temporaries, before the fold's own buffers
     ChunkColumns buffer(columns);
+    for (int j = 0; j < joints; ++j) buffer.add(static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(c));
     // Work split over threads (settings.threads) in three stages per chunk: the regressor by sample ranges,
     // F_p by columns, the running QR by joints. Each piece of arithmetic is the same whatever the thread
     // count (no sum is split), so the result is identical bit for bit.
@@ -514,6 +530,8 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
     std::vector<std::vector<double>> workspaces(static_cast<std::size_t>(threads));
     std::vector<signal::InterleavedFiltfilt> lane_filters(static_cast<std::size_t>(threads), signal::InterleavedFiltfilt(fp));
     std::vector<char> column_used(columns);
+    // Per regressor range: the columns without a slot that it found nonzero (ChunkColumns).
+    std::vector<std::vector<char>> unslotted_nonzero(static_cast<std::size_t>(threads), std::vector<char>(columns, 0));
     std::vector<std::size_t> used_columns;
     auto run_or_rethrow = [&](std::size_t jobs, const std::function<void(std::size_t)>& job) {
         for (const auto& error : parallel_for(jobs, pool, job)) {
@@ -570,63 +588,103 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         const std::size_t reach = coulomb_columns.empty() ? 0 : fir ? (torque_fir.size() - 1) / 2 : info.first;
         const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
         states.load(x0, x1, window, pool);
-        buffer.fit(len);
         const auto ranges = static_cast<std::size_t>(threads);
         const std::size_t regressor_ranges = model.concurrent_regressor() ? ranges : 1;
-        run_or_rethrow(regressor_ranges, [&](std::size_t range) {
-            Eigen::MatrixXd D(joints, c);
-            std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
-            for (std::size_t i = len * range / regressor_ranges; i < len * (range + 1) / regressor_ranges; ++i) {
-                const std::size_t k = e0 + i;
-                load_state(k, window.qd, qs, qds, qdds);
-                model.regressor(qs.data(), qds.data(), qdds.data(), D);
-                if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
-                for (int j = 0; j < joints; ++j) {
-                    const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                    for (int p = 0; p < c; ++p) buffer[base + static_cast<std::size_t>(p)][i] = D(j, p);
-                    buffer[base + static_cast<std::size_t>(c)][i] = window.tau[static_cast<std::size_t>(j)][k - window.from];
-                }
-            }
-        });
-        if (!coulomb_columns.empty()) {
-            // The Coulomb columns s(alpha qd) on the wider velocity, then through the torque's own filter
-            // (StateEstimates::qd_coulomb), on [e0, e1) plus the filter's reach on each side.
-            for (auto& col : coulomb_raw) col.resize(xlen);
-            // The Coulomb columns evaluated again per sample (RobotModel::coulomb_columns: alone for the serial
-            // models, the whole regressor otherwise), split by sample ranges over the threads like the regressor.
+        // The chunk's columns are written again when one of them holds its first nonzero value (it then
+        // gets a slot): once at the first chunk, rarely after.
+        for (bool slots_added = true; slots_added;) {
+            buffer.fit(len);
             run_or_rethrow(regressor_ranges, [&](std::size_t range) {
                 Eigen::MatrixXd D(joints, c);
                 std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
-                for (std::size_t k = x0 + xlen * range / regressor_ranges; k < x0 + xlen * (range + 1) / regressor_ranges; ++k) {
-                    load_state(k, window.qd_coulomb, qs, qds, qdds);
-                    model.coulomb_columns(qs.data(), qds.data(), qdds.data(), D);
-                    for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
-                        for (int j = 0; j < joints; ++j) {
-                            coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)][k - x0] = D(j, coulomb_columns[ci]);
+                for (std::size_t i = len * range / regressor_ranges; i < len * (range + 1) / regressor_ranges; ++i) {
+                    const std::size_t k = e0 + i;
+                    load_state(k, window.qd, qs, qds, qdds);
+                    model.regressor(qs.data(), qds.data(), qdds.data(), D);
+                    if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
+                    for (int j = 0; j < joints; ++j) {
+                        const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
+                        for (int p = 0; p < c; ++p) {
+                            const std::size_t col = base + static_cast<std::size_t>(p);
+                            if (double* x = buffer[col]) {
+                                x[i] = D(j, p);
+                            } else if (D(j, p) != 0.0) {
+                                unslotted_nonzero[range][col] = 1;
+                            }
                         }
+                        buffer[base + static_cast<std::size_t>(c)][i] = window.tau[static_cast<std::size_t>(j)][k - window.from];
                     }
                 }
             });
-            std::vector<double> filtered(xlen);
-            for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
-                for (int j = 0; j < joints; ++j) {
-                    const auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
-                    double* target = buffer[static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci])];
-                    // A Coulomb column is zero outside its own joint's row: a filter of zeros is zeros.
-                    if (std::all_of(raw.begin(), raw.end(), [](double v) { return v == 0.0; })) {
-                        std::fill(target, target + (e1 - e0), 0.0);
-                        continue;
+            if (!coulomb_columns.empty()) {
+                // The Coulomb columns s(alpha qd) on the wider velocity, then through the torque's own filter
+                // (StateEstimates::qd_coulomb), on [e0, e1) plus the filter's reach on each side.
+                // Storage only where the column has a slot (a Coulomb column is zero outside its own joint's row);
+                // a nonzero value elsewhere gives it one, as in the regressor above.
+                const auto coulomb_column_of = [&](std::size_t ci, std::size_t j) {
+                    return j * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci]);
+                };
+                for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
+                    for (std::size_t j = 0; j < static_cast<std::size_t>(joints); ++j) {
+                        auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + j];
+                        if (buffer.has(coulomb_column_of(ci, j))) {
+                            raw.resize(xlen);
+                        } else {
+                            std::vector<double>().swap(raw);
+                        }
                     }
-                    std::size_t shift = 0;  // filtered[m] belongs to sample x0 + m + shift
-                    if (fir) {
-                        const BatchStatus status = signal::differentiate_batch(Span<const double>(torque_fir), Span<const double>(raw),
-                                                                               Span<double>(filtered.data(), xlen - torque_fir.size() + 1));
-                        if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
-                        shift = reach;
-                    } else {
-                        filtfilt_or_throw(coulomb_fq, raw.data(), filtered.data(), xlen, workspaces[0]);
+                }
+                // The Coulomb columns evaluated again per sample (RobotModel::coulomb_columns: alone for the serial
+                // models, the whole regressor otherwise), split by sample ranges over the threads like the regressor.
+                run_or_rethrow(regressor_ranges, [&](std::size_t range) {
+                    Eigen::MatrixXd D(joints, c);
+                    std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
+                    for (std::size_t k = x0 + xlen * range / regressor_ranges; k < x0 + xlen * (range + 1) / regressor_ranges; ++k) {
+                        load_state(k, window.qd_coulomb, qs, qds, qdds);
+                        model.coulomb_columns(qs.data(), qds.data(), qdds.data(), D);
+                        for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
+                            for (int j = 0; j < joints; ++j) {
+                                auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
+                                const double value = D(j, coulomb_columns[ci]);
+                                if (!raw.empty()) {
+                                    raw[k - x0] = value;
+                                } else if (value != 0.0) {
+                                    unslotted_nonzero[range][coulomb_column_of(ci, static_cast<std::size_t>(j))] = 1;
+                                }
+                            }
+                        }
                     }
-                    for (std::size_t k = e0; k < e1; ++k) target[k - e0] = filtered[k - x0 - shift];
+                });
+                std::vector<double> filtered(xlen);
+                for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
+                    for (int j = 0; j < joints; ++j) {
+                        const auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
+                        double* target = buffer[coulomb_column_of(ci, static_cast<std::size_t>(j))];
+                        // A filter of zeros is zeros (and a column without a slot has no raw values: it held none).
+                        if (std::all_of(raw.begin(), raw.end(), [](double v) { return v == 0.0; })) {
+                            if (target) std::fill(target, target + (e1 - e0), 0.0);
+                            continue;
+                        }
+                        std::size_t shift = 0;  // filtered[m] belongs to sample x0 + m + shift
+                        if (fir) {
+                            const BatchStatus status = signal::differentiate_batch(Span<const double>(torque_fir), Span<const double>(raw),
+                                                                                   Span<double>(filtered.data(), xlen - torque_fir.size() + 1));
+                            if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
+                            shift = reach;
+                        } else {
+                            filtfilt_or_throw(coulomb_fq, raw.data(), filtered.data(), xlen, workspaces[0]);
+                        }
+                        for (std::size_t k = e0; k < e1; ++k) target[k - e0] = filtered[k - x0 - shift];
+                    }
+                }
+            }
+            slots_added = false;
+            for (auto& found : unslotted_nonzero) {
+                for (std::size_t col = 0; col < columns; ++col) {
+                    if (!found[col]) continue;
+                    found[col] = 0;
+                    buffer.add(col);
+                    slots_added = true;
                 }
             }
         }
@@ -636,7 +694,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         run_or_rethrow(ranges, [&](std::size_t t) {
             for (std::size_t col = t; col < columns; col += ranges) {
                 const double* x = buffer[col];
-                column_used[col] = std::any_of(x, x + len, [](double v) { return v != 0.0; });
+                column_used[col] = x != nullptr && std::any_of(x, x + len, [](double v) { return v != 0.0; });
             }
         });
         used_columns.clear();
@@ -672,7 +730,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
             const std::size_t base = j * static_cast<std::size_t>(c + 1);
             std::vector<double> joint_row(static_cast<std::size_t>(c + 1));
             for (std::size_t k = first_kept; k < c1; k += d) {
-                for (int p = 0; p <= c; ++p) joint_row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][k - e0];
+                for (int p = 0; p <= c; ++p) joint_row[static_cast<std::size_t>(p)] = buffer.at(base + static_cast<std::size_t>(p), k - e0);
                 qr[j].add_row(joint_row.data());
                 lagged[j].add_row(joint_row.data());
             }
@@ -684,7 +742,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
             if (keep_for_plot) out.plot.t.push_back(t);
             for (int j = 0; j < joints; ++j) {
                 const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer[base + static_cast<std::size_t>(p)][i];
+                for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer.at(base + static_cast<std::size_t>(p), i);
                 if (keep_for_plot) {
                     out.plot.y[static_cast<std::size_t>(j)].push_back(row[static_cast<std::size_t>(c)]);
                     out.plot.w[static_cast<std::size_t>(j)].insert(out.plot.w[static_cast<std::size_t>(j)].end(), row.begin(), row.end() - 1);

@@ -129,6 +129,39 @@ TEST(PipelineRows, AreTheRowsOfTheLeastSquares) {
     }
 }
 
+// Joint 2 stands exactly still (q2 = 0) for the first 20 s, then starts smoothly: its friction columns FV2
+// and FC2 are zero in the first chunks and first hold values later, when the fold gives them their storage
+// (the chunk block keeps only columns that have held a value) and writes that chunk again. Chunked or in
+// one piece, the factors agree: a chunk that lost the columns would change R_2 by the whole FV2 / FC2 part.
+TEST(PipelineRows, AColumnThatFirstHoldsAValueLateInTheLogIsKept) {
+    const std::size_t n = 60'000, still = 20'000;
+    std::vector<std::vector<double>> q(2), tau(2);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double t = static_cast<double>(k) * kTs, t0 = static_cast<double>(still) * kTs;
+        q[0].push_back(0.8 * std::sin(2 * kPi * 0.4 * t));
+        q[1].push_back(k < still ? 0.0 : 0.4 * (1.0 - std::cos(2 * kPi * 0.7 * (t - t0))));
+        tau[0].push_back(3.0 * std::cos(2 * kPi * 0.3 * t));
+        tau[1].push_back(0.7 * std::sin(2 * kPi * 1.3 * t));
+    }
+    const LogColumns log = log_columns(q, tau, kTs, "late start");
+    const auto model = robot::make_robot_model(robot::default_planar2r_description());
+    PipelineSettings chunked = settings_for_test();
+    PipelineSettings whole = chunked;
+    whole.chunk = n;
+    const PipelineOutput a = run_pipeline(*model, log, chunked, nullptr);
+    const PipelineOutput b = run_pipeline(*model, log, whole, nullptr);
+    const int fv2 = model->parameter_index("FV2");
+    ASSERT_GE(fv2, 0);
+    for (std::size_t j = 0; j < 2; ++j) {
+        const Eigen::MatrixXd ga = a.factors.r[j].transpose() * a.factors.r[j];
+        const Eigen::MatrixXd gb = b.factors.r[j].transpose() * b.factors.r[j];
+        EXPECT_LT((ga - gb).norm(), 1e-9 * gb.norm()) << "joint " << j + 1;
+    }
+    // The columns did hold something: joint 2's FV2 column has energy in its rows.
+    const Eigen::MatrixXd g2 = a.factors.r[1].transpose() * a.factors.r[1];
+    EXPECT_GT(g2(fv2, fv2), 1.0);
+}
+
 TEST(PipelineRows, SinkDoesNotChangeTheFactors) {
     const SineLog data(20'000);
     const auto model = robot::make_robot_model(robot::default_planar2r_description());
