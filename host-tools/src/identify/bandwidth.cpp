@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -25,31 +26,47 @@ constexpr std::size_t kJumpRun = 3;
 // A joint counts when its motion's position variance is at least 100 x that of its noise floor (RMS 10 x).
 constexpr double kMotionToNoise = 100.0;
 
-double quantile(const std::vector<double>& values, double p) {
+// The p-quantile of `values`, which it reorders (nth_element).
+double quantile_in_place(std::vector<double>& values, double p) {
     if (values.empty()) return 0.0;
-    std::vector<double> v = huge_vector<double>(values.begin(), values.end());
-    const auto k = static_cast<std::size_t>(p * static_cast<double>(v.size() - 1));
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-    return v[k];
+    const auto k = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+    return values[k];
 }
 
-// Bridges isolated jumps in the differences `d` (in place) by linear interpolation between the differences
-// on either side; returns how many runs it bridged.
-std::size_t bridge_jumps(std::vector<double>& d) {
-    const double median = quantile(d, 0.5);
-    std::vector<double> deviation = huge_vector<double>(d.size());
-    for (std::size_t k = 0; k < d.size(); ++k) deviation[k] = std::abs(d[k] - median);
-    const double spread = quantile(deviation, 0.99);
+double quantile(const std::vector<double>& values, double p) {
+    std::vector<double> v = values;
+    return quantile_in_place(v, p);
+}
+
+// The first differences of q into `d`, with isolated jumps bridged by linear interpolation between the
+// differences on either side; returns how many runs it bridged. The two selections (median step, 99th
+// percentile of the deviations) share one scratch array, freed before d is made, and the deviations are
+// computed again where the runs are sought: one whole-log array per joint at a time instead of four (each
+// 29 MB for an hour at 1 kHz, one joint per thread: the identification's peak, docs/performance.md).
+std::size_t bridged_differences(const std::vector<double>& q, std::vector<double>& d) {
+    const std::size_t n = q.size() - 1;
+    double median = 0.0, spread = 0.0;
+    {
+        std::vector<double> scratch = huge_vector<double>(n);
+        for (std::size_t k = 0; k < n; ++k) scratch[k] = q[k + 1] - q[k];
+        median = quantile_in_place(scratch, 0.5);
+        for (std::size_t k = 0; k < n; ++k) scratch[k] = std::abs((q[k + 1] - q[k]) - median);
+        spread = quantile_in_place(scratch, 0.99);
+    }
+    d = huge_vector<double>(n);
+    for (std::size_t k = 0; k < n; ++k) d[k] = q[k + 1] - q[k];
     if (!(spread > 0.0)) return 0;  // 99 % of the log at one step: motion and jumps cannot be told apart
     const double threshold = kJumpFactor * spread;
+    const auto deviation = [&](std::size_t k) { return std::abs(d[k] - median); };
     std::size_t runs = 0;
     for (std::size_t k = 0; k < d.size();) {
-        if (deviation[k] <= threshold) {
+        if (deviation(k) <= threshold) {
             ++k;
             continue;
         }
         std::size_t end = k;
-        while (end < d.size() && deviation[end] > threshold) ++end;
+        while (end < d.size() && deviation(end) > threshold) ++end;
         if (end - k <= kJumpRun) {
             const double before = k > 0 ? d[k - 1] : (end < d.size() ? d[end] : median);
             const double after = end < d.size() ? d[end] : before;
@@ -256,13 +273,13 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
         const std::vector<double>& q = *positions[j];
         JointBandwidth& jb = result.joints[j];
         jb.name = j < names.size() ? names[j] : fmt::format("joint {}", j + 1);
-        std::vector<double> d = huge_vector<double>(n);
-        for (std::size_t k = 0; k < n; ++k) d[k] = q[k + 1] - q[k];
-        jb.moving = std::any_of(d.begin(), d.end(), [](double x) { return x != 0.0; });
+        // A difference is nonzero exactly where two finite samples differ.
+        jb.moving = std::adjacent_find(q.begin(), q.end(), std::not_equal_to<double>()) != q.end();
         Spectrum s;
         s.g = g;
         if (jb.moving) {
-            jb.jumps = bridge_jumps(d);
+            std::vector<double> d;
+            jb.jumps = bridged_differences(q, d);
             jb.quantization_step = quantization_step(q);
             s.power = welch.power(d);
             if (band_hi > band_lo + 8) {

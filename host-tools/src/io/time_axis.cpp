@@ -33,18 +33,22 @@ TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_nam
     // Each step is checked against the median step (robust: a gap or a burst of jitter cannot shift it),
     // so the message names the line of the first bad step; the sample period reported is then taken from
     // the end points, which averages the rounding of individual stamps.
-    std::vector<double> steps = huge_vector<double>(t.size() - 1);
-    for (std::size_t i = 0; i + 1 < t.size(); ++i) steps[i] = t[i + 1] - t[i];
-    std::vector<double> sorted = huge_vector<double>(steps.begin(), steps.end());
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    const double median = sorted[sorted.size() / 2];
+    // One whole-log array (the steps, reordered by the selection); the check takes each step from t again.
+    double median = 0.0;
+    {
+        std::vector<double> steps = huge_vector<double>(t.size() - 1);
+        for (std::size_t i = 0; i + 1 < t.size(); ++i) steps[i] = t[i + 1] - t[i];
+        std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+        median = steps[steps.size() / 2];
+    }
     require_plausible_sample_period(median, fmt::format("{}: column '{}'", table.source(), column_name));
-    for (std::size_t i = 0; i < steps.size(); ++i) {
-        if (std::abs(steps[i] - median) > tolerance * median) {
+    for (std::size_t i = 0; i + 1 < t.size(); ++i) {
+        const double step = t[i + 1] - t[i];
+        if (std::abs(step - median) > tolerance * median) {
             throw InputError(fmt::format(
                 "{}:{}: column '{}': time step {:.6g} s differs from the sample period {:.6g} s by more than {:.3g} % "
                 "(non-uniform sampling or lost samples)",
-                table.source(), table.line_of_row(i + 1), column_name, steps[i], median, 100 * tolerance));
+                table.source(), table.line_of_row(i + 1), column_name, step, median, 100 * tolerance));
         }
     }
     const double ts = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
