@@ -17,4 +17,18 @@ inline void return_freed_memory() {
 #endif
 }
 
+// Gives every block of 4 MB or more its own mapping, unmapped when it is freed, for the whole process
+// (jacobid's main calls it first). glibc's threshold otherwise rises with each large block freed, so the
+// hour's later whole-log and per-chunk buffers came from the per-thread heaps and their freed space stayed
+// resident there: the peak moved by 25 MB from run to run with the threads' timing (docs/performance.md).
+// A fixed threshold turns that adjustment off. No-op without glibc.
+inline void map_large_blocks() {
+#if defined(__GLIBC__)
+    (void)mallopt(M_MMAP_THRESHOLD, 4 << 20);
+    // Fixing the threshold also stops the trim threshold from following it: left at 128 kB, the heap's top
+    // was handed back and faulted in again around every chunk's buffers (2 s of system time per hour).
+    (void)mallopt(M_TRIM_THRESHOLD, 64 << 20);
+#endif
+}
+
 }  // namespace jacobid
