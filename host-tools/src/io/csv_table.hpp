@@ -88,7 +88,7 @@ std::string describe_columns(const std::vector<std::string>& names);
 // parsed in ranges of whole lines on up to max_ranges threads (0: one per core). The table and the
 // messages do not depend on these; tests make them small to cross block and range boundaries.
 struct CsvChunking {
-    std::size_t block_bytes = std::size_t{32} << 20;
+    std::size_t block_bytes = std::size_t{16} << 20;
     std::size_t range_bytes = std::size_t{8} << 20;
     std::size_t max_ranges = 0;
 };
