@@ -521,6 +521,26 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
     return_freed_memory();  // the set-up's whole-log temporaries, before the fold's own buffers
     ChunkColumns buffer(columns);
     for (int j = 0; j < joints; ++j) buffer.add(static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(c));
+    // The columns that hold a value at a few arbitrary states get their slots now, so that the first chunk
+    // is not written twice (a short log is one or two chunks); a column found later gets its slot then.
+    {
+        Eigen::MatrixXd D(joints, c);
+        std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs), state(history_size, 0.5);
+        for (int probe = 0; probe < 3; ++probe) {
+            for (int j = 0; j < joints; ++j) {
+                qs[static_cast<std::size_t>(j)] = 0.37 + 1.13 * probe + 0.71 * j;
+                qds[static_cast<std::size_t>(j)] = 0.9 - 0.53 * probe + 0.29 * j;
+                qdds[static_cast<std::size_t>(j)] = -1.7 + 0.83 * probe + 0.47 * j;
+            }
+            model.regressor(qs.data(), qds.data(), qdds.data(), D);
+            if (history_size > 0) model.history_columns(state.data(), D);
+            for (int j = 0; j < joints; ++j) {
+                for (int p = 0; p < c; ++p) {
+                    if (D(j, p) != 0.0) buffer.add(static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(p));
+                }
+            }
+        }
+    }
     // Work split over threads (settings.threads) in three stages per chunk: the regressor by sample ranges,
     // F_p by columns, the running QR by joints. Each piece of arithmetic is the same whatever the thread
     // count (no sum is split), so the result is identical bit for bit.
@@ -591,7 +611,7 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         const auto ranges = static_cast<std::size_t>(threads);
         const std::size_t regressor_ranges = model.concurrent_regressor() ? ranges : 1;
         // The chunk's columns are written again when one of them holds its first nonzero value (it then
-        // gets a slot): once at the first chunk, rarely after.
+        // gets a slot): rarely, the probe above has given most of them theirs.
         for (bool slots_added = true; slots_added;) {
             buffer.fit(len);
             run_or_rethrow(regressor_ranges, [&](std::size_t range) {

@@ -130,9 +130,9 @@ TEST(PipelineRows, AreTheRowsOfTheLeastSquares) {
 }
 
 // Joint 2 stands exactly still (q2 = 0) for the first 20 s, then starts smoothly: its friction columns FV2
-// and FC2 are zero in the first chunks and first hold values later, when the fold gives them their storage
-// (the chunk block keeps only columns that have held a value) and writes that chunk again. Chunked or in
-// one piece, the factors agree: a chunk that lost the columns would change R_2 by the whole FV2 / FC2 part.
+// and FC2 (and their Coulomb filter's raw values) are zero in the first chunks and hold values later.
+// Chunked or in one piece, the factors agree: a chunk that lost the columns would change R_2 by the whole
+// FV2 / FC2 part.
 TEST(PipelineRows, AColumnThatFirstHoldsAValueLateInTheLogIsKept) {
     const std::size_t n = 60'000, still = 20'000;
     std::vector<std::vector<double>> q(2), tau(2);
@@ -160,6 +160,57 @@ TEST(PipelineRows, AColumnThatFirstHoldsAValueLateInTheLogIsKept) {
     // The columns did hold something: joint 2's FV2 column has energy in its rows.
     const Eigen::MatrixXd g2 = a.factors.r[1].transpose() * a.factors.r[1];
     EXPECT_GT(g2(fv2, fv2), 1.0);
+}
+
+// Two unit inertias and a joint-limit spring on joint 2 that engages beyond 10 rad: its column is zero at
+// every ordinary state (the fold's first guess of the columns that hold values) and in the first half of the
+// log, where joint 2 has not reached the stop.
+class LimitSpringModel final : public robot::RobotModel {
+public:
+    std::string model_name() const override { return "limit spring"; }
+    int joint_count() const override { return 2; }
+    int parameter_count() const override { return 3; }
+    const std::vector<std::string>& parameter_names() const override { return names_; }
+    void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override {
+        (void)qd;
+        D.setZero();
+        D(0, 0) = qdd[0];
+        D(1, 1) = qdd[1];
+        D(1, 2) = q[1] > 10.0 ? q[1] - 10.0 : 0.0;
+    }
+
+private:
+    std::vector<std::string> names_{"I1", "I2", "K2"};
+};
+
+TEST(PipelineRows, AColumnFirstNonzeroInALaterChunkIsWrittenThere) {
+    const std::size_t n = 60'000;
+    std::vector<std::vector<double>> q(2), tau(2);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double t = static_cast<double>(k) * kTs;
+        q[0].push_back(0.8 * std::sin(2 * kPi * 0.4 * t));
+        q[1].push_back(6.0 + 6.0 * t / 60.0 + 0.3 * std::sin(2 * kPi * 0.7 * t));  // past 10 rad after ~40 s
+        tau[0].push_back(3.0 * std::cos(2 * kPi * 0.3 * t));
+        tau[1].push_back(0.7 * std::sin(2 * kPi * 1.3 * t) + std::max(0.0, q[1].back() - 10.0));
+    }
+    const LogColumns log = log_columns(q, tau, kTs, "limit spring");
+    const LimitSpringModel model;
+    PipelineSettings chunked = settings_for_test();
+    PipelineSettings whole = chunked;
+    whole.chunk = n;
+    const PipelineOutput a = run_pipeline(model, log, chunked, nullptr);
+    const PipelineOutput b = run_pipeline(model, log, whole, nullptr);
+    const Eigen::MatrixXd ga = a.factors.r[1].transpose() * a.factors.r[1];
+    const Eigen::MatrixXd gb = b.factors.r[1].transpose() * b.factors.r[1];
+    EXPECT_GT(gb(2, 2), 1.0);  // the spring's column holds values
+    EXPECT_LT((ga - gb).norm(), 1e-9 * gb.norm());
+    // Its squared sum from the spring's own values at the decimated samples (F_p leaves a slow ramp as it is).
+    const std::size_t d = static_cast<std::size_t>(a.info.decimation);
+    double sum = 0.0;
+    for (std::size_t k = a.info.first + a.info.crop; k < a.info.last - a.info.crop; ++k) {
+        if ((k - a.info.first) % d == 0) sum += std::pow(std::max(0.0, q[1][k] - 10.0), 2);
+    }
+    EXPECT_NEAR(ga(2, 2), sum, 0.01 * sum);
 }
 
 TEST(PipelineRows, SinkDoesNotChangeTheFactors) {
