@@ -4,6 +4,8 @@
 #include <fast_float/fast_float.h>
 #include <fmt/core.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -284,8 +286,28 @@ private:
 
 }  // namespace
 
+namespace {
+
+// The kept columns of about `rows` rows must fit in the machine's memory: refused before they are read
+// (otherwise the kernel ends the process part way through a long log, with no message).
+void require_memory_for_columns(const std::string& path, std::size_t rows, const CsvTable& table) {
+    std::size_t kept = 0;
+    for (std::size_t c = 0; c < table.header().size(); ++c) kept += table.loaded(c) ? 1 : 0;
+    const double needed = static_cast<double>(rows) * static_cast<double>(kept) * sizeof(double);
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || page <= 0) return;  // unknown: not checked
+    const double memory = static_cast<double>(pages) * static_cast<double>(page);
+    if (needed > memory) {
+        throw InputError(fmt::format("{}: about {:.3g} rows x {} kept columns need {:.1f} GB, more than this machine's {:.1f} GB of memory; "
+                                     "split the log (identify --in a.csv --in b.csv ...)",
+                                     path, static_cast<double>(rows), kept, needed / 1e9, memory / 1e9));
+    }
+}
+
+}  // namespace
+
 CsvTable read_csv(const std::string& path, const CsvChunking& chunking, const CsvColumnFilter& keep) {
-    const std::uintmax_t size = yaml::checked_input_file_size<InputError>(path, "file");
+    const std::uintmax_t size = yaml::checked_input_file_size<InputError>(path, "file", yaml::kMaxStreamedInputFileBytes);
     BlockReader reader(path, std::max<std::size_t>(1, chunking.block_bytes));
     // At most a block and the partial line before it: reserved once, so that appending a block never
     // reallocates (and faults a fresh copy in).
@@ -305,6 +327,7 @@ CsvTable read_csv(const std::string& path, const CsvChunking& chunking, const Cs
         const auto lines = static_cast<double>(std::count(buffer.begin(), buffer.end(), '\n')) + 1.0;
         const double bytes_per_line = static_cast<double>(buffer.size()) / lines;
         const auto estimate = static_cast<std::size_t>(1.02 * static_cast<double>(size) / std::max(1.0, bytes_per_line)) + 16;
+        require_memory_for_columns(path, estimate, table);
         for (std::size_t c = 0; c < table.header().size(); ++c) {
             if (!table.loaded(c)) continue;
             table.mutable_column(c).reserve(estimate);

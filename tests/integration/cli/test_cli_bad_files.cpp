@@ -86,10 +86,33 @@ TEST(BadFiles, DevZeroAsAnInputIsRefusedAtOnce) {
 }
 
 TEST(BadFiles, AnInputAboveTheSizeBoundIsRefusedBeforeItIsRead) {
+    // A file read whole (a robot description): 2048 MB.
+    const fs::path yaml = scratch("big.yaml");
+    std::ofstream(yaml) << "joints: []\n";
+    fs::resize_file(yaml, std::uintmax_t{3} << 30);  // sparse: no disk used, nothing read
+    expect_refused(jacobid("simulate --robot " + yaml.string() + " -o " + scratch("z.csv").string()),
+                   {"big.yaml", "3072 MB is more than the 2048 MB"});
+    fs::remove(yaml);
+    // A log is streamed (ten hours of 6-axis data are 14 GB): 256 GB.
     const fs::path big = scratch("big.csv");
     std::ofstream(big) << "t,q1\n";
-    fs::resize_file(big, std::uintmax_t{3} << 30);  // sparse: no disk used, nothing read
-    expect_refused(jacobid("differentiate --in " + big.string() + " -c q1"), {"big.csv", "3072 MB is more than the 2048 MB"});
+    fs::resize_file(big, std::uintmax_t{300} << 30);
+    expect_refused(jacobid("differentiate --in " + big.string() + " -c q1"), {"big.csv", "307200 MB is more than the 262144 MB"});
+    fs::remove(big);
+}
+
+// Within the bound, the columns a command keeps must fit in memory: about 2.5e10 rows of 2 kept columns
+// (400 GB) are refused from the first block's line length, before they are read.
+TEST(BadFiles, ALogWhoseColumnsExceedTheMemoryIsRefusedBeforeItIsRead) {
+    const fs::path big = scratch("long.csv");
+    {
+        std::ofstream out(big);
+        out << "t,q1\n";
+        const std::string line = "0.00100,0\n";  // 10 bytes: the first block's lines set the estimate
+        for (int k = 0; k < (20 << 20) / 10; ++k) out << line;
+    }
+    fs::resize_file(big, std::uintmax_t{250} << 30);
+    expect_refused(jacobid("differentiate --in " + big.string() + " -c q1"), {"long.csv", "kept columns need", "more than this machine's"});
     fs::remove(big);
 }
 

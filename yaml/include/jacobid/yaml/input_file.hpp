@@ -16,14 +16,19 @@
 
 namespace jacobid::yaml {
 
-// Far above any real log (a 1-hour 1 kHz log of 6 joints is ~400 MB) and below what would make the
-// in-memory parse the machine's problem.
+// For a file read whole: far above any description or capture, and below what would make the in-memory
+// parse the machine's problem.
 constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{2} << 30;
+// For a log streamed block by block (the CSV reader, which holds only the columns a command keeps and
+// checks those against the machine's memory itself): ten hours of 1 kHz 6-axis data as `jacobid simulate`
+// writes it are 14 GB; 256 GB is some 180 such hours.
+constexpr std::uintmax_t kMaxStreamedInputFileBytes = std::uintmax_t{256} << 30;
 
 // Checks that `path` is a regular file within the bound and returns its size; `what` says what it was meant
-// to be ("robot description", "file", ...). For readers that stream the file instead of reading it whole.
+// to be ("robot description", "file", ...). For readers that stream the file instead of reading it whole,
+// with kMaxStreamedInputFileBytes as `max_bytes`.
 template <typename Error>
-std::uintmax_t checked_input_file_size(const std::string& path, const std::string& what) {
+std::uintmax_t checked_input_file_size(const std::string& path, const std::string& what, std::uintmax_t max_bytes = kMaxInputFileBytes) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
@@ -34,9 +39,9 @@ std::uintmax_t checked_input_file_size(const std::string& path, const std::strin
     }
     const std::uintmax_t size = fs::file_size(path, ec);
     if (ec) throw Error(fmt::format("{}: cannot open {}: {}", path, what, ec.message()));
-    if (size > kMaxInputFileBytes) {
+    if (size > max_bytes) {
         throw Error(fmt::format("{}: cannot read {}: {} MB is more than the {} MB an input file may have", path, what, size >> 20,
-                                kMaxInputFileBytes >> 20));
+                                max_bytes >> 20));
     }
     return size;
 }
