@@ -8,7 +8,6 @@
 #include <string>
 
 #include "cli/command.hpp"
-#include "core/free_memory.hpp"
 #include "io/printable_text.hpp"
 
 namespace {
@@ -27,7 +26,6 @@ int report_input_error(const CLI::App& app, std::string message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    jacobid::map_large_blocks();
     CLI::App app{"jacobid: robot dynamic identification with the Jacobi differentiator"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "jacobid 0.1.0");

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/free_memory.hpp"
 #include "cli/command.hpp"
 #include "cli/diagnose_options.hpp"
 #include "cli/fit_options.hpp"
@@ -40,6 +41,7 @@ struct DiagnoseOptions {
 };
 
 void run(DiagnoseOptions o) {
+    map_large_blocks();  // whole-log buffers returned when freed (core/free_memory.hpp)
     std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--validate", o.validate}, {"--log-format", o.log_format.file}};
     for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
     check_outputs({{"--output", o.output}}, read_files);

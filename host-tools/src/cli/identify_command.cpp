@@ -15,6 +15,7 @@
 #include <thread>
 #include <nlohmann/json.hpp>
 
+#include "core/free_memory.hpp"
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/drive_gains_options.hpp"
@@ -341,6 +342,7 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
 }
 
 void run(IdentifyOptions o) {
+    map_large_blocks();  // whole-log buffers returned when freed (core/free_memory.hpp)
     std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--truth", o.truth}, {"--validate", o.validate},
                                                                    {"--can-config", o.can_config}, {"--log-format", o.log_format.file}};
     for (const std::string& in : o.inputs) read_files.push_back({"--in", in});

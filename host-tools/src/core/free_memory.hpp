@@ -17,8 +17,10 @@ inline void return_freed_memory() {
 #endif
 }
 
-// Gives every block of 4 MB or more its own mapping, unmapped when it is freed, for the whole process
-// (jacobid's main calls it first). glibc's threshold otherwise rises with each large block freed, so the
+// Gives every block of 4 MB or more its own mapping, unmapped when it is freed, for the rest of the process:
+// `identify` and `diagnose` call it before they read a log. Not the whole of jacobid: with it, `record` and
+// `sim-can` beside jacobid-fw on the emulated board (tests/vm, scenario board) cost the firmware two overruns
+// of 2.2-2.6 ms at start-up, twice in a row; without it, none. glibc's threshold otherwise rises with each large block freed, so the
 // hour's later whole-log and per-chunk buffers came from the per-thread heaps and their freed space stayed
 // resident there: the peak moved by 25 MB from run to run with the threads' timing (docs/performance.md).
 // A fixed threshold turns that adjustment off. No-op without glibc.
