@@ -23,6 +23,7 @@
 #include "cli/log_format_options.hpp"
 #include "cli/model_export_options.hpp"
 #include "cli/output_file.hpp"
+#include "cli/streamed_log.hpp"
 #include "core/parallel_for.hpp"
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/identify_run.hpp"
@@ -78,6 +79,7 @@ struct IdentifyOptions : FitOptions {
     identify::ModelExportPaths model_export;  // --export-urdf, --export-robot
     DriveGainOptions drive_gains;  // --drive-gains --loaded --payload-mass ...
     std::string period;            // --period auto|SECONDS; empty: off
+    std::size_t piece_rows = 0;    // --piece-rows; 0: automatic (cli/streamed_log.hpp)
 };
 
 // "a.csv", or "a.csv + b.csv" for several logs (titles, messages, the JSON's "log").
@@ -234,9 +236,19 @@ struct InputLogs {
     std::vector<identify::LogColumns> columns;      // every log's, or every segment's, in --in order
     std::vector<identify::SegmentReport> pieces;    // per entry of `columns`: log path (several logs), lines, duration, samples
     std::vector<std::string> names;                 // per entry of `columns`, for messages: "a.csv", "a.csv: segment 2 (lines ...)"
+    std::unique_ptr<StreamedLog> streamed;          // one CSV log read piece by piece: `columns` holds its first piece
     bool several() const { return read.size() > 1; }
     bool split() const { return !read.empty() && read.front().split; }
+    bool in_pieces() const { return streamed && streamed->several(); }
 };
+
+// One plain CSV log that a least-squares estimator identifies: read piece by piece when it is longer than a
+// piece (cli/streamed_log.hpp). The estimators that simulate the log (iv, didim) and --period need it whole.
+bool streamable(const IdentifyOptions& o) {
+    const LogFormatOptions& f = o.log_format;
+    return o.inputs.size() == 1 && f.file.empty() && !f.read.skip_bad_rows && f.on_gap == "error" && !(f.read.max_gap > 0.0) &&
+           o.can_config.empty() && o.period.empty() && o.estimator != "iv" && o.estimator != "didim";
+}
 
 InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOptions& o) {
     // One log given twice would count its equations twice: a std too small by sqrt(2), data invented.
@@ -250,6 +262,15 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
     }
     InputLogs in;
     in.read.resize(o.inputs.size());
+    if (streamable(o)) {
+        const io::LogColumnNames names = robot_column_names(robot, o.time_column);
+        in.streamed = std::make_unique<StreamedLog>(
+            robot, StreamedLogSettings{o.in, identify_columns(names, o), o.time_column, o.time_tolerance, o.piece_rows, !o.quiet});
+        in.read[0].tables.push_back(std::move(in.streamed->first()));
+    } else if (o.piece_rows > 0) {
+        throw InputError("--piece-rows: only a plain CSV log (one --in, without --log-format or --can-config) identified by least squares "
+                         "(not --estimator iv|didim or --period) is read in pieces");
+    }
     ParallelForOptions pool;
     pool.threads = o.threads;
     // Raw logs (--log-format) are resampled onto one grid, the first log's, so that one plan serves them all
@@ -258,7 +279,7 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
     if (one_grid) in.read[0] = read_log(o.inputs[0], robot, o);
     const double period = one_grid ? in.read[0].grid_period : 0.0;
     const std::vector<std::exception_ptr> errors = parallel_for(o.inputs.size(), pool, [&](std::size_t k) {
-        if (!(one_grid && k == 0)) in.read[k] = read_log(o.inputs[k], robot, o, period);
+        if (!(one_grid && k == 0) && !in.streamed) in.read[k] = read_log(o.inputs[k], robot, o, period);
     });
     for (const auto& e : errors) {
         if (e) std::rethrow_exception(e);  // the first --in that failed, whatever the threads
@@ -274,6 +295,13 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
             piece.samples = columns[s].samples();
             piece.duration = piece.samples > 1 ? static_cast<double>(piece.samples - 1) * columns[s].sample_period : 0.0;
             std::string name = o.inputs[k];
+            if (in.in_pieces()) {
+                const io::CsvTable& table = logs.tables[s];
+                piece.first_line = table.line_of_row(0);
+                piece.last_line = table.line_of_row(table.rows() - 1);
+                piece.log = o.inputs[k];  // each piece on its own line of the report, with its equations
+                name = StreamedLog::piece_name(o.inputs[k], 1, piece.first_line, piece.last_line);
+            }
             if (s < logs.segments.size() && logs.split) {
                 piece.first_line = logs.segments[s].first_line;
                 piece.last_line = logs.segments[s].last_line;
@@ -305,14 +333,15 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
 }
 
 // The report lines of the pieces (segments and/or logs); each piece not used also on stderr (never dropped silently).
-std::vector<identify::SegmentReport> piece_reports(const InputLogs& in, const identify::SegmentedOutput& split, const char* method) {
-    std::vector<identify::SegmentReport> reports = in.pieces;
+// `reports` and `names`: those of the pieces read in advance (InputLogs), then of those read piece by piece.
+std::vector<identify::SegmentReport> piece_reports(std::vector<identify::SegmentReport> reports, const std::vector<std::string>& names,
+                                                   const identify::SegmentedOutput& split, const char* method) {
     for (std::size_t s = 0; s < reports.size(); ++s) {
         identify::SegmentReport& r = reports[s];
         r.used = split.used[s];
         r.why = split.why[s];
         r.rows = split.rows[s];
-        if (!r.used) fmt::print(stderr, "jacobid identify [{}]: {} not used: {}\n", method, in.names[s], r.why);
+        if (!r.used) fmt::print(stderr, "jacobid identify [{}]: {} not used: {}\n", method, names[s], r.why);
     }
     return reports;
 }
@@ -387,14 +416,18 @@ void run(IdentifyOptions o) {
     const LogSegments& input = inputs.read.front();
     const std::vector<identify::LogColumns>& logs = inputs.columns;
     // Several pieces (segments of a log cut at its gaps, several logs, or both) are identified together.
-    const bool pieces = inputs.split() || inputs.several();
+    const bool pieces = inputs.split() || inputs.several() || inputs.in_pieces();
     const std::unique_ptr<identify::PeriodicLog> periodic = periodic_log(input, logs, o, identify_settings(o, identify::Method::Jacobi));
     const identify::LogColumns& log = periodic ? periodic->columns : logs.front();
     const double parse_seconds = std::chrono::duration<double>(Clock::now() - parse_start).count();
     std::size_t samples = 0;
     for (const auto& l : logs) samples += l.samples();
+    if (inputs.in_pieces()) samples = inputs.streamed->estimated_rows();
     o.pipeline.progress = !o.quiet && samples > 500'000;
-    if (o.pipeline.progress) fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s\n", samples, log_names(o.inputs), parse_seconds);
+    if (o.pipeline.progress) {
+        fmt::print(stderr, "identify: read {} rows of {} in {:.2f} s{}\n", logs.front().samples(), log_names(o.inputs), parse_seconds,
+                   inputs.in_pieces() ? fmt::format(" (its first piece: about {} rows in all, read piece by piece)", samples) : std::string());
+    }
 
     LogSegments validation_input;
     std::vector<identify::LogColumns> validation_logs;
@@ -438,12 +471,16 @@ void run(IdentifyOptions o) {
             // the delay with the description's alpha, then each joint's alpha (friction alpha: auto) on the aligned log.
             identify::SegmentSource source;
             if (inputs.several()) source = {"--in", "log"};
+            if (inputs.in_pieces()) source = {"--piece-rows", "piece"};
             const identify::SegmentPlan plan = identify::plan_segments(logs, settings, source);
             identify::TorqueDelayResult delay = identify::resolve_torque_delay(*model, logs[plan.reference], plan.fixed, solve, given_torque_delay(o));
             const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], delay.applied());
             identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, reference.log, plan.fixed, solve.weighted);
-            identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, delay.applied(), o.threads);
-            std::vector<identify::SegmentReport> reports = piece_reports(inputs, split, identify::to_string(m));
+            std::vector<identify::SegmentReport> piece_lines = inputs.pieces;
+            std::vector<std::string> piece_names = inputs.names;
+            const identify::NextSegment more = inputs.in_pieces() ? inputs.streamed->rest(logs.front().sample_period, piece_lines, piece_names) : nullptr;
+            identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, delay.applied(), o.threads, more);
+            std::vector<identify::SegmentReport> reports = piece_reports(std::move(piece_lines), piece_names, split, identify::to_string(m));
             fit = identify::solve_identification(std::move(split.merged), std::move(smoothed), std::move(delay), *model, solve);
             fit.result.segments = std::move(reports);
         } else {
@@ -499,6 +536,12 @@ void add_identify_command(CLI::App& app) {
                     "identify several logs together: each log keeps its own edges, their equations are stacked")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    cmd->add_option("--piece-rows", o->piece_rows,
+                    "rows of a long CSV log held at once (default 0: as many as fit in 400 MB of its kept columns, an hour of 1 kHz "
+                    "6-axis data): a longer log is identified piece by piece, like the segments of --on-gap split, so memory does "
+                    "not grow with the log")
+        ->check(whole_number_from(0))
+        ->capture_default_str();
     cmd->add_option("--threads", o->threads,
                     "threads (0: one per core): several logs (or --on-gap split segments) are processed at once, one log's regressor, "
                     "F_p and least squares are split over them; the results do not depend on it")

@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <exception>
 
 #include "core/errors.hpp"
 #include "core/parallel_for.hpp"
@@ -42,43 +43,34 @@ SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const Pipelin
 }
 
 SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
-                                       double torque_delay, int threads) {
+                                       double torque_delay, int threads, const NextSegment& more) {
     SegmentedOutput out;
-    out.used.assign(segments.size(), false);
-    out.why.assign(segments.size(), "");
-    out.rows.assign(segments.size(), 0);
     PipelineInfo& info = out.merged.info;
     PlotRows& plot = out.merged.plot;
     std::size_t samples = 0;
     double seconds_differentiate = 0.0, seconds_filter = 0.0, seconds_ls = 0.0;
     std::vector<double> range;
-    // Each segment on its own (threads), then merged in segment order: the thread count changes no bit.
-    std::vector<PipelineOutput> parts(segments.size());
-    ParallelForOptions pool;
-    pool.threads = threads;
-    pool.stop_on_failure = false;
     // Threads left over when there are fewer pieces than threads go inside each piece's pipeline.
     PipelineSettings fixed = plan.fixed;
     fixed.threads = std::max(1, threads / static_cast<int>(std::max<std::size_t>(1, segments.size())));
     // The Coulomb columns' velocity too is chosen once, on the longest piece with the model as smoothed:
     // each piece choosing from its own noise estimate made a log split at a gap differ from its halves.
     if (fixed.coulomb_velocity_ratios.empty()) fixed.coulomb_velocity_ratios = coulomb_velocity_ratios(&model, segments[plan.reference], fixed, plan.info);
-    const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) {
-        const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
-        parts[s] = run_pipeline(model, aligned.log, fixed);
-    });
-    for (std::size_t s = 0; s < segments.size(); ++s) {
-        if (errors[s]) {
+    // One piece's result, merged (or its reason for not being used recorded) in piece order.
+    const auto absorb = [&](PipelineOutput& part, const std::exception_ptr& error) {
+        out.used.push_back(false);
+        out.why.emplace_back();
+        out.rows.push_back(0);
+        if (error) {
             try {
-                std::rethrow_exception(errors[s]);
+                std::rethrow_exception(error);
             } catch (const InputError& e) {
-                out.why[s] = e.what();
-                continue;
+                out.why.back() = e.what();
+                return;
             }
         }
-        PipelineOutput& part = parts[s];
         if (out.used_count == 0) info = part.info;
-        out.used[s] = true;
+        out.used.back() = true;
         ++out.used_count;
         samples += part.info.samples;
         seconds_differentiate += part.info.seconds_differentiate;
@@ -86,7 +78,7 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
         seconds_ls += part.info.seconds_ls;
         range.resize(part.info.joint_range.size(), 0.0);
         for (std::size_t j = 0; j < range.size(); ++j) range[j] = std::max(range[j], part.info.joint_range[j]);
-        out.rows[s] = part.factors.rows.empty() ? 0 : part.factors.rows.front();
+        out.rows.back() = part.factors.rows.empty() ? 0 : part.factors.rows.front();
         merge_factors(out.merged.factors, part.factors);
         part.factors = JointFactors{};  // merged: free it before the next segment
         // Plot rows of the segments one after another, at their true times.
@@ -99,9 +91,37 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
             plot.y[j].insert(plot.y[j].end(), part.plot.y[j].begin(), part.plot.y[j].begin() + static_cast<std::ptrdiff_t>(take));
             plot.w[j].insert(plot.w[j].end(), part.plot.w[j].begin(), part.plot.w[j].begin() + static_cast<std::ptrdiff_t>(take * c));
         }
+    };
+    {
+        // Each segment on its own (threads), then merged in segment order: the thread count changes no bit.
+        std::vector<PipelineOutput> parts(segments.size());
+        ParallelForOptions pool;
+        pool.threads = threads;
+        pool.stop_on_failure = false;
+        const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) {
+            const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
+            parts[s] = run_pipeline(model, aligned.log, fixed);
+        });
+        for (std::size_t s = 0; s < segments.size(); ++s) absorb(parts[s], errors[s]);
     }
+    if (more) {
+        fixed.threads = threads;
+        LogColumns piece;
+        while (more(piece)) {
+            PipelineOutput part;
+            std::exception_ptr error;
+            try {
+                const ShiftedTorques aligned = shift_torques(piece, torque_delay);
+                part = run_pipeline(model, aligned.log, fixed);
+            } catch (const InputError&) {
+                error = std::current_exception();
+            }
+            absorb(part, error);
+        }
+    }
+    const std::size_t count = out.used.size();
     if (out.used_count == 0) {
-        throw InputError(fmt::format("{}: none of the {} {}s is usable: {}", plan.source.option, segments.size(), plan.source.noun, joined_reasons(out.why)));
+        throw InputError(fmt::format("{}: none of the {} {}s is usable: {}", plan.source.option, count, plan.source.noun, joined_reasons(out.why)));
     }
     info.samples = samples;
     info.bandwidth_estimated = plan.info.bandwidth_estimated;

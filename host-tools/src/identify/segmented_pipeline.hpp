@@ -6,6 +6,7 @@
 // choices (bandwidth, cutoffs, Jacobi windows, decimation) are resolved once, on the longest segment, and
 // imposed on every segment, so all equations come from the same filters. A segment too short for them is
 // not used, with the pipeline's reason; only when no segment is usable is it an error.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,11 +42,17 @@ struct SegmentedOutput {
     std::size_t used_count = 0;
 };
 
+// Pieces produced one at a time after the given ones (a long CSV log read piece by piece, io/csv_pieces.hpp):
+// fills `piece` and returns true, or returns false when none is left. Each piece is identified on every
+// thread and merged before the next is asked for, so that one piece at a time is held; its columns must
+// stay valid until the next call.
+using NextSegment = std::function<bool(LogColumns& piece)>;
+
 // `torque_delay` (s) is applied to every segment (shift_torques). The segments run on up to `threads`
-// threads and are merged in their order, so the result does not depend on the thread count. InputError
-// when no segment is usable, naming each one's reason.
+// threads and are merged in their order, then those of `more`, so the result does not depend on the thread
+// count. InputError when no segment is usable, naming each one's reason.
 SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
-                                       double torque_delay, int threads = 1);
+                                       double torque_delay, int threads = 1, const NextSegment& more = {});
 
 // "reason 1; reason 2; ..." of the segments not used (their non-empty `why`), for one-line errors.
 std::string joined_reasons(const std::vector<std::string>& why);

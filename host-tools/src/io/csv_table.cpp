@@ -4,21 +4,15 @@
 #include <fast_float/fast_float.h>
 #include <fmt/core.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <future>
-#include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <thread>
 
 #include "core/errors.hpp"
-#include "core/huge_pages.hpp"
 #include "core/parallel_for.hpp"
+#include "io/csv_rows.hpp"
 #include "io/printable_text.hpp"
 #include "jacobid/yaml/input_file.hpp"
 
@@ -153,12 +147,14 @@ std::size_t parse_row_range(const std::string& text, std::size_t begin, std::siz
     return row_index - first_row;
 }
 
+}  // namespace
+
 // Rows of text[begin, end) (whole lines; the text ends there only if `last`), the first being line
 // `first_line`, appended to the table's columns. Long pieces are parsed in ranges of whole lines on every
 // core: each range knows its first line number and row (counted first) and writes its own rows, and the
 // first error by position is the one reported, so neither the table nor the message depends on the thread
 // count.
-void parse_rows(const std::string& text, std::size_t begin, std::size_t end, std::size_t first_line, bool last, const CsvChunking& chunking,
+void parse_csv_rows(const std::string& text, std::size_t begin, std::size_t end, std::size_t first_line, bool last, const CsvChunking& chunking,
                 CsvTable& table) {
     if (begin >= end) return;
     const std::size_t bytes = end - begin;
@@ -202,7 +198,7 @@ void parse_rows(const std::string& text, std::size_t begin, std::size_t end, std
 }
 
 // The header row's names (InputError for an empty file or a bad name).
-std::vector<std::string> parse_header(std::string_view row, const std::string& source) {
+std::vector<std::string> parse_csv_header(std::string_view row, const std::string& source) {
     if (trim_cell(row).empty()) throw InputError(fmt::format("{}:1: empty file, expected a header row", source));
     // A UTF-8 byte order mark (spreadsheet exports) is an encoding marker, not part of the first name: kept,
     // it made the first column 'BOM+t', and "no column 't'" listed a 't' that looked the same.
@@ -230,126 +226,14 @@ std::vector<std::string> parse_header(std::string_view row, const std::string& s
     return header;
 }
 
-}  // namespace
-
 CsvTable parse_csv(const std::string& text, const std::string& source, const CsvChunking& chunking) {
     const std::size_t header_end = std::min(text.find('\n'), text.size());
-    CsvTable table(source, parse_header(std::string_view(text).substr(0, header_end), source));
-    parse_rows(text, std::min(header_end + 1, text.size()), text.size(), 2, true, chunking, table);
+    CsvTable table(source, parse_csv_header(std::string_view(text).substr(0, header_end), source));
+    parse_csv_rows(text, std::min(header_end + 1, text.size()), text.size(), 2, true, chunking, table);
     return table;
 }
 
 std::string read_text_file(const std::string& path, const std::string& what) { return yaml::read_input_file<InputError>(path, what); }
-
-// Streamed in blocks of whole lines: the text of a long log is never held whole (a 1-hour 6-axis log is
-// 1.4 GB of text for 0.7 GB of numbers), and each block is parsed as it arrives.
-namespace {
-
-// The file block by block, each next block read on a second thread while the caller parses the last one:
-// reading (a copy out of the page cache, 0.35 s for an hour's 1.4 GB) no longer waits for the parse. The
-// block is never zero-filled (a std::string resized by a block was: 0.3 s of memset per hour).
-class BlockReader {
-public:
-    BlockReader(const std::string& path, std::size_t block_bytes)
-        : path_(path), in_(path, std::ios::binary), block_bytes_(block_bytes), block_(new char[block_bytes]) {
-        if (!in_) throw InputError(fmt::format("{}: cannot open file", path));
-        advise_huge_pages(block_.get(), block_bytes);
-    }
-    // Appends the next block to `buffer`; false when nothing was left. Starts reading the one after it.
-    bool append_to(std::string& buffer) {
-        if (ended_) return false;
-        if (!pending_.valid()) start();
-        const std::size_t got = pending_.get();  // rethrows a read error
-        buffer.append(block_.get(), got);
-        ended_ = in_.eof();
-        if (!ended_) start();
-        return got > 0;
-    }
-    bool ended() const { return ended_; }
-
-private:
-    void start() {
-        pending_ = std::async(std::launch::async, [this] {
-            in_.read(block_.get(), static_cast<std::streamsize>(block_bytes_));
-            if (in_.bad()) throw InputError(fmt::format("{}: read error in file", path_));
-            return static_cast<std::size_t>(in_.gcount());
-        });
-    }
-
-    std::string path_;
-    std::ifstream in_;
-    std::size_t block_bytes_;
-    std::unique_ptr<char[]> block_;
-    bool ended_ = false;
-    std::future<std::size_t> pending_;  // last: destroyed first, so a read still running ends before the stream
-};
-
-}  // namespace
-
-namespace {
-
-// The kept columns of about `rows` rows must fit in the machine's memory: refused before they are read
-// (otherwise the kernel ends the process part way through a long log, with no message).
-void require_memory_for_columns(const std::string& path, std::size_t rows, const CsvTable& table) {
-    std::size_t kept = 0;
-    for (std::size_t c = 0; c < table.header().size(); ++c) kept += table.loaded(c) ? 1 : 0;
-    const double needed = static_cast<double>(rows) * static_cast<double>(kept) * sizeof(double);
-    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    if (pages <= 0 || page <= 0) return;  // unknown: not checked
-    const double memory = static_cast<double>(pages) * static_cast<double>(page);
-    if (needed > memory) {
-        throw InputError(fmt::format("{}: about {:.3g} rows x {} kept columns need {:.1f} GB, more than this machine's {:.1f} GB of memory; "
-                                     "split the log (identify --in a.csv --in b.csv ...)",
-                                     path, static_cast<double>(rows), kept, needed / 1e9, memory / 1e9));
-    }
-}
-
-}  // namespace
-
-CsvTable read_csv(const std::string& path, const CsvChunking& chunking, const CsvColumnFilter& keep) {
-    const std::uintmax_t size = yaml::checked_input_file_size<InputError>(path, "file", yaml::kMaxStreamedInputFileBytes);
-    BlockReader reader(path, std::max<std::size_t>(1, chunking.block_bytes));
-    // At most a block and the partial line before it: reserved once, so that appending a block never
-    // reallocates (and faults a fresh copy in).
-    std::string buffer;
-    buffer.reserve(2 * std::max<std::size_t>(1, chunking.block_bytes) + 1);
-    advise_huge_pages(buffer.data(), buffer.capacity());
-    auto read_more = [&] { return reader.append_to(buffer); };
-    std::size_t newline = std::string::npos;
-    while ((newline = buffer.find('\n')) == std::string::npos && read_more()) {
-    }
-    const std::size_t header_end = std::min(newline, buffer.size());
-    CsvTable table(path, parse_header(std::string_view(buffer).substr(0, header_end), path));
-    if (keep) table.keep_only(keep);
-    buffer.erase(0, std::min(header_end + 1, buffer.size()));
-    // The row count estimated from the first block's lines, so that the columns grow once.
-    if (!buffer.empty() || read_more()) {
-        const auto lines = static_cast<double>(std::count(buffer.begin(), buffer.end(), '\n')) + 1.0;
-        const double bytes_per_line = static_cast<double>(buffer.size()) / lines;
-        const auto estimate = static_cast<std::size_t>(1.02 * static_cast<double>(size) / std::max(1.0, bytes_per_line)) + 16;
-        require_memory_for_columns(path, estimate, table);
-        for (std::size_t c = 0; c < table.header().size(); ++c) {
-            if (!table.loaded(c)) continue;
-            table.mutable_column(c).reserve(estimate);
-            advise_huge_pages(table.column(c));
-        }
-    }
-    std::size_t line = 2;
-    for (bool ended = reader.ended(); !buffer.empty() || !ended;) {
-        if (!ended) {
-            read_more();
-            ended = reader.ended();
-        }
-        // Until the file has ended, whole lines only and never the last one (whether an empty last line is
-        // the file's trailing newline or an empty line inside the data depends on what follows it).
-        const std::size_t cut = ended ? buffer.size() - 1 : buffer.size() < 2 ? std::string::npos : buffer.rfind('\n', buffer.size() - 2);
-        if (buffer.empty() || cut == std::string::npos) continue;  // nothing left, or no whole line yet: read on
-        parse_rows(buffer, 0, cut + 1, line, ended, chunking, table);
-        line += static_cast<std::size_t>(std::count(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(cut + 1), '\n'));
-        buffer.erase(0, cut + 1);
-    }
-    return table;
-}
 
 
 }  // namespace jacobid::io

@@ -38,8 +38,10 @@ public:
     const std::vector<double>& column(const std::string& name) const { return columns_[column_index(name)]; }
     const std::vector<double>& column(std::size_t index) const { return columns_[index]; }
     std::vector<double>& mutable_column(std::size_t index) { return columns_[index]; }
-    // Line number in the file of data row `row` (the header is line 1), for error messages.
-    std::size_t line_of_row(std::size_t row) const { return row + 2; }
+    // Line number in the file of data row `row` (the header is line 1), for error messages. A piece of a
+    // long log (io/csv_pieces.hpp) starts further down: its first row's line is set.
+    std::size_t line_of_row(std::size_t row) const { return first_line_ + row; }
+    void set_first_line(std::size_t line) { first_line_ = line; }
 
 private:
     std::string source_;
@@ -47,6 +49,7 @@ private:
     std::vector<std::vector<double>> columns_;  // column-major: what the numerics consume
     std::vector<char> loaded_;                  // per column
     std::size_t first_loaded_ = 0;              // the column rows() counts
+    std::size_t first_line_ = 2;                // line of row 0
     std::unordered_map<std::string, std::size_t> index_;  // name -> column
 };
 

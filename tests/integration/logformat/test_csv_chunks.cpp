@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "io/csv_pieces.hpp"
 #include "io/csv_table.hpp"
 #include "scratch_directory.hpp"
 
@@ -157,6 +158,96 @@ TEST(CsvChunks, AReleasedColumnIsNoLongerHeld) {
     EXPECT_TRUE(table.has_column("b"));
     EXPECT_EQ(table.rows(), 301u);
     table.release("no such column");
+}
+
+// --- Pieces (io/csv_pieces.hpp): a long log read a piece at a time ---------------------------------------
+
+// Every piece of `path` at `piece_rows`, read with `chunking`.
+std::vector<io::CsvTable> pieces_of(const std::string& path, std::size_t piece_rows, const io::CsvChunking& chunking = {}) {
+    io::CsvPieceReader reader(path, chunking);
+    reader.set_piece_rows(piece_rows);
+    std::vector<io::CsvTable> pieces;
+    for (io::CsvTable piece; reader.next(piece);) pieces.push_back(std::move(piece));
+    return pieces;
+}
+
+// Row i's values (rows_text), at row r of a table, and its line number (header line 1).
+void expect_row(const io::CsvTable& table, std::size_t r, std::size_t i) {
+    ASSERT_EQ(table.column("a")[r], static_cast<double>(i) + 0.25) << i;
+    ASSERT_EQ(table.column("b")[r], -static_cast<double>(i) / 8.0) << i;
+    ASSERT_EQ(table.line_of_row(r), i + 2) << i;
+}
+
+TEST(CsvPieces, ConsecutivePiecesShareOneRowAndTogetherHoldEveryRowOnce) {
+    const std::string path = write("pieces.csv", rows_text(1501, true));
+    for (const auto& chunking : kChunkings) {
+        SCOPED_TRACE(testing::Message() << "block " << chunking.block_bytes << " range " << chunking.range_bytes);
+        const std::vector<io::CsvTable> pieces = pieces_of(path, 100, chunking);
+        // 100 rows, then 99 new ones after the shared row: 1 + ceil(1401 / 99) pieces.
+        ASSERT_EQ(pieces.size(), 16u);
+        std::size_t next = 0;  // the row of the file the next new row must be
+        for (std::size_t k = 0; k < pieces.size(); ++k) {
+            const io::CsvTable& piece = pieces[k];
+            ASSERT_LE(piece.rows(), 100u);
+            ASSERT_EQ(piece.header(), (std::vector<std::string>{"t", "a", "b"}));
+            std::size_t r = 0;
+            if (k > 0) {
+                expect_row(piece, 0, next - 1);  // the previous piece's last row, again
+                r = 1;
+            }
+            for (; r < piece.rows(); ++r) expect_row(piece, r, next++);
+        }
+        EXPECT_EQ(next, 1501u);
+    }
+}
+
+TEST(CsvPieces, AShortRestOfTheFileStaysInTheLastPiece) {
+    // 1010 rows at 1000 per piece: the 10 left (1 % of a piece) are not a piece of their own.
+    const std::vector<io::CsvTable> pieces = pieces_of(write("rest.csv", rows_text(1010, false)), 1000, {4096, 512, 2});
+    ASSERT_EQ(pieces.size(), 1u);
+    EXPECT_EQ(pieces[0].rows(), 1010u);
+    // 1200: 200 left (20 %) are.
+    const std::vector<io::CsvTable> two = pieces_of(write("rest2.csv", rows_text(1200, true)), 1000, {4096, 512, 2});
+    ASSERT_EQ(two.size(), 2u);
+    EXPECT_EQ(two[1].rows(), 201u);
+    // No piece size: the whole file, as read_csv.
+    expect_rows(pieces_of(write("whole.csv", rows_text(1200, true)), 0).front(), 1200);
+}
+
+TEST(CsvPieces, AnErrorInALaterPieceNamesItsLineInTheFile) {
+    std::string text = rows_text(1501, true);
+    const std::size_t at = text.find(",750.250000") + 1;  // row 750: line 752
+    text.replace(at, 3, "7x0");
+    const std::string path = write("bad_piece.csv", text);
+    for (const auto& chunking : kChunkings) {
+        try {
+            (void)pieces_of(path, 100, chunking);
+            ADD_FAILURE() << "no error";
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()), path + ":752: column 'a': expected a number, got '7x0.250000'");
+        }
+    }
+}
+
+TEST(CsvPieces, AReaderResumedAtAPositionReadsTheSamePiecesOn) {
+    const std::string path = write("resume.csv", rows_text(1501, true));
+    io::CsvPieceReader reader(path, {97, 31, 3});
+    reader.set_piece_rows(400);
+    io::CsvTable first;
+    ASSERT_TRUE(reader.next(first));
+    const io::CsvPosition after_first = reader.position();
+    io::CsvPieceReader resumed(path, {4096, 512, 2}, {}, &after_first);
+    resumed.set_piece_rows(400);
+    for (io::CsvTable a, b; reader.next(a);) {
+        ASSERT_TRUE(resumed.next(b));
+        ASSERT_EQ(a.rows(), b.rows());
+        ASSERT_EQ(a.line_of_row(0), b.line_of_row(0));
+        EXPECT_EQ(a.column("a"), b.column("a"));
+        EXPECT_EQ(a.column("t"), b.column("t"));
+    }
+    io::CsvTable none;
+    EXPECT_FALSE(resumed.next(none));
+    EXPECT_TRUE(resumed.at_end());
 }
 
 }  // namespace
