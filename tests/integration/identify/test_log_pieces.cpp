@@ -134,6 +134,29 @@ TEST(LogPieces, ATimeGapWherePiecesMeetIsFound) {
     EXPECT_NE(r.err.find(fmt::format("{}:{}:", file, kPiece + 2)), std::string::npos) << r.err;
 }
 
+TEST(LogPieces, ASamplePeriodThatChangesFromOnePieceToTheNextIsRefused) {
+    const Log& l = log();
+    // From the first piece's last row on, every step is 2 ms: the second piece is uniform, on another period.
+    const std::string file = path("slower.csv");
+    {
+        std::ofstream out(file);
+        out << l.header << '\n';
+        for (std::size_t i = 0; i < kRows; ++i) {
+            std::string row = l.rows[i];
+            if (i >= kPiece) {
+                const std::size_t comma = row.find(',');
+                row = fmt::format("{:.6f}", 1e-3 * static_cast<double>(kPiece - 1) + 2e-3 * static_cast<double>(i - (kPiece - 1))) + row.substr(comma);
+            }
+            out << row << '\n';
+        }
+    }
+    const auto r = jacobid_cli(l.identify("--in " + file + " --piece-rows " + std::to_string(kPiece)));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(fmt::format("{}: piece 2 (lines {}-{}): sampled every 2 ms, but the first piece every 1 ms", file, kPiece + 1, 2 * kPiece)),
+              std::string::npos)
+        << r.err;
+}
+
 TEST(LogPieces, PieceRowsAreRefusedWherePiecesCannotServe) {
     const Log& l = log();
     l.write(path("other.csv"), 0, 5000);
