@@ -333,6 +333,20 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
 }
 
 // The report lines of the pieces (segments and/or logs); each piece not used also on stderr (never dropped silently).
+// A log read piece by piece: its first piece freed once identified, so that one piece at a time is held, and
+// read again for the next method.
+void release_first_piece(InputLogs& in) {
+    in.columns.front() = identify::LogColumns{};
+    std::vector<io::CsvTable>().swap(in.read.front().tables);
+}
+
+void read_first_piece_again(InputLogs& in, const robot::RobotDescription& robot, const IdentifyOptions& o) {
+    std::vector<io::CsvTable>& tables = in.read.front().tables;
+    tables.push_back(in.streamed->read_first_again());
+    in.columns.front() = identify::log_columns(tables.front(), robot, o.time_column, o.time_tolerance, 0.0);
+    tables.front().release(o.time_column);
+}
+
 // `reports` and `names`: those of the pieces read in advance (InputLogs), then of those read piece by piece.
 std::vector<identify::SegmentReport> piece_reports(std::vector<identify::SegmentReport> reports, const std::vector<std::string>& names,
                                                    const identify::SegmentedOutput& split, const char* method) {
@@ -412,7 +426,7 @@ void run(IdentifyOptions o) {
     o.physical = o.physical || (o.model_export.any() && !o.semi_physical);
     const std::optional<identify::PhysicalSettings> physical = physical_settings(o);
     const auto parse_start = Clock::now();
-    const InputLogs inputs = read_inputs(robot, o);
+    InputLogs inputs = read_inputs(robot, o);
     const LogSegments& input = inputs.read.front();
     const std::vector<identify::LogColumns>& logs = inputs.columns;
     // Several pieces (segments of a log cut at its gaps, several logs, or both) are identified together.
@@ -472,13 +486,18 @@ void run(IdentifyOptions o) {
             identify::SegmentSource source;
             if (inputs.several()) source = {"--in", "log"};
             if (inputs.in_pieces()) source = {"--piece-rows", "piece"};
+            if (inputs.in_pieces() && logs.front().q.empty()) read_first_piece_again(inputs, robot, o);  // freed by the method before
             const identify::SegmentPlan plan = identify::plan_segments(logs, settings, source);
             identify::TorqueDelayResult delay = identify::resolve_torque_delay(*model, logs[plan.reference], plan.fixed, solve, given_torque_delay(o));
-            const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], delay.applied());
-            identify::SmoothedModel smoothed = identify::resolve_coulomb_smoothing(robot, *model, reference.log, plan.fixed, solve.weighted);
+            identify::SmoothedModel smoothed = [&] {
+                const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], delay.applied());
+                return identify::resolve_coulomb_smoothing(robot, *model, reference.log, plan.fixed, solve.weighted);
+            }();  // the aligned copy of the reference's torques is not held through the identification
             std::vector<identify::SegmentReport> piece_lines = inputs.pieces;
             std::vector<std::string> piece_names = inputs.names;
-            const identify::NextSegment more = inputs.in_pieces() ? inputs.streamed->rest(logs.front().sample_period, piece_lines, piece_names) : nullptr;
+            const identify::NextSegment more =
+                inputs.in_pieces() ? inputs.streamed->rest(logs.front().sample_period, piece_lines, piece_names, [&] { release_first_piece(inputs); })
+                                   : nullptr;
             identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(*model), logs, plan, delay.applied(), o.threads, more);
             std::vector<identify::SegmentReport> reports = piece_reports(std::move(piece_lines), piece_names, split, identify::to_string(m));
             fit = identify::solve_identification(std::move(split.merged), std::move(smoothed), std::move(delay), *model, solve);

@@ -36,20 +36,36 @@ StreamedLog::StreamedLog(const robot::RobotDescription& robot, StreamedLogSettin
     after_first_ = reader.position();
 }
 
-identify::NextSegment StreamedLog::rest(double first_period, std::vector<identify::SegmentReport>& reports, std::vector<std::string>& names) const {
+io::CsvTable StreamedLog::read_first_again() const {
+    io::CsvPieceReader reader(settings_.path, {}, settings_.keep);
+    reader.set_piece_rows(size_.rows);
+    reader.set_piece_bytes(size_.bytes);
+    io::CsvTable table;
+    reader.next(table);
+    return table;
+}
+
+identify::NextSegment StreamedLog::rest(double first_period, std::vector<identify::SegmentReport>& reports, std::vector<std::string>& names,
+                                        std::function<void()> release_first) const {
     if (!several_) return {};
     // Shared by the copies of the returned function; the table of the piece last returned lives here.
     struct State {
         std::unique_ptr<io::CsvPieceReader> reader;
         io::CsvTable table;
         std::size_t index = 1;
+        std::function<void()> release_first;
     };
     auto state = std::make_shared<State>();
+    state->release_first = std::move(release_first);
     state->reader = std::make_unique<io::CsvPieceReader>(settings_.path, io::CsvChunking{}, settings_.keep, &after_first_);
     state->reader->set_piece_rows(size_.rows);
     state->reader->set_piece_bytes(size_.bytes);
     return [this, state, first_period, &reports, &names](identify::LogColumns& piece) {
         state->table = io::CsvTable{};  // the last piece is identified: freed before the next is read
+        if (state->release_first) {
+            state->release_first();
+            state->release_first = nullptr;
+        }
         if (!state->reader->next(state->table)) return false;
         ++state->index;
         const io::CsvTable& table = state->table;

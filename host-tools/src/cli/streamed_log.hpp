@@ -7,6 +7,7 @@
 // decimation, torque delay, Coulomb smoothing) resolved on the first piece, the longest, and each piece
 // with its own edges, so the equations within a differentiator window of each seam are not formed.
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,8 +52,12 @@ public:
 
     // The pieces after the first, read from the file again on each call (identify runs one method after
     // another); `first_period` is the first piece's sample period, which every piece must share. Each
-    // piece read adds its line to `reports` and `names`.
-    identify::NextSegment rest(double first_period, std::vector<identify::SegmentReport>& reports, std::vector<std::string>& names) const;
+    // piece read adds its line to `reports` and `names`. `release_first` is called once, before the second
+    // piece is read: the caller frees the first piece there, so that one piece at a time is held.
+    identify::NextSegment rest(double first_period, std::vector<identify::SegmentReport>& reports, std::vector<std::string>& names,
+                               std::function<void()> release_first = {}) const;
+    // The first piece read again (after release_first, for the next method).
+    io::CsvTable read_first_again() const;
 
     // "a.csv: piece K (lines a-b)", for messages.
     static std::string piece_name(const std::string& path, std::size_t k, std::size_t first_line, std::size_t last_line);

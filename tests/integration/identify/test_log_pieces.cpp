@@ -83,6 +83,15 @@ TEST(LogPieces, EqualTheSameRowsGivenAsSeparateLogs) {
         EXPECT_NEAR(parameters(pieces)[name]["value"].get<double>(), v, 1e-10 * std::abs(v)) << name;
         EXPECT_NEAR(parameters(pieces)[name]["std"].get<double>(), s, 1e-8 * s) << name;
     }
+    // The first piece is freed once identified and read again for the next method: the second method's
+    // result (and the first's) is what it gives alone.
+    const json both = run_json(l.identify("--in " + l.csv + " --piece-rows " + std::to_string(kPiece) + " --method both"));
+    const json butterworth = run_json(l.identify("--in " + l.csv + " --piece-rows " + std::to_string(kPiece) + " --method butterworth"));
+    for (const auto& [name, p] : parameters(pieces).items()) {
+        EXPECT_EQ(both["methods"]["jacobi"]["parameters"][name]["value"], p["value"]) << name;
+        EXPECT_EQ(both["methods"]["butterworth"]["parameters"][name]["value"], butterworth["methods"]["butterworth"]["parameters"][name]["value"]) << name;
+    }
+    EXPECT_EQ(both["methods"]["butterworth"]["segments"].size(), 3u);
     // Each piece reported with its lines in the file (the header is line 1) and its equations.
     const json& segments = pieces["methods"]["jacobi"]["segments"];
     ASSERT_EQ(segments.size(), 3u) << pieces.dump(1);
