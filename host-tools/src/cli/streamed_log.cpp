@@ -73,6 +73,8 @@ identify::NextSegment StreamedLog::rest(double first_period, std::vector<identif
         const std::string name = piece_name(settings_.path, state->index, first_line, last_line);
         piece = identify::log_columns(table, robot_, settings_.time_column, settings_.time_tolerance, 0.0);
         state->table.release(settings_.time_column);
+        // Identified once (read again for a further method): its torques are aligned in place, not copied.
+        for (const std::string& name : piece.tau_names) piece.own_tau.push_back(&state->table.mutable_column(state->table.column_index(name)));
         // One plan (windows, F_p, decimation in samples) serves every piece: they must share their sampling.
         if (std::abs(piece.sample_period - first_period) > 1e-3 * first_period) {
             throw InputError(fmt::format("{}: sampled every {:.6g} ms, but the first piece every {:.6g} ms; a log's sample period must not change",

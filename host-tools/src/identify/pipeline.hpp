@@ -94,6 +94,10 @@ struct LogColumns {
     // where not logged; what the estimators IDIM-IV and DIDIM simulate the identified model along.
     std::vector<const std::vector<double>*> q_ref, qd_ref;
     std::vector<std::string> q_names, tau_names;
+    // The same torque columns, writable, when their owner lets the identification align them in place (it
+    // reads them no more: one method on the log's own table); empty: shift_torques aligns into a copy (an
+    // hour of 6-axis torques is 173 MB, docs/performance.md).
+    std::vector<std::vector<double>*> own_tau;
     std::size_t samples() const { return q.empty() ? 0 : q.front()->size(); }
 };
 

@@ -20,11 +20,42 @@ double sample_at(const std::vector<double>& x, double at) {
     return (1.0 - f) * x[i] + f * x[i + 1];
 }
 
+namespace {
+
+// x[k] = sample_at(x, k + shift) for every k, in place: a later sample is read before it is written when
+// shift > 0 (forward), an earlier one when shift < 0 (backward), so every read sees the original value.
+void shift_in_place(std::vector<double>& x, double shift) {
+    if (x.empty()) return;
+    const double first = x.front(), last = x.back();
+    const auto at = [&](std::size_t k) {
+        const double a = static_cast<double>(k) + shift;
+        if (!(a > 0.0)) return first;
+        const auto i = static_cast<std::size_t>(std::floor(a));
+        if (i + 1 >= x.size()) return last;
+        const double f = a - static_cast<double>(i);
+        return (1.0 - f) * x[i] + f * x[i + 1];
+    };
+    if (shift > 0.0) {
+        for (std::size_t k = 0; k < x.size(); ++k) x[k] = at(k);
+    } else {
+        for (std::size_t k = x.size(); k-- > 0;) x[k] = at(k);
+    }
+}
+
+}  // namespace
+
 ShiftedTorques shift_torques(const LogColumns& log, double delay) {
     ShiftedTorques s;
     s.log = log;
+    s.log.own_tau.clear();  // the view never aligns them again
     if (delay == 0.0) return s;  // the log itself: no copy of its torques
     const double shift = delay / log.sample_period;
+    bool owned = log.own_tau.size() == log.tau.size();
+    for (std::size_t j = 0; owned && j < log.tau.size(); ++j) owned = log.own_tau[j] == log.tau[j];
+    if (owned) {
+        for (std::vector<double>* x : log.own_tau) shift_in_place(*x, shift);
+        return s;
+    }
     s.tau.resize(log.tau.size());
     for (std::size_t j = 0; j < log.tau.size(); ++j) {
         const auto& x = *log.tau[j];

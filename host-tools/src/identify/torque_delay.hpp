@@ -26,7 +26,8 @@ double sample_at(const std::vector<double>& x, double at);
 
 // Torque columns of `log` read `delay` seconds later (linear interpolation, held at the ends), and a view
 // of the log that uses them (positions shared with `log`, which must outlive it). A zero delay copies
-// nothing: the view is `log` itself.
+// nothing: the view is `log` itself. With `log.own_tau` given, the columns are aligned in place (the same
+// values) and the view, which is `log` without own_tau, is the only one to read them afterwards.
 struct ShiftedTorques {
     std::vector<std::vector<double>> tau;
     LogColumns log;

@@ -203,4 +203,39 @@ TEST(TorqueDelay, AnUnknownStdIsSaidInWordsNotPrintedAsInf) {
     EXPECT_NE(jacobid::identify::describe(r).find("(std 0.400 ms, "), std::string::npos) << jacobid::identify::describe(r);
 }
 
+// Aligned in place (LogColumns::own_tau: identify's own table, one method) or into a copy, the torques are
+// the same values: both against linear interpolation written out here, for leads and lags of whole and
+// fractional samples, ends held.
+TEST(TorqueDelay, TorquesAlignedInPlaceEqualTheCopy) {
+    const std::size_t n = 50;
+    std::vector<std::vector<double>> q = {std::vector<double>(n, 0.0)}, taus = {std::vector<double>(n)};
+    std::vector<double>& tau = taus.front();
+    for (std::size_t k = 0; k < n; ++k) tau[k] = std::sin(0.3 * static_cast<double>(k)) + 0.01 * static_cast<double>(k * k);
+    const double period = 1e-3;
+    for (const double shift : {0.37, -0.37, 1.0, -1.6, 2.5, -3.0}) {
+        SCOPED_TRACE(shift);
+        std::vector<double> expected(n);
+        for (std::size_t k = 0; k < n; ++k) {
+            const double at = static_cast<double>(k) + shift;
+            const double i = std::floor(at);
+            expected[k] = at <= 0.0 ? tau.front() : i + 1 >= static_cast<double>(n) ? tau.back()
+                                                                                     : (1.0 - (at - i)) * tau[static_cast<std::size_t>(i)] + (at - i) * tau[static_cast<std::size_t>(i) + 1];
+        }
+        const jacobid::identify::LogColumns log = jacobid::identify::log_columns(q, taus, period, "test");
+        const auto copied = jacobid::identify::shift_torques(log, shift * period);
+        std::vector<double> owned_tau = tau;
+        jacobid::identify::LogColumns owned = log;
+        owned.tau = {&owned_tau};
+        owned.own_tau = {&owned_tau};
+        const auto in_place = jacobid::identify::shift_torques(owned, shift * period);
+        EXPECT_TRUE(in_place.tau.empty()) << "no copy";
+        EXPECT_TRUE(in_place.log.own_tau.empty()) << "the view never aligns them again";
+        EXPECT_EQ(in_place.log.tau.front(), &owned_tau);
+        for (std::size_t k = 0; k < n; ++k) {
+            EXPECT_NEAR((*copied.log.tau.front())[k], expected[k], 1e-12) << k;
+            EXPECT_EQ(owned_tau[k], (*copied.log.tau.front())[k]) << k;
+        }
+    }
+}
+
 }  // namespace
