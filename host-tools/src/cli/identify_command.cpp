@@ -333,13 +333,6 @@ InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOption
 }
 
 // The report lines of the pieces (segments and/or logs); each piece not used also on stderr (never dropped silently).
-// The table's torque columns, writable (LogColumns::own_tau).
-std::vector<std::vector<double>*> torque_columns(io::CsvTable& table, const std::vector<std::string>& names) {
-    std::vector<std::vector<double>*> columns;
-    for (const std::string& name : names) columns.push_back(&table.mutable_column(table.column_index(name)));
-    return columns;
-}
-
 // A log read piece by piece: its first piece freed once identified, so that one piece at a time is held, and
 // read again for the next method.
 void release_first_piece(InputLogs& in) {
@@ -502,7 +495,7 @@ void run(IdentifyOptions o) {
             }();  // the aligned copy of the reference's torques is not held through the identification
             // A log read piece by piece: its first piece is read again for a further method, so the pipeline,
             // its last reader, aligns its torques in place (as it does every later piece's).
-            if (inputs.in_pieces()) inputs.columns.front().own_tau = torque_columns(inputs.read.front().tables.front(), logs.front().tau_names);
+            if (inputs.in_pieces()) inputs.columns.front().own_tau = identify::writable_torques(inputs.read.front().tables.front(), logs.front());
             std::vector<identify::SegmentReport> piece_lines = inputs.pieces;
             std::vector<std::string> piece_names = inputs.names;
             const identify::NextSegment more =
@@ -515,7 +508,7 @@ void run(IdentifyOptions o) {
         } else {
             // One method reads the log's torques once: they are aligned in place rather than copied.
             identify::LogColumns view = log;
-            if (!periodic && methods_of(o.method).size() == 1) view.own_tau = torque_columns(inputs.read.front().tables.front(), view.tau_names);
+            if (!periodic && methods_of(o.method).size() == 1) view.own_tau = identify::writable_torques(inputs.read.front().tables.front(), view);
             fit = identify::identify_log(robot, *model, view, {settings, solve, given_torque_delay(o), resolved.estimator});
         }
         if (physical) identify::make_physically_consistent(fit, robot, *model, *physical);

@@ -36,12 +36,16 @@ StreamedLog::StreamedLog(const robot::RobotDescription& robot, StreamedLogSettin
     after_first_ = reader.position();
 }
 
+std::unique_ptr<io::CsvPieceReader> StreamedLog::open(const io::CsvPosition* from) const {
+    auto reader = std::make_unique<io::CsvPieceReader>(settings_.path, io::CsvChunking{}, settings_.keep, from);
+    reader->set_piece_rows(size_.rows);
+    reader->set_piece_bytes(size_.bytes);
+    return reader;
+}
+
 io::CsvTable StreamedLog::read_first_again() const {
-    io::CsvPieceReader reader(settings_.path, {}, settings_.keep);
-    reader.set_piece_rows(size_.rows);
-    reader.set_piece_bytes(size_.bytes);
     io::CsvTable table;
-    reader.next(table);
+    open(nullptr)->next(table);
     return table;
 }
 
@@ -57,9 +61,7 @@ identify::NextSegment StreamedLog::rest(double first_period, std::vector<identif
     };
     auto state = std::make_shared<State>();
     state->release_first = std::move(release_first);
-    state->reader = std::make_unique<io::CsvPieceReader>(settings_.path, io::CsvChunking{}, settings_.keep, &after_first_);
-    state->reader->set_piece_rows(size_.rows);
-    state->reader->set_piece_bytes(size_.bytes);
+    state->reader = open(&after_first_);
     return [this, state, first_period, &reports, &names](identify::LogColumns& piece) {
         state->table = io::CsvTable{};  // the last piece is identified: freed before the next is read
         if (state->release_first) {
@@ -74,7 +76,7 @@ identify::NextSegment StreamedLog::rest(double first_period, std::vector<identif
         piece = identify::log_columns(table, robot_, settings_.time_column, settings_.time_tolerance, 0.0);
         state->table.release(settings_.time_column);
         // Identified once (read again for a further method): its torques are aligned in place, not copied.
-        for (const std::string& name : piece.tau_names) piece.own_tau.push_back(&state->table.mutable_column(state->table.column_index(name)));
+        piece.own_tau = identify::writable_torques(state->table, piece);
         // One plan (windows, F_p, decimation in samples) serves every piece: they must share their sampling.
         if (std::abs(piece.sample_period - first_period) > 1e-3 * first_period) {
             throw InputError(fmt::format("{}: sampled every {:.6g} ms, but the first piece every {:.6g} ms; a log's sample period must not change",

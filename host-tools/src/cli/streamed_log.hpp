@@ -63,6 +63,9 @@ public:
     static std::string piece_name(const std::string& path, std::size_t k, std::size_t first_line, std::size_t last_line);
 
 private:
+    // A reader of the file at the pieces' size, at its first piece or at `from`.
+    std::unique_ptr<io::CsvPieceReader> open(const io::CsvPosition* from) const;
+
     const robot::RobotDescription& robot_;
     StreamedLogSettings settings_;
     io::CsvTable first_;

@@ -63,6 +63,12 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
     return log;
 }
 
+std::vector<std::vector<double>*> writable_torques(io::CsvTable& table, const LogColumns& log) {
+    std::vector<std::vector<double>*> columns;
+    for (const std::string& name : log.tau_names) columns.push_back(&table.mutable_column(table.column_index(name)));
+    return columns;
+}
+
 LogColumns log_columns(const std::vector<std::vector<double>>& q, const std::vector<std::vector<double>>& tau, double sample_period,
                        const std::string& source, double start_time) {
     if (q.empty() || q.size() != tau.size()) {

@@ -32,6 +32,10 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
 // all of one length, sampled every `sample_period` seconds from `start_time`. Columns are named q1.., tau1..;
 // pointers into q and tau, which must outlive the result. InputError for mismatched lengths or joint
 // counts, or a sample period that is not positive.
+// `log`'s torque columns in `table`, where log_columns found them, made writable: set as log.own_tau by an
+// owner that reads them no more, so that the identification aligns them in place (LogColumns::own_tau).
+std::vector<std::vector<double>*> writable_torques(io::CsvTable& table, const LogColumns& log);
+
 LogColumns log_columns(const std::vector<std::vector<double>>& q, const std::vector<std::vector<double>>& tau, double sample_period,
                        const std::string& source, double start_time = 0.0);
 

@@ -92,16 +92,17 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
             plot.w[j].insert(plot.w[j].end(), part.plot.w[j].begin(), part.plot.w[j].begin() + static_cast<std::ptrdiff_t>(take * c));
         }
     };
+    const auto identify_piece = [&](const LogColumns& piece) {
+        const ShiftedTorques aligned = shift_torques(piece, torque_delay);
+        return run_pipeline(model, aligned.log, fixed);
+    };
     {
         // Each segment on its own (threads), then merged in segment order: the thread count changes no bit.
         std::vector<PipelineOutput> parts(segments.size());
         ParallelForOptions pool;
         pool.threads = threads;
         pool.stop_on_failure = false;
-        const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) {
-            const ShiftedTorques aligned = shift_torques(segments[s], torque_delay);
-            parts[s] = run_pipeline(model, aligned.log, fixed);
-        });
+        const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) { parts[s] = identify_piece(segments[s]); });
         for (std::size_t s = 0; s < segments.size(); ++s) absorb(parts[s], errors[s]);
     }
     if (more) {
@@ -111,8 +112,7 @@ SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std
             PipelineOutput part;
             std::exception_ptr error;
             try {
-                const ShiftedTorques aligned = shift_torques(piece, torque_delay);
-                part = run_pipeline(model, aligned.log, fixed);
+                part = identify_piece(piece);
             } catch (const InputError&) {
                 error = std::current_exception();
             }

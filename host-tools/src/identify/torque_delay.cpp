@@ -23,22 +23,13 @@ double sample_at(const std::vector<double>& x, double at) {
 namespace {
 
 // x[k] = sample_at(x, k + shift) for every k, in place: a later sample is read before it is written when
-// shift > 0 (forward), an earlier one when shift < 0 (backward), so every read sees the original value.
+// shift > 0 (forward), an earlier one when shift < 0 (backward), so every read sees the original value (the
+// ends sample_at holds are written last in either order).
 void shift_in_place(std::vector<double>& x, double shift) {
-    if (x.empty()) return;
-    const double first = x.front(), last = x.back();
-    const auto at = [&](std::size_t k) {
-        const double a = static_cast<double>(k) + shift;
-        if (!(a > 0.0)) return first;
-        const auto i = static_cast<std::size_t>(std::floor(a));
-        if (i + 1 >= x.size()) return last;
-        const double f = a - static_cast<double>(i);
-        return (1.0 - f) * x[i] + f * x[i + 1];
-    };
     if (shift > 0.0) {
-        for (std::size_t k = 0; k < x.size(); ++k) x[k] = at(k);
+        for (std::size_t k = 0; k < x.size(); ++k) x[k] = sample_at(x, static_cast<double>(k) + shift);
     } else {
-        for (std::size_t k = x.size(); k-- > 0;) x[k] = at(k);
+        for (std::size_t k = x.size(); k-- > 0;) x[k] = sample_at(x, static_cast<double>(k) + shift);
     }
 }
 

@@ -121,7 +121,7 @@ CsvPieceReader::CsvPieceReader(const std::string& path, const CsvChunking& chunk
     if (!buffer_.empty() || read_more()) {
         const auto lines = static_cast<double>(std::count(buffer_.begin(), buffer_.end(), '\n')) + 1.0;
         bytes_per_line_ = std::max(1.0, static_cast<double>(buffer_.size()) / lines);
-        estimated_rows_ = static_cast<std::size_t>(1.02 * static_cast<double>(size_ - consumed_) / bytes_per_line_) + 16;
+        estimated_rows_ = rows_in(size_ - consumed_);
     }
 }
 
@@ -139,14 +139,17 @@ CsvPosition CsvPieceReader::position() const { return {consumed_, line_, carried
 
 bool CsvPieceReader::at_end() const { return buffer_.empty() && blocks_->ended(); }
 
+std::size_t CsvPieceReader::rows_in(std::uint64_t bytes) const {
+    return static_cast<std::size_t>(1.02 * static_cast<double>(bytes) / bytes_per_line_) + 16;
+}
+
 bool CsvPieceReader::next(CsvTable& piece) {
     const bool first = first_;
     first_ = false;
-    if (!first && buffer_.empty() && blocks_->ended()) return false;
+    if (!first && at_end()) return false;
     std::size_t cap = piece_rows_ > 0 ? piece_rows_ : std::numeric_limits<std::size_t>::max();
-    const std::size_t left = static_cast<std::size_t>(1.02 * static_cast<double>(size_ - consumed_) / bytes_per_line_) + 16;
-    std::size_t expected = std::min(left + carried_.size(), cap);
-    if (piece_bytes_ > 0) expected = std::min(expected, static_cast<std::size_t>(1.02 * static_cast<double>(piece_bytes_) / bytes_per_line_) + 17);
+    std::size_t expected = std::min(rows_in(size_ - consumed_) + carried_.size(), cap);
+    if (piece_bytes_ > 0) expected = std::min(expected, rows_in(piece_bytes_) + 1);
     require_memory_for_columns(path_, expected, kept_columns());
     piece = columns_;
     piece.set_first_line(carried_.empty() ? line_ : carried_line_);

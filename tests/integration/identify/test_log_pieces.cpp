@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -50,6 +51,20 @@ struct Log {
         std::ofstream out(file);
         out << header << '\n';
         for (std::size_t i = begin; i < end; ++i) out << rows[i] << '\n';
+    }
+    // All rows under the header, the time of each row i >= kPiece (the second piece's first new row on) set to
+    // new_time(i, its time).
+    void write_with_later_times(const std::string& file, const std::function<double(std::size_t, double)>& new_time) const {
+        std::ofstream out(file);
+        out << header << '\n';
+        for (std::size_t i = 0; i < kRows; ++i) {
+            std::string row = rows[i];
+            if (i >= kPiece) {
+                const std::size_t comma = row.find(',');
+                row = fmt::format("{:.6f}", new_time(i, std::stod(row.substr(0, comma)))) + row.substr(comma);
+            }
+            out << row << '\n';
+        }
     }
     std::string identify(const std::string& extra) const { return "identify --quiet --robot " + robot + " --torque-delay 0 " + extra; }
 };
@@ -124,20 +139,9 @@ TEST(LogPieces, StayCloseToTheWholeLog) {
 
 TEST(LogPieces, ATimeGapWherePiecesMeetIsFound) {
     const Log& l = log();
-    // 0.1 s added to every time from the first piece's last row on: the step into it is a gap.
+    // 0.1 s added to every time after the first piece's last row: the step out of it is a gap.
     const std::string file = path("gap.csv");
-    {
-        std::ofstream out(file);
-        out << l.header << '\n';
-        for (std::size_t i = 0; i < kRows; ++i) {
-            std::string row = l.rows[i];
-            if (i >= kPiece) {
-                const std::size_t comma = row.find(',');
-                row = fmt::format("{:.6f}", std::stod(row.substr(0, comma)) + 0.1) + row.substr(comma);
-            }
-            out << row << '\n';
-        }
-    }
+    l.write_with_later_times(file, [](std::size_t, double t) { return t + 0.1; });
     const auto r = jacobid_cli(l.identify("--in " + file + " --piece-rows " + std::to_string(kPiece)));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find(fmt::format("{}:{}:", file, kPiece + 2)), std::string::npos) << r.err;
@@ -147,18 +151,9 @@ TEST(LogPieces, ASamplePeriodThatChangesFromOnePieceToTheNextIsRefused) {
     const Log& l = log();
     // From the first piece's last row on, every step is 2 ms: the second piece is uniform, on another period.
     const std::string file = path("slower.csv");
-    {
-        std::ofstream out(file);
-        out << l.header << '\n';
-        for (std::size_t i = 0; i < kRows; ++i) {
-            std::string row = l.rows[i];
-            if (i >= kPiece) {
-                const std::size_t comma = row.find(',');
-                row = fmt::format("{:.6f}", 1e-3 * static_cast<double>(kPiece - 1) + 2e-3 * static_cast<double>(i - (kPiece - 1))) + row.substr(comma);
-            }
-            out << row << '\n';
-        }
-    }
+    l.write_with_later_times(file, [](std::size_t i, double) {
+        return 1e-3 * static_cast<double>(kPiece - 1) + 2e-3 * static_cast<double>(i - (kPiece - 1));
+    });
     const auto r = jacobid_cli(l.identify("--in " + file + " --piece-rows " + std::to_string(kPiece)));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find(fmt::format("{}: piece 2 (lines {}-{}): sampled every 2 ms, but the first piece every 1 ms", file, kPiece + 1, 2 * kPiece)),
