@@ -98,6 +98,9 @@ struct LogColumns {
     // reads them no more: one method on the log's own table); empty: shift_torques aligns into a copy (an
     // hour of 6-axis torques is 173 MB, docs/performance.md).
     std::vector<std::vector<double>*> own_tau;
+    // The delay (s) its torques are already read later by (a view of shift_torques): shift_torques aligns
+    // them only by what is left of a delay.
+    double tau_aligned_by = 0.0;
     std::size_t samples() const { return q.empty() ? 0 : q.front()->size(); }
 };
 

@@ -39,8 +39,9 @@ ShiftedTorques shift_torques(const LogColumns& log, double delay) {
     ShiftedTorques s;
     s.log = log;
     s.log.own_tau.clear();  // the view never aligns them again
-    if (delay == 0.0) return s;  // the log itself: no copy of its torques
-    const double shift = delay / log.sample_period;
+    s.log.tau_aligned_by = delay;
+    if (delay == log.tau_aligned_by) return s;  // the log itself: no copy of its torques
+    const double shift = (delay - log.tau_aligned_by) / log.sample_period;
     bool owned = log.own_tau.size() == log.tau.size();
     for (std::size_t j = 0; owned && j < log.tau.size(); ++j) owned = log.own_tau[j] == log.tau[j];
     if (owned) {

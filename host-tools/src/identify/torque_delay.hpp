@@ -26,7 +26,8 @@ double sample_at(const std::vector<double>& x, double at);
 
 // Torque columns of `log` read `delay` seconds later (linear interpolation, held at the ends), and a view
 // of the log that uses them (positions shared with `log`, which must outlive it). A zero delay copies
-// nothing: the view is `log` itself. With `log.own_tau` given, the columns are aligned in place (the same
+// nothing: the view is `log` itself, as is a delay its torques are already aligned by
+// (log.tau_aligned_by). With `log.own_tau` given, the columns are aligned in place (the same
 // values) and the view, which is `log` without own_tau, is the only one to read them afterwards.
 struct ShiftedTorques {
     std::vector<std::vector<double>> tau;

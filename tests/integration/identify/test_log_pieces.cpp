@@ -66,7 +66,9 @@ struct Log {
             out << row << '\n';
         }
     }
-    std::string identify(const std::string& extra) const { return "identify --quiet --robot " + robot + " --torque-delay 0 " + extra; }
+    std::string identify(const std::string& extra, const std::string& torque_delay = "0") const {
+        return "identify --quiet --robot " + robot + " --torque-delay " + torque_delay + " " + extra;
+    }
 };
 
 const Log& log() {
@@ -97,6 +99,15 @@ TEST(LogPieces, EqualTheSameRowsGivenAsSeparateLogs) {
         const double v = p["value"].get<double>(), s = p["std"].get<double>();
         EXPECT_NEAR(parameters(pieces)[name]["value"].get<double>(), v, 1e-10 * std::abs(v)) << name;
         EXPECT_NEAR(parameters(pieces)[name]["std"].get<double>(), s, 1e-8 * s) << name;
+    }
+    // With the torques read 0.4 samples later: the first piece's are aligned in place before the smoothing
+    // choice, the later pieces' by the pipeline, each once, as each separate log's is.
+    const json pieces_delayed = run_json(l.identify("--in " + l.csv + " --piece-rows " + std::to_string(kPiece), "0.0004"));
+    const json logs_delayed = run_json(l.identify(ins, "0.0004"));
+    for (const auto& [name, p] : parameters(logs_delayed).items()) {
+        const double v = p["value"].get<double>();
+        EXPECT_NEAR(parameters(pieces_delayed)[name]["value"].get<double>(), v, 1e-10 * std::abs(v)) << name;
+        EXPECT_NE(p["value"], parameters(logs)[name]["value"]) << name << ": the delay is applied";
     }
     // The first piece is freed once identified and read again for the next method: the second method's
     // result (and the first's) is what it gives alone.

@@ -238,4 +238,24 @@ TEST(TorqueDelay, TorquesAlignedInPlaceEqualTheCopy) {
     }
 }
 
+// A view whose torques are aligned by d (LogColumns::tau_aligned_by) is aligned by only what is left of a
+// later delay: d again is the view itself (the first piece of a long log is aligned before the smoothing
+// choice, then read by the pipeline, which applies the same delay to every piece), d2 shifts it by d2 - d.
+TEST(TorqueDelay, TorquesAlreadyAlignedAreShiftedOnlyByWhatIsLeft) {
+    const std::size_t n = 40;
+    std::vector<std::vector<double>> q = {std::vector<double>(n, 0.0)}, taus = {std::vector<double>(n)};
+    for (std::size_t k = 0; k < n; ++k) taus.front()[k] = std::cos(0.2 * static_cast<double>(k)) + 0.05 * static_cast<double>(k);
+    const double period = 1e-3;
+    const jacobid::identify::LogColumns log = jacobid::identify::log_columns(q, taus, period, "test");
+    const auto aligned = jacobid::identify::shift_torques(log, 0.5 * period);
+    EXPECT_EQ(aligned.log.tau_aligned_by, 0.5 * period);
+    const auto again = jacobid::identify::shift_torques(aligned.log, 0.5 * period);
+    EXPECT_TRUE(again.tau.empty()) << "no second copy";
+    EXPECT_EQ(again.log.tau.front(), aligned.log.tau.front()) << "no second shift";
+    const auto further = jacobid::identify::shift_torques(aligned.log, 1.5 * period);
+    const std::vector<double>& a = *aligned.log.tau.front();
+    for (std::size_t k = 0; k + 1 < n; ++k) EXPECT_NEAR((*further.log.tau.front())[k], a[k + 1], 1e-12) << k << ": one more whole sample";
+    EXPECT_EQ((*further.log.tau.front())[n - 1], a[n - 1]) << "end held";
+}
+
 }  // namespace
