@@ -63,7 +63,9 @@ identify::NextSegment StreamedLog::rest(double first_period, std::vector<identif
     state->release_first = std::move(release_first);
     state->next = after_first_;
     return [this, state, first_period, &reports, &names](identify::LogColumns& piece) {
-        state->table = io::CsvTable{};  // the last piece is identified: freed before the next is read
+        // The last piece is identified; the next is read into its columns' storage, not into fresh memory:
+        // nothing more is held, and the 350 MB of a piece are not faulted in and zeroed by the kernel again
+        // (7 % of the CPU of each later piece, on one thread while the piece is read).
         if (state->release_first) {
             state->release_first();
             state->release_first = nullptr;
