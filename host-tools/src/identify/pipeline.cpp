@@ -624,8 +624,8 @@ PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log
         for (bool slots_added = true; slots_added;) {
             buffer.fit(len);
             // Where each entry of a sample's regressor D goes, worked out once per chunk rather than per entry
-            // (6 x 52 branches per sample were 7 % of the hour's CPU): the columns with a slot are copied, the
-            // others only checked for a first nonzero value.
+            // (6 x 52 branches per sample; without them, 5.4 % fewer instructions for a PUMA log, callgrind): the
+            // columns with a slot are copied, the others only checked for a first nonzero value.
             slotted.clear();
             unslotted.clear();
             for (int j = 0; j < joints; ++j) {
