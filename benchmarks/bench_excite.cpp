@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// One evaluation of `jacobid excite`'s optimizer (docs/excite.md, "Workspace box"): the criterion with its
-// gradient and the constraints with their Jacobian at a new point (what SLSQP asks per iteration), on the
-// PUMA 560 and the UR5-like arm, 5 harmonics at 0.1 Hz (100 samples per period), without (/0) and with (/1)
-// a workspace box on the last frame's point; and the box's share alone, the point and its Jacobian per sample.
+// One evaluation of `jacobid excite`'s optimizer (docs/excite.md, "Speed" and "Workspace box"): the d-optimal
+// criterion with its gradient and the constraints with their Jacobian at a new point (what SLSQP asks per
+// iteration), on the PUMA 560 and the UR5-like arm, 5 harmonics at 0.1 Hz, 400 samples per period (the
+// default), without (box 0) and with (box 1) a workspace box on the last frame's point, the regressor's
+// derivatives by central differences (automatic 0, the default) or automatic differentiation (automatic 1);
+// and the box's share alone, the point and its Jacobian per sample.
 // Run: build/benchmarks/bench_excite --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -22,7 +24,10 @@ void evaluation(benchmark::State& state, const char* robot_file) {
     for (int j = 0; j < n; ++j) limits[static_cast<std::size_t>(j)].lower = robot.joints[static_cast<std::size_t>(j)].lower_limit,
                                 limits[static_cast<std::size_t>(j)].upper = robot.joints[static_cast<std::size_t>(j)].upper_limit;
     const Eigen::VectorXd pose = Eigen::VectorXd::Zero(n);
-    excite::ExcitationProblem problem(*model, x, excite::FourierBasis(10.0, 5, 0.1), pose, limits, {});
+    excite::ProblemSettings settings;
+    settings.samples = 400;
+    excite::ExcitationProblem problem(*model, x, excite::FourierBasis(10.0, 5, 0.1), pose, limits, settings);
+    problem.use_automatic_differentiation(state.range(1) == 1);
     if (state.range(0) == 1) {
         const std::vector<double> box = {-2, 2, -2, 2, -2, 2};
         problem.set_workspace(excite::make_workspace(robot, "tool", {0.0, 0.0, 0.1}, box, pose));
@@ -53,8 +58,8 @@ void BM_WorkspacePointAndJacobianPuma560(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_WorkspacePointAndJacobianPuma560);
-BENCHMARK(BM_ExciteEvaluationPuma560)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ExciteEvaluationUr5Like)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExciteEvaluationPuma560)->ArgNames({"box", "automatic"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExciteEvaluationUr5Like)->ArgNames({"box", "automatic"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // jacobid excite: an optimized excitation trajectory for identification (docs/excite.md): finite Fourier
-// series per joint, at rest at a pose at both ends of every period, the column-scaled base regressor's
-// condition number (or log-determinant) optimized within the joints' limits; CSV at the control rate, JSON,
-// optional PNG.
+// series per joint, at rest at a pose at both ends of every period, an information criterion of the base
+// parameters (d-optimal by default, weighed by the torque noise and the prior) optimized within the joints'
+// limits; each base parameter's predicted std, beside that of a --compare trajectory or log; CSV at the
+// control rate, JSON, optional PNG.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -16,9 +17,13 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
+#include "cli/excite_prediction.hpp"
+#include "cli/log_format_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "excite/excitation_design.hpp"
+#include "excite/frequency_rule.hpp"
+#include "excite/motion_information.hpp"
 #include "plot/gnuplot.hpp"
 #include "robot/robot_description.hpp"
 
@@ -28,9 +33,14 @@ namespace {
 struct ExciteOptions {
     std::string robot;
     double duration = 20.0;
+    std::string harmonics_text = "auto", base_frequency_text = "auto";  // "auto" or a number (resolve_frequencies)
     int harmonics = 5;
     double base_frequency = 0.1;
-    std::string criterion = "cond";
+    std::string criterion = "d-optimal";
+    std::string prior, compare;
+    std::vector<double> torque_noise;
+    std::vector<std::string> position_limit;  // LOWER:UPPER, one or one per joint
+    LogFormatOptions compare_format;
     std::string output = "-";
     std::string json;
     std::string plot;
@@ -57,20 +67,56 @@ std::vector<double> per_joint(const std::vector<double>& given, int joints, doub
     return given;
 }
 
+// "LOWER:UPPER" (rad) of --position-limit for joint j (0-based).
+std::pair<double, double> position_range(const std::string& text, int j) {
+    const auto colon = text.find(':');
+    double lower = std::numeric_limits<double>::quiet_NaN(), upper = lower;
+    try {
+        if (colon != std::string::npos) {
+            std::size_t used = 0;
+            lower = std::stod(text.substr(0, colon), &used);
+            if (used != colon) lower = std::numeric_limits<double>::quiet_NaN();
+            const std::string rest = text.substr(colon + 1);
+            upper = std::stod(rest, &used);
+            if (used != rest.size()) upper = std::numeric_limits<double>::quiet_NaN();
+        }
+    } catch (const std::exception&) {
+    }
+    if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower < upper)) {
+        throw InputError(fmt::format("--position-limit: joint {}: '{}': expected LOWER:UPPER in rad with LOWER < UPPER", j + 1, text));
+    }
+    return {lower, upper};
+}
+
+// Per joint, the position range: the description's limits, or --position-limit's.
+std::vector<std::pair<double, double>> position_ranges(const robot::RobotDescription& robot, const ExciteOptions& o) {
+    const int n = static_cast<int>(robot.joints.size());
+    if (o.position_limit.size() > 1 && static_cast<int>(o.position_limit.size()) != n) {
+        throw InputError(fmt::format("--position-limit: {} ranges for a robot with {} joints (give one LOWER:UPPER or one per joint)", o.position_limit.size(), n));
+    }
+    std::vector<std::pair<double, double>> ranges;
+    for (int j = 0; j < n; ++j) {
+        const auto& jd = robot.joints[static_cast<std::size_t>(j)];
+        ranges.push_back(o.position_limit.empty() ? std::pair{jd.lower_limit, jd.upper_limit}
+                                                  : position_range(o.position_limit[o.position_limit.size() == 1 ? 0 : static_cast<std::size_t>(j)], j));
+    }
+    return ranges;
+}
+
 std::vector<excite::JointLimits> joint_limits(const robot::RobotDescription& robot, const Eigen::VectorXd& pose, const ExciteOptions& o) {
     const int n = static_cast<int>(robot.joints.size());
     const auto v = per_joint(o.velocity_limit, n, std::numeric_limits<double>::infinity(), "--velocity-limit");
     const auto a = per_joint(o.acceleration_limit, n, std::numeric_limits<double>::infinity(), "--acceleration-limit");
     const auto t = per_joint(o.torque_limit, n, std::numeric_limits<double>::infinity(), "--torque-limit");
+    const auto ranges = position_ranges(robot, o);
     std::vector<excite::JointLimits> limits(static_cast<std::size_t>(n));
     for (int j = 0; j < n; ++j) {
-        const auto& jd = robot.joints[static_cast<std::size_t>(j)];
         auto& l = limits[static_cast<std::size_t>(j)];
-        l.lower = jd.lower_limit, l.upper = jd.upper_limit;
+        std::tie(l.lower, l.upper) = ranges[static_cast<std::size_t>(j)];
         l.velocity = v[static_cast<std::size_t>(j)], l.acceleration = a[static_cast<std::size_t>(j)], l.torque = t[static_cast<std::size_t>(j)];
         if (!(pose[j] > l.lower && pose[j] < l.upper)) {
-            throw InputError(fmt::format("--pose: joint {} at {} rad is not strictly inside its limits [{}, {}] (robot description)", j + 1, pose[j], l.lower,
-                                         l.upper));
+            throw InputError(fmt::format("--pose: joint {} at {} rad is not strictly inside its limits [{}, {}] ({})", j + 1, pose[j], l.lower,
+                                         l.upper, o.position_limit.empty() ? "robot description" : "--position-limit"));
         }
         for (const auto& [value, name] : {std::pair{l.velocity, "--velocity-limit"}, {l.acceleration, "--acceleration-limit"}, {l.torque, "--torque-limit"}}) {
             if (!(value > 0.0)) throw InputError(fmt::format("{}: joint {} limit {}: expected > 0", name, j + 1, value));
@@ -162,7 +208,8 @@ std::string csv(const Sampled& s) {
     return out;
 }
 
-void plot(const std::string& path, const Sampled& s, const std::optional<excite::Workspace>& workspace) {
+void plot(const std::string& path, const Sampled& s, const std::optional<excite::Workspace>& workspace, const std::vector<std::string>& names,
+          const excite::Prediction& predicted, const excite::Prediction* compared) {
     std::vector<plot::Panel> panels;
     const char* titles[3] = {"position (rad)", "velocity (rad/s)", "motor torque of the model (N.m)"};
     const std::vector<std::vector<double>>* values[3] = {&s.q, &s.qd, &s.tau};
@@ -185,35 +232,89 @@ void plot(const std::string& path, const Sampled& s, const std::optional<excite:
         }
         panels.push_back(std::move(panel));
     }
+    // The predicted relative std of every base parameter, the design's beside --compare's (log scale).
+    plot::Panel prediction{"predicted relative std of each base parameter (WLS, std / prior scale)", "base parameter", "relative std (%)", false, true, {}, ""};
+    auto series = [&](const excite::Prediction& p, const char* title, const char* style) {
+        plot::Series line{title, {}, {}, style};
+        for (Eigen::Index k = 0; k < p.relative_std.size(); ++k) {
+            if (!std::isfinite(p.relative_std[k])) continue;
+            line.x.push_back(static_cast<double>(k + 1));
+            line.y.push_back(100.0 * p.relative_std[k]);
+        }
+        prediction.series.push_back(std::move(line));
+    };
+    series(predicted, "this design", "linespoints pt 7 ps 0.8 lw 1.5");
+    if (compared) series(*compared, "--compare", "linespoints pt 5 ps 0.8 lw 1.5 dt 2");
+    std::string tics = "set xtics rotate by 90 right font ',8' (";
+    for (std::size_t k = 0; k < names.size(); ++k) tics += fmt::format("{}\"{}\" {}", k ? ", " : "", names[k], k + 1);
+    prediction.extra = tics + ")\nset xrange [0:" + std::to_string(names.size() + 1) + "]";
+    panels.push_back(std::move(prediction));
     plot::render_png(path, panels);
 }
 
-void run(const ExciteOptions& o) {
-    check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, {{"--robot", o.robot}});
-    check(o);
+// --base-frequency and --harmonics: "auto" (excite/frequency_rule.hpp) or a number.
+void resolve_frequencies(ExciteOptions& o, const std::vector<excite::JointLimits>& limits) {
+    auto number = [](const std::string& text, const char* option, const char* expected) {
+        std::size_t used = 0;
+        double v = std::numeric_limits<double>::quiet_NaN();
+        try {
+            v = std::stod(text, &used);
+        } catch (const std::exception&) {
+        }
+        if (used != text.size() || !std::isfinite(v)) throw InputError(fmt::format("{} '{}': expected auto or {}", option, text, expected));
+        return v;
+    };
+    o.base_frequency = o.base_frequency_text == "auto" ? excite::auto_base_frequency(o.duration)
+                                                       : number(o.base_frequency_text, "--base-frequency", "a frequency > 0 Hz");
+    if (!(o.base_frequency > 0.0)) throw InputError(fmt::format("--base-frequency {}: expected auto or a frequency > 0 Hz", o.base_frequency_text));
+    if (o.harmonics_text == "auto") {
+        o.harmonics = excite::auto_harmonics(o.base_frequency, limits);
+    } else {
+        const double h = number(o.harmonics_text, "--harmonics", "a whole number 1 .. 50");
+        if (h != std::round(h) || h < 1 || h > 50) throw InputError(fmt::format("--harmonics {}: expected auto or a whole number 1 .. 50", o.harmonics_text));
+        o.harmonics = static_cast<int>(h);
+    }
+}
+
+// The trajectory at every control sample as a motion (excite/motion_information.hpp).
+excite::SampledMotion motion_of(const Sampled& s) { return {s.q, s.qd, s.qdd, 0, 0}; }
+
+void run(ExciteOptions o) {
+    check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, {{"--robot", o.robot}, {"--prior", o.prior}, {"--compare", o.compare}});
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
+    const ExcitePrior prior = resolve_prior(robot, *model, o.prior, o.torque_noise);
+    const Eigen::VectorXd& x = prior.values;  // the model's torque for the torque limits, and the prior scales
+    Eigen::VectorXd pose(n);
+    const auto given_pose = per_joint(o.pose, n, std::numeric_limits<double>::quiet_NaN(), "--pose");
+    const auto ranges = position_ranges(robot, o);
+    for (int j = 0; j < n; ++j) {
+        const auto k = static_cast<std::size_t>(j);
+        pose[j] = std::isnan(given_pose[k]) ? 0.5 * (ranges[k].first + ranges[k].second) : given_pose[k];
+    }
+    const std::vector<excite::JointLimits> limits = joint_limits(robot, pose, o);
+    resolve_frequencies(o, limits);
+    check(o);
     // The trajectory is sampled in memory (t and q, qd, qdd, tau per joint) and written as CSV (t, q, qd, qdd).
     refuse_oversized(fmt::format("--duration {:g} s at --rate {:g} Hz", o.duration, o.rate), std::floor(o.duration * o.rate) + 1.0, 1e8,
                      "trajectory samples", 8.0 * (1 + 4 * n) + 18.0 * (1 + 3 * n), "lower --duration or --rate");
-    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
-    Eigen::VectorXd pose(n);
-    const auto given_pose = per_joint(o.pose, n, std::numeric_limits<double>::quiet_NaN(), "--pose");
-    for (int j = 0; j < n; ++j) {
-        const auto& jd = robot.joints[static_cast<std::size_t>(j)];
-        pose[j] = std::isnan(given_pose[static_cast<std::size_t>(j)]) ? 0.5 * (jd.lower_limit + jd.upper_limit) : given_pose[static_cast<std::size_t>(j)];
-    }
-    const std::vector<excite::JointLimits> limits = joint_limits(robot, pose, o);
     const std::optional<excite::Workspace> box = workspace(robot, pose, o);
     excite::ProblemSettings ps;
-    ps.criterion = o.criterion == "cond" ? excite::Criterion::Cond : excite::Criterion::LogDet;
+    ps.criterion = *excite::criterion_from_string(o.criterion);
+    ps.information = {prior.noise_std, prior.scales, 1.0};
     ps.samples = o.samples;
     excite::ExcitationProblem problem(*model, x, excite::FourierBasis(1.0 / o.base_frequency, o.harmonics, o.base_frequency), pose, limits, ps);
+    // Each criterion sample stands for rate x duration / samples log samples (the information of the whole run).
+    problem.set_sample_weight(o.rate * o.duration / problem.samples());
     problem.set_workspace(box);
     if (!o.quiet) {
-        fmt::print(stderr, "excite: {} joints x {} harmonics = {} coefficients, {} base parameters, {} samples per {} s period; {} starts, {} s limit\n", n,
-                   o.harmonics, problem.variables(), model->parameter_count(), problem.samples(), 1.0 / o.base_frequency, o.starts, o.time_limit);
+        fmt::print(stderr, "excite: {} joints x {} harmonics of {:g} Hz{} = {} coefficients, {} base parameters, {} samples per {:g} s period; criterion {}; "
+                   "noise {}; prior {}; {} starts, {} s limit\n",
+                   n, o.harmonics, o.base_frequency, o.base_frequency_text == "auto" || o.harmonics_text == "auto" ? " (auto)" : "", problem.variables(),
+                   model->parameter_count(), problem.samples(), 1.0 / o.base_frequency, o.criterion, prior.noise_source, prior.values_source, o.starts,
+                   o.time_limit);
+        for (const auto& name : prior.fallbacks) fmt::print(stderr, "excite: --prior: {} was not identified there: the description's value is its prior\n", name);
     }
     excite::DesignSettings ds;
     ds.starts = o.starts;
@@ -225,6 +326,14 @@ void run(const ExciteOptions& o) {
     const excite::Design d = excite::design_excitation(problem, *model, x, limits, ds);
     const excite::FourierTrajectory trajectory = problem.trajectory(d.coefficients);
     const Sampled s = sample(trajectory, *model, x, o.duration, o.rate, box);
+    // The prediction from every control sample (not the optimizer's), the same way as --compare's.
+    const excite::Prediction predicted = excite::predict(excite::motion_information(*model, motion_of(s), prior.noise_std), prior.scales);
+    std::optional<CompareMotion> compared;
+    std::optional<excite::Prediction> compared_prediction;
+    if (!o.compare.empty()) {
+        compared = read_compare_motion(o.compare, robot, *model, o.compare_format, o.quiet);
+        compared_prediction = excite::predict(excite::motion_information(*model, compared->motion, prior.noise_std), prior.scales);
+    }
     // The smallest distance from the point to a face over the trajectory (m), and that face.
     double margin = std::numeric_limits<double>::infinity();
     int closest = 0;
@@ -233,6 +342,15 @@ void run(const ExciteOptions& o) {
         const double distance = f % 2 == 0 ? box->box.upper[a] - d.workspace->max[a] : d.workspace->min[a] - box->box.lower[a];
         if (distance < margin) margin = distance, closest = f;
     }
+    const excite::Criterion criterion = *excite::criterion_from_string(o.criterion);
+    const bool worse = compared_prediction && prediction_score(criterion, predicted) > prediction_score(criterion, *compared_prediction);
+    const std::string worse_line =
+        worse ? fmt::format("excite: warning: the design is worse than --compare {} by its own criterion ({}: {:.6g} against {:.6g}); worst relative std {:.3g} % "
+                            "({}) against {:.3g} %",
+                            o.compare, o.criterion, prediction_score(criterion, predicted), prediction_score(criterion, *compared_prediction),
+                            100.0 * predicted.worst_relative_std, predicted.worst >= 0 ? model->parameter_names()[static_cast<std::size_t>(predicted.worst)] : "-",
+                            100.0 * compared_prediction->worst_relative_std)
+              : std::string();
     write_output(o.output, csv(s));
     if (!o.json.empty()) {
         nlohmann::json j;
@@ -242,10 +360,27 @@ void run(const ExciteOptions& o) {
         j["duration"] = o.duration;
         j["period"] = 1.0 / o.base_frequency;
         j["base_frequency"] = o.base_frequency;
+        j["base_frequency_auto"] = o.base_frequency_text == "auto";
         j["harmonics"] = o.harmonics;
+        j["harmonics_auto"] = o.harmonics_text == "auto";
+        j["top_frequency"] = excite::top_frequency(limits);
         j["rate"] = o.rate;
+        j["samples"] = problem.samples();
         j["pose"] = std::vector<double>(pose.data(), pose.data() + n);
         j["parameters"] = model->parameter_names();
+        j["noise_std"] = std::vector<double>(prior.noise_std.data(), prior.noise_std.data() + n);
+        j["noise_source"] = prior.noise_source;
+        j["noise_known"] = prior.noise_known;
+        j["prior"] = prior.values_source;
+        j["predicted"] = prediction_json(model->parameter_names(), prior, predicted);
+        j["predicted"]["score"] = prediction_score(criterion, predicted);
+        if (compared) {
+            j["compare"] = {{"file", o.compare}, {"how", compared->how}, {"duration", compared->duration}};
+            j["compare"]["predicted"] = prediction_json(model->parameter_names(), prior, *compared_prediction);
+            j["compare"]["predicted"]["score"] = prediction_score(criterion, *compared_prediction);
+            j["compare"]["worst_relative_std_ratio"] = predicted.worst_relative_std / compared_prediction->worst_relative_std;
+            j["compare"]["design_worse"] = worse;
+        }
         j["evaluations"] = d.evaluations;
         j["starts"] = d.start_criteria;
         j["tightening_rounds"] = d.rounds;
@@ -283,17 +418,27 @@ void run(const ExciteOptions& o) {
         }
         write_output(o.json, j.dump(2) + "\n");
     }
-    if (!o.plot.empty()) plot(o.plot, s, box);
+    if (!o.plot.empty()) plot(o.plot, s, box, model->parameter_names(), predicted, compared_prediction ? &*compared_prediction : nullptr);
     if (!o.quiet) {
-        fmt::print(stderr, "excite: {} {:.6g}, cond {:.4g} in {:.1f} s ({} evaluations); largest limit use {:.3f} (joint {} {})\n",
-                   o.criterion == "cond" ? "log cond" : "-log det", d.criterion,
+        fmt::print(stderr, "excite: {} {:.6g}, cond {:.4g} in {:.1f} s ({} evaluations); largest limit use {:.3f} (joint {} {})\n", o.criterion, d.criterion,
                    d.cond, d.seconds, d.evaluations, d.check.worst, d.check.worst_joint + 1, excite::to_string(d.check.worst_kind));
         if (box) {
             fmt::print(stderr, "excite: workspace point of frame {}: x [{:.4f}, {:.4f}], y [{:.4f}, {:.4f}], z [{:.4f}, {:.4f}] m; closest to the box: {:.4f} m ({} face)\n",
                        box->frame_name, d.workspace->min.x(), d.workspace->max.x(), d.workspace->min.y(), d.workspace->max.y(), d.workspace->min.z(),
                        d.workspace->max.z(), margin, excite::face_name(closest));
         }
+        fmt::print(stderr, "excite: predicted std of the WLS estimate over {:g} s (noise: {}){}:\n{}", o.duration, prior.noise_source,
+                   compared ? fmt::format(", beside --compare {} ({:g} s, {})", o.compare, compared->duration, compared->how) : std::string(),
+                   prediction_table(model->parameter_names(), prior, predicted, compared_prediction ? &*compared_prediction : nullptr));
+        fmt::print(stderr, "excite: worst relative std {:.3g} % ({}){}\n", 100.0 * predicted.worst_relative_std,
+                   predicted.worst >= 0 ? model->parameter_names()[static_cast<std::size_t>(predicted.worst)] : "not identifiable",
+                   compared_prediction ? fmt::format("; --compare: {:.3g} % ({})", 100.0 * compared_prediction->worst_relative_std,
+                                                     compared_prediction->worst >= 0 ? model->parameter_names()[static_cast<std::size_t>(compared_prediction->worst)]
+                                                                                     : "not identifiable")
+                                       : std::string());
     }
+    // Said even with --quiet: a design that does not beat the user's own trajectory must not pass unnoticed.
+    if (worse) fmt::print(stderr, "{}\n", worse_line);
 }
 
 }  // namespace
@@ -302,16 +447,34 @@ void add_excite_command(CLI::App& app) {
     auto o = std::make_shared<ExciteOptions>();
     CLI::App* cmd = app.add_subcommand("excite",
                                        "design an excitation trajectory: finite Fourier series per joint, at rest at a pose at both ends of every period, "
-                                       "optimized for the column-scaled base regressor's condition number within the joints' limits");
-    cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters for the torque")->required();
+                                       "optimized for the information of the base parameters within the joints' limits; predicts every base "
+                                       "parameter's std, beside that of --compare");
+    cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters (the prior without --prior)")->required();
     cmd->add_option("--duration", o->duration, "s: a whole number of periods (period = 1 / --base-frequency), played back to back")
         ->check(positive_number())
         ->capture_default_str();
-    cmd->add_option("--harmonics", o->harmonics, "harmonics per joint (2 coefficients each)")->capture_default_str();  // 1..50: check()
-    cmd->add_option("--base-frequency", o->base_frequency, "Hz: the fundamental; one period lasts 1 / f")->check(positive_number())->capture_default_str();
-    cmd->add_option("--criterion", o->criterion, "cond (log of the condition number) or logdet (-log det W^T W), both of the column-scaled base regressor")
-        ->check(CLI::IsMember({"cond", "logdet"}))
+    cmd->add_option("--harmonics", o->harmonics_text,
+                    "harmonics per joint (2 coefficients each), or auto: up to the highest frequency at which a joint reaches its velocity limit "
+                    "within its acceleration limit, max a / (2 pi v) (0.5 Hz without both), 3 .. 10")
         ->capture_default_str();
+    cmd->add_option("--base-frequency", o->base_frequency_text,
+                    "Hz: the fundamental, one period lasts 1 / f; or auto: the duration split into the fewest periods (>= 2) of at most 10 s")
+        ->capture_default_str();
+    cmd->add_option("--criterion", o->criterion,
+                    "d-optimal (-log det of the noise-weighted information matrix of the base parameters), a-relative (sum of the predicted "
+                    "relative variances), e-relative (their max), or, for comparison, cond / logdet of the column-scaled regressor")
+        ->check(CLI::IsMember({"d-optimal", "a-relative", "e-relative", "cond", "logdet"}))
+        ->capture_default_str();
+    cmd->add_option("--prior", o->prior,
+                    "an earlier identification (jacobid identify --format json): its parameters are the prior (torque limits, relative std) and "
+                    "its per-joint residuals the noise");
+    cmd->add_option("--torque-noise", o->torque_noise, "N.m: std of the torque noise, one value or one per joint (overrides --prior's; default 1)")
+        ->delimiter(',');
+    cmd->add_option("--compare", o->compare,
+                    "a trajectory (t, q1.., qd1.., qdd1..) or a recorded log (the description's columns, or --log-format): its predicted std "
+                    "beside the design's");
+    cmd->add_option("--position-limit", o->position_limit, "rad: LOWER:UPPER, one range or one per joint (default: the description's limits)")
+        ->delimiter(',');
     cmd->add_option("--output,-o", o->output, "trajectory CSV at --rate: t, q1.., qd1.., qdd1.. ('-': standard output)")->capture_default_str();
     cmd->add_option("--json", o->json, "JSON: coefficients, criterion, cond, peak position/velocity/acceleration/torque and limit use per joint");
     cmd->add_option("--plot", o->plot, "PNG: positions, velocities and the model's torques over the whole duration");
@@ -338,6 +501,7 @@ void add_excite_command(CLI::App& app) {
     cmd->add_option("--workspace-box", o->workspace_box, "m, base frame: xmin,xmax,ymin,ymax,zmin,zmax; the point at --pose must be strictly inside")
         ->delimiter(',');
     cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
+    add_log_format_options(cmd, o->compare_format);
     cmd->callback([o] { run(*o); });
 }
 

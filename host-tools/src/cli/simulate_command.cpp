@@ -99,6 +99,10 @@ void run(SimulateOptions o) {
     apply_controller(robot, o);
     std::shared_ptr<const sim::TabulatedTrajectory> reference;
     if (!o.trajectory.empty()) {
+        // The limits shape the random moves; a given table is checked by excite or by the user, not changed here.
+        for (const auto& [limit, option] : {std::pair{&o.settings.moves.velocity_limit, "--velocity-limit"}, {&o.settings.moves.acceleration_limit, "--acceleration-limit"}}) {
+            if (!limit->empty()) throw InputError(fmt::format("{} shapes the random moves: it cannot be given with --trajectory {}", option, o.trajectory));
+        }
         reference = std::make_shared<const sim::TabulatedTrajectory>(io::read_csv(o.trajectory), n);
         if (!o.duration_given) o.settings.duration = reference->length();
     }
@@ -221,6 +225,8 @@ void run(SimulateOptions o) {
                            {"omega_dyn", o.settings.omega_dyn},     {"damping", o.settings.damping},
                            {"seed", o.settings.seed},               {"move_duration", o.move_duration},
                            {"dwell", o.settings.moves.max_dwell},
+                           {"velocity_limit", o.settings.moves.velocity_limit},
+                           {"acceleration_limit", o.settings.moves.acceleration_limit},
                            {"trajectory", o.trajectory.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.trajectory)}};
     truth["measurement"] = {{"encoder_counts_per_rev", ms.encoder_counts_per_rev}, {"torque_noise", ms.torque_noise},
                             {"ripple_amplitude", ms.ripple_amplitude},           {"ripple_periods_per_rev", ms.ripple_periods_per_rev},

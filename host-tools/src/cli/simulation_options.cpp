@@ -43,6 +43,15 @@ void add_simulation_options(CLI::App* cmd, SimulationOptions& o) {
         ->expected(2)
         ->check(positive_number())
         ->capture_default_str();
+    cmd->add_option("--velocity-limit", o.settings.moves.velocity_limit,
+                    "rad/s: the random moves' reference stays within it (a move lasts as long as its largest step needs); one value or one "
+                    "per joint (default: none)")
+        ->delimiter(',')
+        ->check(positive_number());
+    cmd->add_option("--acceleration-limit", o.settings.moves.acceleration_limit,
+                    "rad/s^2: the random moves' reference stays within it; one value or one per joint (default: none)")
+        ->delimiter(',')
+        ->check(positive_number());
     cmd->add_option("--dwell", o.settings.moves.max_dwell, "maximum rest after each move in s (uniform in [0, dwell])")
         ->check(non_negative_number())
         ->capture_default_str();

@@ -161,7 +161,7 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
             const double cond = local.condition_number(r.c);
             const std::lock_guard<std::mutex> lock(report);
             say(fmt::format("start {}/{}: {} {:.4g}, cond {:.4g}, largest constraint {:+.2e}{} ({:.1f} s)", s + 1, settings.starts,
-                            problem.criterion_kind() == Criterion::Cond ? "log cond" : "-log det", r.f, cond, r.violation,
+                            to_string(problem.criterion_kind()), r.f, cond, r.violation,
                             r.violation <= kFeasible ? "" : " (infeasible)", elapsed()));
             results[static_cast<std::size_t>(s)] = std::move(r);
             ran[static_cast<std::size_t>(s)] = true;

@@ -10,11 +10,6 @@
 namespace jacobid::excite {
 namespace {
 
-constexpr double kStep = 1e-6;  // central-difference step in q (rad) and qd (rad/s)
-
-// 1 / ||w_k|| per column of W (the scaling of both criteria and of cond).
-Eigen::VectorXd column_scales(const Eigen::MatrixXd& W) { return W.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse(); }
-
 // The Kreisselmeier-Steinhauser aggregate of `terms` (a smooth upper bound of their maximum); when `row` is not
 // null, its gradient (the softmax weights times each term's slope, `slopes` one per term) added to jacobian's `row`.
 double ks_aggregate(const std::vector<double>& terms, const std::vector<Eigen::VectorXd>& slopes, double rho, Eigen::MatrixXd* jacobian, int row) {
@@ -28,8 +23,6 @@ double ks_aggregate(const std::vector<double>& terms, const std::vector<Eigen::V
 }
 
 }  // namespace
-
-const char* to_string(Criterion c) { return c == Criterion::Cond ? "cond" : "logdet"; }
 
 const char* to_string(LimitKind k) {
     switch (k) {
@@ -50,14 +43,36 @@ ExcitationProblem::ExcitationProblem(const robot::RobotModel& model, Eigen::Vect
     if (x_.size() != columns_ || pose_.size() != joints_ || static_cast<int>(limits_.size()) != joints_) {
         throw std::invalid_argument("ExcitationProblem: parameters, pose or limits do not match the model");
     }
+    InformationModel& info = settings_.information;
+    if (info.noise_std.size() == 0) info.noise_std = Eigen::VectorXd::Ones(joints_);
+    if (info.scale.size() == 0) info.scale = Eigen::VectorXd::Ones(columns_);
+    if (info.noise_std.size() != joints_ || info.scale.size() != columns_ || !(info.noise_std.minCoeff() > 0.0) || !(info.scale.minCoeff() > 0.0)) {
+        throw std::invalid_argument("ExcitationProblem: the noise (one per joint) and prior scales (one per parameter) must be > 0");
+    }
     const double highest = basis_.harmonics() * basis_.base_frequency();
-    samples_ = settings_.samples > 0 ? settings_.samples : std::max(100, static_cast<int>(std::ceil(20.0 * highest * basis_.period())));
+    // Automatic: 20 samples per period of the highest harmonic (about what identify keeps: F_p at 5 x the motion
+    // bandwidth, 4 samples per F_p period), at least 100; the information criteria sum the information over the
+    // period, so they take twice that and at least 400, so that the sum is the integral identify's rows hold.
+    const int identify_like = static_cast<int>(std::ceil(20.0 * highest * basis_.period()));
+    samples_ = settings_.samples > 0                               ? settings_.samples
+               : is_information_criterion(settings_.criterion) ? std::max(400, 2 * identify_like)
+                                                                : std::max(100, identify_like);
     psi_.resize(basis_.size(), samples_), dpsi_.resize(basis_.size(), samples_), ddpsi_.resize(basis_.size(), samples_);
     for (int i = 0; i < samples_; ++i) {
         basis_.evaluate(basis_.period() * i / samples_, psi_.col(i), dpsi_.col(i), ddpsi_.col(i));
     }
     W_.resize(static_cast<Eigen::Index>(samples_) * joints_, columns_);
-    dY_.assign(static_cast<std::size_t>(samples_), Eigen::MatrixXd(joints_, 3 * joints_ * columns_));
+    derivatives_ = make_regressor_derivatives(model_);
+}
+
+ExcitationProblem::ExcitationProblem(const ExcitationProblem& o)
+    : model_(o.model_), x_(o.x_), basis_(o.basis_), pose_(o.pose_), limits_(o.limits_), settings_(o.settings_), joints_(o.joints_), columns_(o.columns_),
+      samples_(o.samples_), psi_(o.psi_), dpsi_(o.dpsi_), ddpsi_(o.ddpsi_), W_(o.W_),
+      derivatives_(make_regressor_derivatives(o.model_, o.derivatives_->automatic())), workspace_(o.workspace_) {}
+
+void ExcitationProblem::use_automatic_differentiation(bool automatic) {
+    derivatives_ = make_regressor_derivatives(model_, automatic);
+    derivatives_for_.resize(0);
 }
 
 void ExcitationProblem::set_limits(std::vector<JointLimits> limits) {
@@ -99,32 +114,12 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
     qd_ = C * dpsi_;
     qdd_ = C * ddpsi_;
     tau_.resize(joints_, samples_);
-    Eigen::MatrixXd Y(joints_, columns_), plus(joints_, columns_), minus(joints_, columns_);
-    Eigen::VectorXd q(joints_), qd(joints_), qdd(joints_);
+    Eigen::MatrixXd Y(joints_, columns_);
     for (int i = 0; i < samples_; ++i) {
-        q = q_.col(i), qd = qd_.col(i), qdd = qdd_.col(i);
+        const Eigen::VectorXd q = q_.col(i), qd = qd_.col(i), qdd = qdd_.col(i);
         model_.regressor(q.data(), qd.data(), qdd.data(), Y);
         W_.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_) = Y;
         tau_.col(i) = Y * x_;
-        Eigen::MatrixXd& d = dY_[static_cast<std::size_t>(i)];
-        // Central difference of the regressor in one coordinate of q or qd, into derivative block `block`.
-        auto central = [&](Eigen::VectorXd& v, int j, int block) {
-            const double h = kStep * std::max(1.0, std::abs(v[j]));
-            v[j] += h;
-            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
-            v[j] -= 2.0 * h;
-            model_.regressor(q.data(), qd.data(), qdd.data(), minus);
-            v[j] += h;
-            d.middleCols(static_cast<Eigen::Index>(block) * columns_, columns_) = (plus - minus) / (2.0 * h);
-        };
-        for (int j = 0; j < joints_; ++j) {
-            central(q, j, j);
-            central(qd, j, joints_ + j);
-            qdd[j] += 1.0;  // Y is linear in qdd: the difference is the exact derivative
-            model_.regressor(q.data(), qd.data(), qdd.data(), plus);
-            qdd[j] -= 1.0;
-            d.middleCols(static_cast<Eigen::Index>(2 * joints_ + j) * columns_, columns_) = plus - Y;
-        }
     }
     if (workspace_) {
         points_.resize(3, samples_);
@@ -134,57 +129,58 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
     prepared_for_ = c;
 }
 
-double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient) {
+void ExcitationProblem::prepare_derivatives(const Eigen::VectorXd& c) {
     prepare(c);
-    // W_s = W S, S = diag(1 / ||w_k||).
-    const Eigen::VectorXd s = column_scales(W_);
-    const Eigen::MatrixXd Ws = W_ * s.asDiagonal();
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Ws, gradient ? Eigen::ComputeThinU | Eigen::ComputeThinV : 0);
-    const Eigen::VectorXd& sigma = svd.singularValues();
-    const Eigen::Index p = sigma.size();
-    double value = 0.0;
-    Eigen::MatrixXd G;  // dF/dW_s
-    if (settings_.criterion == Criterion::Cond) {
-        value = std::log(sigma[0]) - std::log(sigma[p - 1]);
-        if (gradient) {
-            G = svd.matrixU().col(0) * svd.matrixV().col(0).transpose() / sigma[0] -
-                svd.matrixU().col(p - 1) * svd.matrixV().col(p - 1).transpose() / sigma[p - 1];
-        }
-    } else {
-        value = -2.0 * sigma.array().log().sum();
-        if (gradient) G = -2.0 * svd.matrixU() * sigma.cwiseInverse().asDiagonal() * svd.matrixV().transpose();
+    if (derivatives_for_.size() == c.size() && derivatives_for_ == c) return;
+    Eigen::MatrixXd GW;  // dF/dW
+    value_ = evaluate_criterion(settings_.criterion, W_, joints_, settings_.information, &GW);
+    dphi_.resize(3 * joints_, samples_);
+    dtau_.resize(static_cast<std::size_t>(samples_));
+    Eigen::VectorXd dphi;
+    for (int i = 0; i < samples_; ++i) {
+        const Eigen::VectorXd q = q_.col(i), qd = qd_.col(i), qdd = qdd_.col(i);
+        const Eigen::MatrixXd H = GW.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_);
+        derivatives_->evaluate(q.data(), qd.data(), qdd.data(), H, x_, dphi, dtau_[static_cast<std::size_t>(i)]);
+        dphi_.col(i) = dphi;
     }
-    if (!std::isfinite(value)) value = 1e30;  // a rank-deficient W: the worst, not a NaN for the optimizer
-    if (!gradient) return value;
-    // dF/dW: W_s's columns are w_k s_k with s_k = 1 / ||w_k||, d s_k / d w_k = -w_k / ||w_k||^3.
-    Eigen::MatrixXd GW(W_.rows(), columns_);
-    for (Eigen::Index k = 0; k < columns_; ++k) {
-        GW.col(k) = G.col(k) * s[k] - (G.col(k).dot(W_.col(k)) * s[k] * s[k] * s[k]) * W_.col(k);
+    derivatives_for_ = c;
+}
+
+double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient) {
+    if (!gradient) {
+        prepare(c);
+        return evaluate_criterion(settings_.criterion, W_, joints_, settings_.information, nullptr);
     }
-    if (!GW.allFinite()) GW.setZero();
+    prepare_derivatives(c);
     gradient->setZero(variables());
     const int m = basis_.size();
     for (int i = 0; i < samples_; ++i) {
-        const auto Gi = GW.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_);
-        const Eigen::MatrixXd& d = dY_[static_cast<std::size_t>(i)];
         for (int j = 0; j < joints_; ++j) {
-            const double gq = Gi.cwiseProduct(d.middleCols(static_cast<Eigen::Index>(j) * columns_, columns_)).sum();
-            const double gv = Gi.cwiseProduct(d.middleCols(static_cast<Eigen::Index>(joints_ + j) * columns_, columns_)).sum();
-            const double ga = Gi.cwiseProduct(d.middleCols(static_cast<Eigen::Index>(2 * joints_ + j) * columns_, columns_)).sum();
-            gradient->segment(static_cast<Eigen::Index>(j) * m, m) += gq * psi_.col(i) + gv * dpsi_.col(i) + ga * ddpsi_.col(i);
+            gradient->segment(static_cast<Eigen::Index>(j) * m, m) +=
+                dphi_(j, i) * psi_.col(i) + dphi_(joints_ + j, i) * dpsi_.col(i) + dphi_(2 * joints_ + j, i) * ddpsi_.col(i);
         }
     }
-    return value;
+    return value_;
 }
 
 double ExcitationProblem::condition_number(const Eigen::VectorXd& c) {
     prepare(c);
-    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(W_ * column_scales(W_).asDiagonal()).singularValues();
+    const Eigen::VectorXd scales = W_.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse();
+    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(W_ * scales.asDiagonal()).singularValues();
     return sigma[0] / sigma[sigma.size() - 1];
 }
 
-Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, Eigen::MatrixXd* jacobian) {
+Eigen::MatrixXd ExcitationProblem::information(const Eigen::VectorXd& c) {
     prepare(c);
+    return information_matrix(W_, joints_, settings_.information.noise_std, settings_.information.sample_weight);
+}
+
+Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, Eigen::MatrixXd* jacobian) {
+    if (jacobian) {
+        prepare_derivatives(c);
+    } else {
+        prepare(c);
+    }
     const int m = basis_.size();
     Eigen::VectorXd g(constraints());
     if (jacobian) jacobian->setZero(constraints(), variables());
@@ -225,12 +221,9 @@ Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, E
                     case LimitKind::Torque: {
                         value = tau_(j, i);
                         if (jacobian) {
-                            const Eigen::MatrixXd& d = dY_[static_cast<std::size_t>(i)];
+                            const Eigen::MatrixXd& d = dtau_[static_cast<std::size_t>(i)];
                             for (int a = 0; a < joints_; ++a) {
-                                const double tq = d.row(j).segment(static_cast<Eigen::Index>(a) * columns_, columns_).dot(x_);
-                                const double tv = d.row(j).segment(static_cast<Eigen::Index>(joints_ + a) * columns_, columns_).dot(x_);
-                                const double ta = d.row(j).segment(static_cast<Eigen::Index>(2 * joints_ + a) * columns_, columns_).dot(x_);
-                                slope.segment(static_cast<Eigen::Index>(a) * m, m) = tq * psi_.col(i) + tv * dpsi_.col(i) + ta * ddpsi_.col(i);
+                                slope.segment(static_cast<Eigen::Index>(a) * m, m) = d(j, a) * psi_.col(i) + d(j, joints_ + a) * dpsi_.col(i) + d(j, 2 * joints_ + a) * ddpsi_.col(i);
                             }
                         }
                         break;

@@ -4,14 +4,10 @@
 // trajectory (fourier_trajectory.hpp) that minimise a criterion of the column-scaled base regressor
 // W(c) stacked over the samples of one period, subject to the joints' limits.
 //
-//  - Criterion: log cond(W_s) (`cond`) or -log det(W_s^T W_s) (`logdet`), W_s = W S, S scaling every column to
-//    unit norm (so that parameters of different units weigh alike). Both are functions of the singular
-//    values of W_s; their gradients are exact in W_s (d sigma_i = u_i^T dW_s v_i, the scaling differentiated
-//    too), chained to c through dW/dc = dY/dq psi + dY/dqd psi' + dY/dqdd psi''. The regressor's partial
-//    derivatives are exact in qdd (Y is linear in qdd: a difference of two evaluations) and central
-//    differences in q and qd (step 1e-6 rad, rad/s: relative error ~1e-9, far below what changes the
-//    optimizer's path; the finite-difference gradients of cond that fail are those of cond itself in c, where
-//    a crossing of the smallest singular values makes the difference quotient meaningless).
+//  - Criterion: one of information_criterion.hpp's (d-optimal, a-relative, e-relative on the noise-weighted
+//    information matrix; cond, logdet of the column-scaled W), with its exact gradient in W chained to c
+//    through dW/dc = dY/dq psi + dY/dqd psi' + dY/dqdd psi'': per sample i the 3n derivatives of <dF/dW_i, Y> in
+//    (q, qd, qdd) (regressor_derivatives.hpp), times the basis. The regressor's partial
 //  - Constraints, per joint and kind (upper and lower position, |velocity|, |acceleration|, |torque|): the
 //    normalized values g = value / limit - 1 over the samples, aggregated by the Kreisselmeier-Steinhauser
 //    function KS(g) = max g + log(sum exp(rho (g - max g))) / rho >= max g (smooth, conservative); the
@@ -22,18 +18,18 @@
 //    dp/dc = J_v(q) dq/dc, J_v the point's translational Jacobian (frame_kinematics.hpp).
 #include <Eigen/Core>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "excite/fourier_trajectory.hpp"
+#include "excite/information_criterion.hpp"
+#include "excite/regressor_derivatives.hpp"
 #include "excite/workspace_box.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::excite {
-
-enum class Criterion { Cond, LogDet };
-const char* to_string(Criterion c);
 
 struct JointLimits {
     double lower = -std::numeric_limits<double>::infinity(), upper = std::numeric_limits<double>::infinity();  // rad
@@ -47,8 +43,9 @@ const char* to_string(LimitKind k);
 constexpr int kLimitKinds = 5;
 
 struct ProblemSettings {
-    Criterion criterion = Criterion::Cond;
-    int samples = 0;       // per period for the criterion and constraints; 0: 20 per period of the highest harmonic (>= 100)
+    Criterion criterion = Criterion::DOptimal;
+    InformationModel information;  // noise, prior scales, sample weight (information criteria only)
+    int samples = 0;       // per period for the criterion and constraints; 0: 20 per period of the highest harmonic (>= 100; information criteria: 40, >= 400)
     double ks_rho = 200.0; // sharpness of the KS aggregate (dimensionless g): over-estimate <= log(2 N) / rho
 };
 
@@ -58,6 +55,11 @@ public:
     // limits: one per joint. std::invalid_argument for sizes that do not match.
     ExcitationProblem(const robot::RobotModel& model, Eigen::VectorXd parameters, FourierBasis basis, Eigen::VectorXd pose,
                       std::vector<JointLimits> limits, ProblemSettings settings);
+    ExcitationProblem(const ExcitationProblem& other);  // a copy for another thread (its own caches, the same model)
+    ExcitationProblem& operator=(const ExcitationProblem&) = delete;
+    // The derivative route (regressor_derivatives.hpp): central differences (the default) or automatic
+    // differentiation (serial robots; the benchmark and the tests compare both).
+    void use_automatic_differentiation(bool automatic);
 
     int variables() const { return joints_ * basis_.size(); }
     int constraints() const { return joints_ * kLimitKinds + (workspace_ ? kBoxFaces : 0); }
@@ -67,6 +69,14 @@ public:
     const FourierBasis& basis() const { return basis_; }
     const Eigen::VectorXd& pose() const { return pose_; }
     Criterion criterion_kind() const { return settings_.criterion; }
+    const InformationModel& information_model() const { return settings_.information; }
+    // The log samples each criterion sample stands for (InformationModel::sample_weight).
+    void set_sample_weight(double weight) {
+        settings_.information.sample_weight = weight;
+        derivatives_for_.resize(0);
+    }
+    // The information matrix of the base parameters at c (information_criterion.hpp).
+    Eigen::MatrixXd information(const Eigen::VectorXd& c);
 
     // c: joints x 2L coefficients, row-major flattened (joint 0's first). The criterion, its gradient when
     // `gradient` is not null.
@@ -88,7 +98,8 @@ public:
     void set_workspace_box(const WorkspaceBox& box);
 
 private:
-    void prepare(const Eigen::VectorXd& c);  // per-sample regressors and derivatives at c (cached)
+    void prepare(const Eigen::VectorXd& c);              // per-sample states, regressors and torques at c (cached)
+    void prepare_derivatives(const Eigen::VectorXd& c);  // and dF/dW, the criterion, per-sample dphi and dtau (cached)
     double limit(int joint, LimitKind kind) const;
 
     const robot::RobotModel& model_;
@@ -102,7 +113,11 @@ private:
     Eigen::MatrixXd psi_, dpsi_, ddpsi_;
     Eigen::MatrixXd q_, qd_, qdd_, tau_;
     Eigen::MatrixXd W_;                 // (samples * joints) x columns
-    std::vector<Eigen::MatrixXd> dY_;   // per sample, 3 * joints blocks (joints x columns): d/dq_j, d/dqd_j, d/dqdd_j
+    std::unique_ptr<RegressorDerivatives> derivatives_;
+    double value_ = 0.0;                // the criterion at derivatives_for_
+    Eigen::MatrixXd dphi_;              // 3 * joints x samples: d<dF/dW_i, Y_i>/d(q, qd, qdd)
+    std::vector<Eigen::MatrixXd> dtau_; // per sample, joints x 3 * joints: d tau / d(q, qd, qdd)
+    Eigen::VectorXd derivatives_for_;
     std::optional<Workspace> workspace_;
     Eigen::Matrix3Xd points_;                      // the workspace point at every sample (base frame)
     std::vector<Eigen::Matrix3Xd> point_jacobians_;  // per sample, dp/dq (3 x joints)

@@ -4,6 +4,12 @@
 # line and the tests.
 add_library(jacobid_excite STATIC
   ${CMAKE_CURRENT_LIST_DIR}/fourier_trajectory.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/information_criterion.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/parameter_scales.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/prior_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/motion_information.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/frequency_rule.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/regressor_derivatives.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_problem.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_design.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_kinematics.cpp
@@ -11,6 +17,6 @@ add_library(jacobid_excite STATIC
 )
 target_link_libraries(jacobid_excite PUBLIC jacobid_host PRIVATE NLopt::nlopt_cxx)
 jacobid_set_warnings(jacobid_excite)
-target_sources(jacobid PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/excite_command.cpp)
+target_sources(jacobid PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/excite_command.cpp ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/excite_prediction.cpp)
 target_link_libraries(jacobid PRIVATE jacobid_excite)
 target_compile_definitions(jacobid PRIVATE JACOBID_WITH_NLOPT=1)

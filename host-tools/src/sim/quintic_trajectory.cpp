@@ -1,13 +1,38 @@
 // SPDX-License-Identifier: MIT
 #include "sim/quintic_trajectory.hpp"
 
+#include <fmt/core.h>
+
 #include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/errors.hpp"
 
 namespace jacobid::sim {
+namespace {
+
+constexpr double kPeakVelocity = 1.875;                  // of a quintic step: 15/8 d / T
+constexpr double kPeakAcceleration = 5.773502691896258;  // 10 / sqrt(3) d / T^2
+
+std::vector<double> per_joint(const std::vector<double>& given, std::size_t joints, const char* option) {
+    if (given.empty()) return std::vector<double>(joints, std::numeric_limits<double>::infinity());
+    if (given.size() != 1 && given.size() != joints) {
+        throw InputError(fmt::format("{}: {} values for a robot with {} joints (give one value or one per joint)", option, given.size(), joints));
+    }
+    for (const double v : given) {
+        if (!(v > 0.0)) throw InputError(fmt::format("{}: {}: expected a limit > 0", option, v));
+    }
+    return given.size() == 1 ? std::vector<double>(joints, given.front()) : given;
+}
+
+}  // namespace
 
 QuinticTrajectory::QuinticTrajectory(std::vector<double> start, std::vector<double> lower, std::vector<double> upper,
                                      MoveSettings settings, std::uint64_t seed)
     : lower_(std::move(lower)), upper_(std::move(upper)), settings_(settings), rng_(seed), from_(start), to_(std::move(start)) {
+    velocity_limit_ = per_joint(settings_.velocity_limit, to_.size(), "--velocity-limit");
+    acceleration_limit_ = per_joint(settings_.acceleration_limit, to_.size(), "--acceleration-limit");
     move_start_ = 0.0;
     move_end_ = 0.0;
     move_duration_ = 1.0;
@@ -20,6 +45,10 @@ void QuinticTrajectory::next_move() {
     for (std::size_t j = 0; j < to_.size(); ++j) to_[j] = lower_[j] + (upper_[j] - lower_[j]) * unit(rng_);
     move_start_ = move_end_;
     move_duration_ = settings_.min_duration + (settings_.max_duration - settings_.min_duration) * unit(rng_);
+    for (std::size_t j = 0; j < to_.size(); ++j) {
+        const double step = std::abs(to_[j] - from_[j]);
+        move_duration_ = std::max({move_duration_, kPeakVelocity * step / velocity_limit_[j], std::sqrt(kPeakAcceleration * step / acceleration_limit_[j])});
+    }
     move_end_ = move_start_ + move_duration_ + settings_.max_dwell * unit(rng_);
 }
 

@@ -226,7 +226,7 @@ TEST(ExciteCli, AFaceCrossedBetweenTheOptimizersSamplesIsTightenedUntilEveryRowI
     // control-rate check finds them and the tightening rounds move the faces in. (With 6, below 2 x 3 + 1, the
     // samples alias the third harmonic and whether 4 rounds suffice depended on the compiler: now refused.)
     const std::string csv = scratch("sparse.csv"), json = scratch("sparse.json");
-    const auto r = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " --duration 10 --harmonics 3 --base-frequency 0.1 --starts 1 " +
+    const auto r = run_command(kJacobid + " excite --quiet --criterion cond --robot " + kTwoLink + " --duration 10 --harmonics 3 --base-frequency 0.1 --starts 1 " +
                                "--time-limit 10 --samples 10 --workspace-frame tool --workspace-point 0.4,0,0 --workspace-box 0.6,0.95,-0.25,0.25,-1,1 -o " +
                                csv + " --json " + json);
     ASSERT_EQ(r.exit_code, 0) << r.err;

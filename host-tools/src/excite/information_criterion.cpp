@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+#include "excite/information_criterion.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
+#include <cmath>
+#include <limits>
+
+namespace jacobid::excite {
+namespace {
+
+// The smallest pivot of the unit-diagonal (column-equilibrated) Gram matrix's Cholesky factor that counts as
+// full rank: below it the matrix is singular to rounding (pivot^2 ~ 1e-16).
+constexpr double kPivot = 1e-8;
+
+// A positive definite matrix factored after equilibration (unit diagonal), so that parameters of very
+// different units do not fail the factorization: G = D^-1 Gs D^-1, Gs = L L^T.
+struct Factored {
+    Eigen::VectorXd d;  // 1 / sqrt(G_kk)
+    Eigen::LLT<Eigen::MatrixXd> llt;
+    bool ok = false;
+    double log_det = 0.0;  // log det G
+
+    explicit Factored(const Eigen::MatrixXd& G) {
+        d = G.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+        llt.compute(d.asDiagonal() * G * d.asDiagonal());
+        if (llt.info() != Eigen::Success || !G.diagonal().allFinite() || (G.diagonal().array() <= 0.0).any()) return;
+        const Eigen::VectorXd pivots = llt.matrixLLT().diagonal();
+        if (!(pivots.minCoeff() > kPivot)) return;
+        ok = true;
+        log_det = 2.0 * pivots.array().log().sum() - 2.0 * d.array().log().sum();
+    }
+    // G^-1 = D Gs^-1 D.
+    Eigen::MatrixXd inverse() const {
+        const Eigen::Index p = d.size();
+        return d.asDiagonal() * llt.solve(Eigen::MatrixXd::Identity(p, p)) * d.asDiagonal();
+    }
+};
+
+// Rows of W divided by sigma_j^power (joint j = row % joints).
+Eigen::MatrixXd scale_rows(const Eigen::MatrixXd& W, int joints, const Eigen::VectorXd& noise_std, int power) {
+    Eigen::MatrixXd out(W.rows(), W.cols());
+    for (Eigen::Index r = 0; r < W.rows(); ++r) out.row(r) = W.row(r) / std::pow(noise_std[r % joints], power);
+    return out;
+}
+
+double column_scaled_criterion(Criterion criterion, const Eigen::MatrixXd& W, Eigen::MatrixXd* dW) {
+    // W_s = W S, S = diag(1 / ||w_k||).
+    const Eigen::Index columns = W.cols();
+    const Eigen::VectorXd s = W.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse();
+    const Eigen::MatrixXd Ws = W * s.asDiagonal();
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Ws, dW ? Eigen::ComputeThinU | Eigen::ComputeThinV : 0);
+    const Eigen::VectorXd& sigma = svd.singularValues();
+    const Eigen::Index p = sigma.size();
+    double value = 0.0;
+    Eigen::MatrixXd G;  // dF/dW_s
+    if (criterion == Criterion::Cond) {
+        value = std::log(sigma[0]) - std::log(sigma[p - 1]);
+        if (dW) {
+            G = svd.matrixU().col(0) * svd.matrixV().col(0).transpose() / sigma[0] -
+                svd.matrixU().col(p - 1) * svd.matrixV().col(p - 1).transpose() / sigma[p - 1];
+        }
+    } else {
+        value = -2.0 * sigma.array().log().sum();
+        if (dW) G = -2.0 * svd.matrixU() * sigma.cwiseInverse().asDiagonal() * svd.matrixV().transpose();
+    }
+    if (!std::isfinite(value)) value = kRankDeficient;
+    if (!dW) return value;
+    // W_s's columns are w_k s_k with s_k = 1 / ||w_k||, d s_k / d w_k = -w_k / ||w_k||^3.
+    dW->resize(W.rows(), columns);
+    for (Eigen::Index k = 0; k < columns; ++k) {
+        dW->col(k) = G.col(k) * s[k] - (G.col(k).dot(W.col(k)) * s[k] * s[k] * s[k]) * W.col(k);
+    }
+    if (!dW->allFinite()) dW->setZero();
+    return value;
+}
+
+}  // namespace
+
+const char* to_string(Criterion c) {
+    switch (c) {
+        case Criterion::Cond: return "cond";
+        case Criterion::LogDet: return "logdet";
+        case Criterion::DOptimal: return "d-optimal";
+        case Criterion::ARelative: return "a-relative";
+        case Criterion::ERelative: return "e-relative";
+    }
+    return "?";
+}
+
+std::optional<Criterion> criterion_from_string(const std::string& name) {
+    for (const Criterion c : {Criterion::Cond, Criterion::LogDet, Criterion::DOptimal, Criterion::ARelative, Criterion::ERelative}) {
+        if (name == to_string(c)) return c;
+    }
+    return std::nullopt;
+}
+
+bool is_information_criterion(Criterion c) { return c != Criterion::Cond && c != Criterion::LogDet; }
+
+Eigen::MatrixXd information_matrix(const Eigen::MatrixXd& W, int joints, const Eigen::VectorXd& noise_std, double sample_weight) {
+    const Eigen::MatrixXd Wt = scale_rows(W, joints, noise_std, 1);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(W.cols(), W.cols());
+    A.selfadjointView<Eigen::Lower>().rankUpdate(Wt.transpose(), sample_weight);
+    return A.selfadjointView<Eigen::Lower>();
+}
+
+double evaluate_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joints, const InformationModel& model, Eigen::MatrixXd* dW) {
+    if (!is_information_criterion(criterion)) return column_scaled_criterion(criterion, W, dW);
+    const double gamma = model.sample_weight;
+    const Factored A(information_matrix(W, joints, model.noise_std, gamma));
+    if (!A.ok) {
+        if (dW) dW->setZero(W.rows(), W.cols());
+        return kRankDeficient;
+    }
+    const Eigen::MatrixXd C = A.inverse();  // the predicted covariance
+    double value = 0.0;
+    Eigen::MatrixXd inner;                  // dF/dW = -2 gamma S^-1 W inner
+    if (criterion == Criterion::DOptimal) {
+        value = -A.log_det;
+        if (dW) inner = C;
+    } else {
+        const Eigen::ArrayXd scale2 = model.scale.array().square();
+        const Eigen::ArrayXd r = C.diagonal().array() / scale2;  // predicted relative variances
+        Eigen::ArrayXd df_dr;
+        if (criterion == Criterion::ARelative) {
+            const double sum = r.sum();
+            value = std::log(sum);
+            df_dr = Eigen::ArrayXd::Constant(r.size(), 1.0 / sum);
+        } else {
+            const Eigen::ArrayXd lr = r.log();
+            const double top = lr.maxCoeff();
+            const Eigen::ArrayXd e = (kMaxSharpness * (lr - top)).exp();
+            value = top + std::log(e.sum()) / kMaxSharpness;
+            df_dr = e / e.sum() / r;
+        }
+        if (dW) inner = C * (df_dr / scale2).matrix().asDiagonal() * C;
+    }
+    if (dW) {
+        *dW = (-2.0 * gamma) * scale_rows(W, joints, model.noise_std, 2) * inner;
+        if (!dW->allFinite()) dW->setZero();
+    }
+    return std::isfinite(value) ? value : kRankDeficient;
+}
+
+Prediction predict(const Eigen::MatrixXd& information, const Eigen::VectorXd& scale) {
+    Prediction p;
+    const Eigen::Index n = information.rows();
+    p.std_dev = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+    p.relative_std = p.std_dev;
+    p.worst_relative_std = std::numeric_limits<double>::infinity();
+    const Factored A(information);
+    if (!A.ok) return p;
+    p.identifiable = true;
+    p.log_det = A.log_det;
+    p.std_dev = A.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
+    p.relative_std = p.std_dev.cwiseQuotient(scale);
+    p.worst_relative_std = p.relative_std.maxCoeff(&p.worst);
+    return p;
+}
+
+}  // namespace jacobid::excite

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The information matrix of a sampled motion (excite's own trajectory at its control rate, or `--compare`'s
+// trajectory or log): A = sum over the samples of W(q, qd, qdd)^T S^-1 W(q, qd, qdd), S = diag(sigma_j^2), the
+// full-rate information the WLS estimate of identify keeps through its F_p and decimation (docs/excite.md,
+// "Predicted std"). Long motions are summed over every k-th sample, each weighing k (at most `max_rows`
+// samples: the regressor varies far slower than 1 / max_rows of a log).
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "robot/robot_model.hpp"
+
+namespace jacobid::excite {
+
+struct SampledMotion {
+    std::vector<std::vector<double>> q, qd, qdd;  // per joint
+    std::size_t first = 0, last = 0;              // the samples [first, last) count (last 0: all)
+    std::size_t samples() const { return q.empty() ? 0 : q.front().size(); }
+};
+
+Eigen::MatrixXd motion_information(const robot::RobotModel& model, const SampledMotion& motion, const Eigen::VectorXd& noise_std,
+                                   std::size_t max_rows = 20000);
+
+}  // namespace jacobid::excite

@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: MIT
+// Issue 35: excite's information criteria and predictions, against independent checks: the criteria's
+// gradients against central differences of the criteria; the predicted std against the spread of WLS
+// estimates solved again and again on simulated noise (linear algebra alone, no shared formula); the two
+// routes to the regressor's derivatives (automatic differentiation of a Newton-Euler regressor written again,
+// central differences of the model's) against each other; the prior scale rule against numbers worked out
+// from the description by hand; the frequency rule; --prior read from identify's own JSON; --compare and the
+// one-line warning when the design loses; simulate's random moves within velocity and acceleration limits.
+#include <gtest/gtest.h>
+
+#include <Eigen/QR>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "excite/excitation_problem.hpp"
+#include "excite/frequency_rule.hpp"
+#include "excite/information_criterion.hpp"
+#include "excite/parameter_scales.hpp"
+#include "excite/prior_file.hpp"
+#include "excite/regressor_derivatives.hpp"
+#include "io/csv_table.hpp"
+#include "robot/robot_description.hpp"
+#include "run_command.hpp"
+#include "excite_test_support.hpp"
+
+namespace {
+
+using jacobid::test::run_command;
+using namespace jacobid;
+using test::kJacobid;
+using test::kTwoLink;
+
+const std::string kUr5 = std::string(JACOBID_SOURCE_DIR) + "/examples/robots/ur5_like.yaml";
+std::string scratch(const std::string& name) { return test::excite_scratch("excite_information", name); }
+
+const excite::Criterion kAll[] = {excite::Criterion::DOptimal, excite::Criterion::ARelative, excite::Criterion::ERelative, excite::Criterion::Cond,
+                                  excite::Criterion::LogDet};
+
+TEST(InformationCriterion, GradientsInWMatchCentralDifferences) {
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> normal;
+    const int joints = 3, samples = 12, p = 7;
+    Eigen::MatrixXd W(samples * joints, p);
+    for (Eigen::Index i = 0; i < W.size(); ++i) W.data()[i] = normal(rng);
+    W.col(2) *= 30.0;  // columns of different units
+    excite::InformationModel model{Eigen::Vector3d(0.5, 0.2, 0.05), Eigen::VectorXd::LinSpaced(p, 0.1, 3.0), 7.0};
+    for (const auto criterion : kAll) {
+        Eigen::MatrixXd G;
+        excite::evaluate_criterion(criterion, W, joints, model, &G);
+        double worst = 0.0;
+        for (Eigen::Index k = 0; k < W.size(); k += 5) {
+            const double h = 1e-6 * std::max(1.0, std::abs(W.data()[k]));
+            Eigen::MatrixXd plus = W, minus = W;
+            plus.data()[k] += h, minus.data()[k] -= h;
+            const double fd = (excite::evaluate_criterion(criterion, plus, joints, model, nullptr) - excite::evaluate_criterion(criterion, minus, joints, model, nullptr)) / (2 * h);
+            worst = std::max(worst, std::abs(fd - G.data()[k]) / std::max(1e-3, std::abs(fd)));
+        }
+        EXPECT_LT(worst, 1e-5) << excite::to_string(criterion);
+    }
+    // A rank-deficient W is the worst value with a zero gradient, not a NaN.
+    Eigen::MatrixXd deficient = W;
+    deficient.col(3) = deficient.col(1);
+    Eigen::MatrixXd G;
+    EXPECT_EQ(excite::evaluate_criterion(excite::Criterion::DOptimal, deficient, joints, model, &G), excite::kRankDeficient);
+    EXPECT_TRUE(G.isZero());
+}
+
+TEST(InformationCriterion, PredictedStdIsTheSpreadOfWlsEstimatesOnSimulatedNoise) {
+    // y = W x + e, e_j ~ N(0, sigma_j^2) per joint row: the WLS estimate solved 4000 times; its spread against predict().
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> normal;
+    const int joints = 2, samples = 60, p = 5;
+    Eigen::MatrixXd W(samples * joints, p);
+    for (Eigen::Index i = 0; i < W.size(); ++i) W.data()[i] = normal(rng) * (1.0 + (i % 3));
+    const Eigen::Vector2d sigma(0.3, 0.05);
+    const Eigen::VectorXd scale = Eigen::VectorXd::Constant(p, 2.0);
+    const excite::Prediction predicted = excite::predict(excite::information_matrix(W, joints, sigma, 1.0), scale);
+    ASSERT_TRUE(predicted.identifiable);
+    Eigen::MatrixXd weighted = W;
+    for (Eigen::Index r = 0; r < W.rows(); ++r) weighted.row(r) /= sigma[r % joints];
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(weighted);
+    const int runs = 4000;
+    Eigen::MatrixXd estimates(p, runs);
+    for (int k = 0; k < runs; ++k) {
+        Eigen::VectorXd y(W.rows());
+        for (Eigen::Index r = 0; r < W.rows(); ++r) y[r] = sigma[r % joints] * normal(rng) / sigma[r % joints];  // weighted noise: unit variance
+        estimates.col(k) = qr.solve(y);
+    }
+    const Eigen::VectorXd mean = estimates.rowwise().mean();
+    for (int i = 0; i < p; ++i) {
+        const double spread = std::sqrt((estimates.row(i).array() - mean[i]).square().sum() / (runs - 1));
+        EXPECT_NEAR(spread / predicted.std_dev[i], 1.0, 0.05) << "parameter " << i;
+        EXPECT_NEAR(predicted.relative_std[i], predicted.std_dev[i] / 2.0, 1e-15);
+    }
+    EXPECT_EQ(predicted.worst_relative_std, predicted.relative_std.maxCoeff());
+}
+
+TEST(RegressorDerivatives, AutomaticDifferentiationEqualsCentralDifferencesOnThreeRobots) {
+    for (const std::string file : {"ur5_like.yaml", "puma560.yaml", "scara_rrpr.yaml"}) {
+        const robot::RobotDescription robot = robot::load_robot_description(std::string(JACOBID_SOURCE_DIR) + "/examples/robots/" + file);
+        const auto model = robot::make_robot_model(robot);
+        const int n = model->joint_count(), p = model->parameter_count();
+        const Eigen::VectorXd x = robot::true_parameters(robot, *model);
+        const auto automatic = excite::make_regressor_derivatives(*model, true), central = excite::make_regressor_derivatives(*model, false);
+        ASSERT_TRUE(automatic->automatic()) << file;
+        ASSERT_FALSE(central->automatic()) << file;
+        std::mt19937_64 rng(9);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        for (int trial = 0; trial < 5; ++trial) {
+            Eigen::VectorXd q(n), qd(n), qdd(n);
+            for (int j = 0; j < n; ++j) q[j] = 0.5 * u(rng), qd[j] = 2.0 * u(rng), qdd[j] = 5.0 * u(rng);
+            Eigen::MatrixXd H(n, p);
+            for (Eigen::Index i = 0; i < H.size(); ++i) H.data()[i] = u(rng);
+            Eigen::VectorXd da, dc;
+            Eigen::MatrixXd ta, tc;
+            automatic->evaluate(q.data(), qd.data(), qdd.data(), H, x, da, ta);
+            central->evaluate(q.data(), qd.data(), qdd.data(), H, x, dc, tc);
+            EXPECT_LT((da - dc).cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, dc.cwiseAbs().maxCoeff())) << file << " trial " << trial;
+            EXPECT_LT((ta - tc).cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, tc.cwiseAbs().maxCoeff())) << file << " trial " << trial;
+        }
+    }
+}
+
+TEST(ParameterScales, PriorValueOrATenthOfItsKindsPhysicalScale) {
+    const robot::RobotDescription robot = robot::load_robot_description(kUr5);
+    const auto model = robot::make_robot_model(robot);
+    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
+    const Eigen::VectorXd s = excite::prior_scales(robot, *model, x);
+    // By hand from examples/robots/ur5_like.yaml: masses 3.7, 8.393, 2.275, 1.219, 1.219, 0.1879 kg; each joint
+    // origin's distance from its antecedent's (hypot of the MDH row's d and r; joint 2's is 0 and not counted):
+    // 0.089159, 0.425, hypot(0.39225, 0.10915), 0.09465, 0.0823 m.
+    const double masses[6] = {3.7, 8.393, 2.275, 1.219, 1.219, 0.1879};
+    const double l = (0.089159 + 0.425 + std::hypot(0.39225, 0.10915) + 0.09465 + 0.0823) / 5.0;
+    auto carried = [&](int j) {
+        double m = 0.0;
+        for (int k = j - 1; k < 6; ++k) m += masses[k];
+        return m;
+    };
+    auto scale = [&](const std::string& name) { return s[model->parameter_index(name)]; };
+    auto value = [&](const std::string& name) { return x[model->parameter_index(name)]; };
+    ASSERT_GE(model->parameter_index("XY2"), 0);
+    EXPECT_EQ(value("XY2"), 0.0);
+    EXPECT_NEAR(scale("XY2"), 0.1 * carried(2) * l * l, 1e-9);   // inertia with prior 0
+    EXPECT_NEAR(scale("MY2"), 0.1 * carried(2) * l, 1e-9);       // first moment with prior 0
+    EXPECT_NEAR(scale("ZZ2R"), std::abs(value("ZZ2R")), 1e-12);  // a prior larger than a tenth of m l^2
+    EXPECT_NEAR(scale("FC1"), std::abs(value("FC1")), 1e-12);
+    EXPECT_NEAR(scale("XX6R"), 0.1 * carried(6) * l * l, 1e-9);
+}
+
+TEST(FrequencyRule, PeriodsOfAtMostTenSecondsAndHarmonicsUpToTheAccelerationOverVelocityFrequency) {
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(20.0), 0.1);   // 2 x 10 s
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(40.0), 0.1);   // 4 x 10 s
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(15.0), 2.0 / 15.0);  // at least 2 periods
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(50.0), 0.1);
+    std::vector<excite::JointLimits> limits(3);
+    for (auto& l : limits) l.velocity = 3.15, l.acceleration = 10.0;  // 10 / (2 pi 3.15) = 0.505 Hz
+    EXPECT_EQ(excite::auto_harmonics(0.1, limits), 5);
+    limits[1].acceleration = 40.0;  // 2.02 Hz: capped at 2 Hz, then at 10 harmonics
+    EXPECT_EQ(excite::auto_harmonics(0.1, limits), 10);
+    EXPECT_EQ(excite::auto_harmonics(0.5, std::vector<excite::JointLimits>(2)), 3);  // no limits: 0.5 Hz, at least 3
+}
+
+TEST(ExciteCli, PriorFromIdentifyCompareAndTheWarningWhenTheDesignLoses) {
+    const std::string log = scratch("prior_log.csv"), prior = scratch("prior.json"), longer = scratch("long_moves.csv");
+    ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + kTwoLink + " --duration 20 --torque-noise 0.05,0.01 -o " + log).exit_code, 0);
+    const auto id = run_command(kJacobid + " identify --quiet --robot " + kTwoLink + " --in " + log + " --format json");
+    ASSERT_EQ(id.exit_code, 0) << id.err;
+    std::ofstream(prior) << id.out;
+    // The comparison: 120 s of random moves with the same limits, six times the design's duration.
+    ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + kTwoLink + " --duration 120 --velocity-limit 2 --acceleration-limit 8 -o " + longer).exit_code, 0);
+    const std::string json_path = scratch("design.json"), traj = scratch("design.csv");
+    const auto r = run_command(kJacobid + " excite --robot " + kTwoLink + " --duration 20 --velocity-limit 2 --acceleration-limit 8 --prior " + prior +
+                               " --compare " + longer + " --time-limit 10 --starts 2 -o " + traj + " --json " + json_path);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(json_path));
+    EXPECT_EQ(j["criterion"], "d-optimal");
+    EXPECT_EQ(j["noise_source"], prior);
+    EXPECT_TRUE(j["base_frequency_auto"].get<bool>());
+    EXPECT_DOUBLE_EQ(j["base_frequency"].get<double>(), 0.1);
+    // The prior's values are identify's, and its noise identify's residual std x sqrt(decimation x long-run factor).
+    const nlohmann::json idj = nlohmann::json::parse(id.out);
+    EXPECT_DOUBLE_EQ(j["predicted"]["parameters"]["ZZ1R"]["prior"].get<double>(), idj["parameters"]["ZZ1R"]["value"].get<double>());
+    const double expected_noise = idj["joint_sigma"][1].get<double>() *
+                                  std::sqrt(idj["settings"]["decimation"].get<double>() * idj["joint_long_run_factors"][1].get<double>());
+    EXPECT_NEAR(j["noise_std"][1].get<double>(), expected_noise, 1e-12 * expected_noise);
+    // Every parameter has a predicted std; the 120 s comparison knows more than 20 s of anything within the same limits.
+    ASSERT_TRUE(j["compare"].is_object());
+    EXPECT_EQ(j["compare"]["predicted"]["parameters"].size(), j["parameters"].size());
+    EXPECT_TRUE(j["compare"]["design_worse"].get<bool>());
+    EXPECT_NE(r.err.find("excite: warning: the design is worse than --compare " + longer), std::string::npos) << r.err;
+    // The text table lists every base parameter with both stds.
+    for (const auto& name : j["parameters"]) EXPECT_NE(r.err.find("\n" + name.get<std::string>() + " "), std::string::npos) << name;
+    // The same design compared with its own trajectory table: equal predictions, no warning.
+    const std::string same = scratch("same.json");
+    const auto s = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " --duration 20 --velocity-limit 2 --acceleration-limit 8 --prior " +
+                               prior + " --compare " + traj + " --time-limit 10 --starts 2 -o " + scratch("same.csv") + " --json " + same);
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    const nlohmann::json sj = nlohmann::json::parse(std::ifstream(same));
+    EXPECT_NEAR(sj["compare"]["worst_relative_std_ratio"].get<double>(), 1.0, 1e-9);
+    EXPECT_EQ(s.err.find("warning"), std::string::npos) << s.err;
+}
+
+TEST(ExciteCli, BadPriorNoiseAndFrequencyAreOneLineNamingTheOption) {
+    std::ofstream(scratch("not_identify.json")) << "{\"cond\": 3}";
+    std::ofstream(scratch("not_json.json")) << "parameters: 1";
+    struct Case {
+        std::string args, expected;
+    };
+    const std::vector<Case> cases = {
+        {"--prior " + scratch("not_identify.json"), "no `parameters` object"},
+        {"--prior " + scratch("not_json.json"), "not JSON"},
+        {"--prior " + scratch("missing.json"), "--prior " + scratch("missing.json") + ": cannot open"},
+        {"--torque-noise 0.1,0.2,0.3", "--torque-noise: 3 values"},
+        {"--torque-noise 0", "--torque-noise: joint 1: 0 N.m"},
+        {"--base-frequency fast", "--base-frequency 'fast': expected auto or"},
+        {"--harmonics 2.5", "--harmonics 2.5: expected auto or a whole number"},
+        {"--position-limit 1:-1", "--position-limit: joint 1: '1:-1'"},
+        {"--criterion best", "--criterion"},
+    };
+    for (const auto& c : cases) {
+        const auto r = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " -o " + scratch("bad.csv") + " " + c.args);
+        EXPECT_EQ(r.exit_code, 2) << c.args;
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << ": " << r.err;
+    }
+    const auto both = run_command(kJacobid + " simulate --quiet --robot " + kTwoLink + " --velocity-limit 1 --trajectory x.csv -o " + scratch("x.csv"));
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("--velocity-limit shapes the random moves"), std::string::npos) << both.err;
+}
+
+TEST(SimulateCli, RandomMovesStayWithinTheVelocityAndAccelerationLimits) {
+    const std::string log = scratch("limited.csv");
+    ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + kUr5 + " --duration 20 --velocity-limit 3.15,3.15,3.15,2,2,2 --acceleration-limit 10 -o " + log).exit_code, 0);
+    const io::CsvTable t = io::read_csv(log);
+    const double dt = 1e-3, vmax[6] = {3.15, 3.15, 3.15, 2, 2, 2};
+    for (int j = 0; j < 6; ++j) {
+        const auto& qd = t.column("qd_ref" + std::to_string(j + 1));
+        double peak_v = 0.0, peak_a = 0.0;
+        for (std::size_t i = 1; i < qd.size(); ++i) {
+            peak_v = std::max(peak_v, std::abs(qd[i]));
+            peak_a = std::max(peak_a, std::abs(qd[i] - qd[i - 1]) / dt);  // the reference's acceleration from its own velocity
+        }
+        EXPECT_LE(peak_v, vmax[j] * (1 + 1e-9)) << "joint " << j + 1;
+        EXPECT_GT(peak_v, 0.5 * vmax[j]) << "joint " << j + 1 << ": the limit should bind on some moves";
+        EXPECT_LE(peak_a, 10.0 * (1 + 1e-3)) << "joint " << j + 1;
+    }
+}
+
+}  // namespace
