@@ -5,7 +5,8 @@
 # duration within the same limits (5 seeds), each validated on noise-free motion it was not identified on
 # (random moves and a multi-sine, 40 s each). Figure per log: per joint rms_error / torque-noise std, RMS over
 # the joints, mean of the two validations (identify's defaults, or IDENTIFY_ARGS for every log alike).
-#   [IDENTIFY_ARGS="--cutoff 20"] bash scripts/measure_excite_gain.sh BUILD_DIR OUT_DIR ROBOT.yaml DURATION VELOCITY ACCELERATION NOISE ROOM [EXCITE_ARGS...]
+#   [IDENTIFY_ARGS="--cutoff 20"] [POSE=q1,..] bash scripts/measure_excite_gain.sh BUILD_DIR OUT_DIR ROBOT.yaml DURATION VELOCITY ACCELERATION NOISE ROOM [EXCITE_ARGS...]
+# ROOM (rad, one or per joint) bounds the multi-sine's excursion from POSE (default 0): inside the joint limits.
 # e.g. bash scripts/measure_excite_gain.sh build out/gain examples/robots/ur5_like.yaml 20 3.15 10 0.15,0.15,0.1,0.03,0.03,0.02 2.4
 set -euo pipefail
 build=$1 out=$2 robot=$3 duration=$4 vel=$5 acc=$6 noise=$7 room=$8
@@ -18,7 +19,7 @@ joints=$($PY -c "print(len('$noise'.split(',')))")
 sim=(--robot "$robot" --encoder-counts 262144 --quiet)
 # Validation motion: noise-free, 40 s, other seeds than any identification log.
 "$J" simulate "${sim[@]}" --duration 40 --velocity-limit "$vel" --acceleration-limit "$acc" --seed 1000 -o "$out/val_moves.csv"
-$PY "$here/multisine_trajectory.py" "$out/multisine.csv" --joints "$joints" --duration 40 --room "$room" --velocity-limit "$vel" --acceleration-limit "$acc" --seed 7
+$PY "$here/multisine_trajectory.py" "$out/multisine.csv" --joints "$joints" --duration 40 --pose "${POSE:-0}" --room "$room" --velocity-limit "$vel" --acceleration-limit "$acc" --seed 7
 "$J" simulate "${sim[@]}" --trajectory "$out/multisine.csv" -o "$out/val_multisine.csv"
 # The design, then its log; random moves with 5 seeds.
 "$J" excite --robot "$robot" --duration "$duration" --velocity-limit "$vel" --acceleration-limit "$acc" --torque-noise "$noise" \

@@ -23,6 +23,7 @@
 #include "cli/output_file.hpp"
 #include "excite/excitation_design.hpp"
 #include "excite/frequency_rule.hpp"
+#include "excite/identification_bandwidth.hpp"
 #include "excite/motion_information.hpp"
 #include "plot/gnuplot.hpp"
 #include "robot/robot_description.hpp"
@@ -328,6 +329,9 @@ void run(ExciteOptions o) {
     const Sampled s = sample(trajectory, *model, x, o.duration, o.rate, box);
     // The prediction from every control sample (not the optimizer's), the same way as --compare's.
     const excite::Prediction predicted = excite::predict(excite::motion_information(*model, motion_of(s), prior.noise_std), prior.scales);
+    const excite::IdentificationBandwidth bandwidth = excite::identification_bandwidth(s.qd, s.tau, prior.noise_std, o.rate);
+    // Said only when identify's automatic cutoff would miss the torque's band by a margin worth a flag.
+    const bool needs_cutoff = bandwidth.recommended_cutoff_hz() > 1.5 * bandwidth.default_cutoff_hz();
     std::optional<CompareMotion> compared;
     std::optional<excite::Prediction> compared_prediction;
     if (!o.compare.empty()) {
@@ -381,6 +385,11 @@ void run(ExciteOptions o) {
             j["compare"]["worst_relative_std_ratio"] = predicted.worst_relative_std / compared_prediction->worst_relative_std;
             j["compare"]["design_worse"] = worse;
         }
+        j["identification"] = {{"velocity_bandwidth_hz", bandwidth.velocity_hz},
+                               {"torque_bandwidth_hz", bandwidth.torque_hz},
+                               {"default_cutoff_hz", bandwidth.default_cutoff_hz()},
+                               {"recommended_cutoff_hz", bandwidth.recommended_cutoff_hz()},
+                               {"identify_options", needs_cutoff ? fmt::format("--cutoff {:.3g}", bandwidth.recommended_cutoff_hz()) : std::string()}};
         j["evaluations"] = d.evaluations;
         j["starts"] = d.start_criteria;
         j["tightening_rounds"] = d.rounds;
@@ -436,6 +445,13 @@ void run(ExciteOptions o) {
                                                      compared_prediction->worst >= 0 ? model->parameter_names()[static_cast<std::size_t>(compared_prediction->worst)]
                                                                                      : "not identifiable")
                                        : std::string());
+    }
+    if (needs_cutoff) {
+        // Said even with --quiet, like the warning below: with identify's defaults this design is identified badly.
+        fmt::print(stderr,
+                   "excite: identify this trajectory with --cutoff {:.3g}: its model torque holds 99 % of its energy below {:.3g} Hz, while identify's "
+                   "automatic differentiators would sit at {:.3g} Hz (10 x its velocity's {:.3g} Hz) and bias the estimate (docs/excite.md)\n",
+                   bandwidth.recommended_cutoff_hz(), bandwidth.torque_hz, bandwidth.default_cutoff_hz(), bandwidth.velocity_hz);
     }
     // Said even with --quiet: a design that does not beat the user's own trajectory must not pass unnoticed.
     if (worse) fmt::print(stderr, "{}\n", worse_line);

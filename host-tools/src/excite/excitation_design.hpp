@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// `jacobid excite`'s optimizer (docs/excite.md): several starts of NLopt's SLSQP (sequential quadratic
+// `jacobid excite`'s optimizer (docs/excite.md): several starts of NLopt's MMA (information criteria) or SLSQP (cond, logdet; sequential quadratic
 // programming with the exact gradients of excitation_problem.hpp) on the aggregated limits, the best
 // feasible result kept, then every control sample checked; a limit missed between the optimizer's samples
 // is tightened by the overshoot and the best result re-optimized (at most a few rounds).

@@ -69,6 +69,10 @@ public:
     const FourierBasis& basis() const { return basis_; }
     const Eigen::VectorXd& pose() const { return pose_; }
     Criterion criterion_kind() const { return settings_.criterion; }
+    void set_criterion(Criterion criterion) {
+        settings_.criterion = criterion;
+        derivatives_for_.resize(0);
+    }
     const InformationModel& information_model() const { return settings_.information; }
     // The log samples each criterion sample stands for (InformationModel::sample_weight).
     void set_sample_weight(double weight) {

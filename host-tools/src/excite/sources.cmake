@@ -10,6 +10,7 @@ add_library(jacobid_excite STATIC
   ${CMAKE_CURRENT_LIST_DIR}/motion_information.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frequency_rule.cpp
   ${CMAKE_CURRENT_LIST_DIR}/regressor_derivatives.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/identification_bandwidth.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_problem.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_design.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_kinematics.cpp

@@ -52,7 +52,8 @@ TEST(FourierBasis, EveryFunctionIsAtRestAtBothEndsAndItsDerivativesMatchFiniteDi
 }
 
 TEST(ExcitationProblem, CriterionGradientsMatchCentralDifferencesOfTheCriterion) {
-    const robot::RobotDescription robot = robot::load_robot_description(std::string(JACOBID_SOURCE_DIR) + "/examples/robots/ur5_like.yaml");
+  for (const std::string file : {"ur5_like.yaml", "puma560.yaml"}) {
+    const robot::RobotDescription robot = robot::load_robot_description(std::string(JACOBID_SOURCE_DIR) + "/examples/robots/" + file);
     const auto model = robot::make_robot_model(robot);
     const Eigen::VectorXd x = robot::true_parameters(robot, *model);
     std::vector<excite::JointLimits> limits(6);
@@ -74,20 +75,28 @@ TEST(ExcitationProblem, CriterionGradientsMatchCentralDifferencesOfTheCriterion)
         Eigen::MatrixXd J;
         const Eigen::VectorXd g0 = problem.constraint_values(c, &J);
         double worst = 0.0, worst_constraint = 0.0;
+        auto f = [&](int k, double h) {
+            Eigen::VectorXd shifted = c;
+            shifted[k] += h;
+            return problem.criterion(shifted, nullptr);
+        };
         for (int k = 0; k < problem.variables(); k += 3) {
-            const double h = 1e-6;
-            Eigen::VectorXd cp = c, cm = c;
-            cp[k] += h, cm[k] -= h;
-            const double fd = (problem.criterion(cp, nullptr) - problem.criterion(cm, nullptr)) / (2 * h);
+            const double h = 1e-5;
+            // Fourth-order central difference: the reference's own error ~h^4, far below the tolerance.
+            const double fd = (8.0 * (f(k, h) - f(k, -h)) - (f(k, 2 * h) - f(k, -2 * h))) / (12.0 * h);
             worst = std::max(worst, std::abs(fd - g[k]) / std::max(1.0, std::abs(fd)));
-            const Eigen::VectorXd gfd = (problem.constraint_values(cp, nullptr) - problem.constraint_values(cm, nullptr)) / (2 * h);
+            Eigen::VectorXd cp = c, cm = c;
+            cp[k] += 1e-6, cm[k] -= 1e-6;
+            const Eigen::VectorXd gfd = (problem.constraint_values(cp, nullptr) - problem.constraint_values(cm, nullptr)) / 2e-6;
             worst_constraint = std::max(worst_constraint, (gfd - J.col(k)).cwiseAbs().maxCoeff());
         }
-        // The reference is itself a difference quotient (truncation ~h^2 F''' / 6 of a criterion in the hundreds):
-        // 1e-4 relative; a wrong gradient misses by O(1).
-        EXPECT_LT(worst, 1e-4) << excite::to_string(criterion) << (automatic ? " automatic" : " central");
-        EXPECT_LT(worst_constraint, 1e-4) << excite::to_string(criterion) << (automatic ? " automatic" : " central");
+        // 3e-4: the relative criteria on the PUMA weigh parameters whose predicted variances span ten decades, and
+        // the two derivative routes agree to ~1e-8 relative per entry (RegressorDerivatives test), which e-relative's
+        // weights amplify to ~1e-4 here; a wrong gradient misses by O(1).
+        EXPECT_LT(worst, 3e-4) << file << " " << excite::to_string(criterion) << (automatic ? " automatic" : " central");
+        EXPECT_LT(worst_constraint, 1e-4) << file << " " << excite::to_string(criterion) << (automatic ? " automatic" : " central");
     }
+  }
 }
 
 // Column-scaled condition number of the model's regressor stacked over the rows of q, qd, qdd (every `stride`-th).
