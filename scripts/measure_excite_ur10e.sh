@@ -32,7 +32,7 @@ qd = np.column_stack([np.interp(grid, t, raw[:, 7 + j]) for j in range(6)])
 qdd = savgol_filter(qd, int(round(0.21 / period)) | 1, 3, deriv=1, delta=period, axis=0)
 ranges = ",".join(f"{q[:, j].min():.4f}:{q[:, j].max():.4f}" for j in range(6))
 print(ranges, ",".join(f"{np.abs(qd[:, j]).max():.4f}" for j in range(6)), ",".join(f"{np.abs(qdd[:, j]).max():.4f}" for j in range(6)),
-      f"{1 / period:.6g}")
+      f"{round(5 / period) / 5:g}")  # a multiple of 0.2 Hz: whole samples per period of 10, 25 or 50 s
 PY
 )
 echo "limits from the log: position $ranges; velocity $velocities rad/s; acceleration $accelerations rad/s^2; rate $rate Hz"

@@ -265,7 +265,7 @@ void resolve_frequencies(ExciteOptions& o, const std::vector<excite::JointLimits
         if (used != text.size() || !std::isfinite(v)) throw InputError(fmt::format("{} '{}': expected auto or {}", option, text, expected));
         return v;
     };
-    o.base_frequency = o.base_frequency_text == "auto" ? excite::auto_base_frequency(o.duration)
+    o.base_frequency = o.base_frequency_text == "auto" ? excite::auto_base_frequency(o.duration, limits)
                                                        : number(o.base_frequency_text, "--base-frequency", "a frequency > 0 Hz");
     if (!(o.base_frequency > 0.0)) throw InputError(fmt::format("--base-frequency {}: expected auto or a frequency > 0 Hz", o.base_frequency_text));
     if (o.harmonics_text == "auto") {
@@ -474,7 +474,8 @@ void add_excite_command(CLI::App& app) {
                     "within its acceleration limit, max a / (2 pi v) (0.5 Hz without both), 3 .. 10")
         ->capture_default_str();
     cmd->add_option("--base-frequency", o->base_frequency_text,
-                    "Hz: the fundamental, one period lasts 1 / f; or auto: the duration split into the fewest periods (>= 2) of at most 10 s")
+                    "Hz: the fundamental, one period lasts 1 / f; or auto: the duration split into the fewest periods (>= 2) of at most 10 s, fewer "
+                    "(down to 2) while a period holds fewer than 6 harmonics up to the limits' frequency")
         ->capture_default_str();
     cmd->add_option("--criterion", o->criterion,
                     "d-optimal (-log det of the noise-weighted information matrix of the base parameters), a-relative (sum of the predicted "

@@ -6,8 +6,10 @@
 
 namespace jacobid::excite {
 
-double auto_base_frequency(double duration) {
-    const double periods = std::max(2.0, std::ceil(duration / kMaxPeriod - 1e-9));
+double auto_base_frequency(double duration, const std::vector<JointLimits>& limits) {
+    double periods = std::max(2.0, std::ceil(duration / kMaxPeriod - 1e-9));
+    const double top = top_frequency(limits);
+    while (periods > 2.0 && top * duration / periods < kMinHarmonics) periods -= 1.0;
     return periods / duration;
 }
 

@@ -150,14 +150,19 @@ TEST(ParameterScales, PriorValueOrATenthOfItsKindsPhysicalScale) {
 }
 
 TEST(FrequencyRule, PeriodsOfAtMostTenSecondsAndHarmonicsUpToTheAccelerationOverVelocityFrequency) {
-    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(20.0), 0.1);   // 2 x 10 s
-    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(40.0), 0.1);   // 4 x 10 s
-    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(15.0), 2.0 / 15.0);  // at least 2 periods
-    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(50.0), 0.1);
     std::vector<excite::JointLimits> limits(3);
     for (auto& l : limits) l.velocity = 3.15, l.acceleration = 10.0;  // 10 / (2 pi 3.15) = 0.505 Hz
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(20.0, limits), 0.1);         // 2 x 10 s
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(15.0, limits), 2.0 / 15.0);  // at least 2 periods
     EXPECT_EQ(excite::auto_harmonics(0.1, limits), 5);
+    // A slow robot (0.3 Hz): 50 s as 2 x 25 s (7 harmonics), not 5 x 10 s (3).
+    std::vector<excite::JointLimits> slow(2);
+    for (auto& l : slow) l.velocity = 1.0, l.acceleration = 1.5;  // 0.24 Hz: clamped to 0.3
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(50.0, slow), 2.0 / 50.0);
+    EXPECT_EQ(excite::auto_harmonics(0.04, slow), 7);
+    // A fast one keeps 10 s periods: 40 s as 4 x 10 s.
     limits[1].acceleration = 40.0;  // 2.02 Hz: capped at 2 Hz, then at 10 harmonics
+    EXPECT_DOUBLE_EQ(excite::auto_base_frequency(40.0, limits), 0.1);
     EXPECT_EQ(excite::auto_harmonics(0.1, limits), 10);
     EXPECT_EQ(excite::auto_harmonics(0.5, std::vector<excite::JointLimits>(2)), 3);  // no limits: 0.5 Hz, at least 3
 }
