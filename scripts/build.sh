@@ -3,6 +3,7 @@
 # Configures and builds jacobid (Release) into ${JACOBID_BUILD_DIR:-build}.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
+source "$root/scripts/ccache-env.sh"
 build="${JACOBID_BUILD_DIR:-$root/build}"
 # -march=native by default: the streaming tick meets its 0.5 us target only with the machine's SIMD width
 # (docs/performance.md); set JACOBID_MARCH= (empty) for a portable build.

@@ -13,8 +13,11 @@
 #  - fuzz/ubsan-ignorelist.txt: no UBSan checks inside Eigen's own functions (they cost a factor 100 on the
 #    simulation tests, see the file); ASan still covers them.
 hardening_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$hardening_root/scripts/ccache-env.sh"
 hardening_sanitizers="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 hardening_sanitizers+=" -fsanitize-ignorelist=$hardening_root/fuzz/ubsan-ignorelist.txt"
+# ccache 4.7 hashes a -fsanitize-blacklist= file but not an -fsanitize-ignorelist= one: hash it explicitly.
+export CCACHE_EXTRAFILES="$hardening_root/fuzz/ubsan-ignorelist.txt"
 
 # configure_hardening <source-dir> <build-dir>
 configure_hardening() {

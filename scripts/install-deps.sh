@@ -3,7 +3,7 @@
 # Installs jacobid's build and test dependencies from Debian 12 packages (needs root or sudo).
 set -euo pipefail
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache  # ccache: scripts/ccache-env.sh
   libeigen3-dev                                   # lib/: the real-time core
   libgpiod-dev                                    # hal/: GPIO lines (libgpiod v1 C API)
   libcli11-dev libfmt-dev libyaml-cpp-dev libfast-float-dev nlohmann-json3-dev libfftw3-dev gnuplot-nox  # host-tools/

@@ -8,6 +8,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
+source "$root/scripts/ccache-env.sh"  # also for the builds ctest starts (the install/consume test)
 step=$(date +%s)
 "$root/scripts/build.sh"
 echo "run-tests: native build finished in $(( $(date +%s) - step )) s"
