@@ -6,7 +6,8 @@
 # the tree once instead of twice is a third of the CI budget.
 #  - clang, not gcc: with sanitizers it compiles the tree about 2.5 times faster (docs/reliability.md).
 #  - -O2: the simulated-identification tests do dense Eigen work that is 50 times slower at -O1 under ASan;
-#    ASan and UBSan lose no checks at -O2.
+#    ASan and UBSan lose no checks at -O2. That work is in the libraries (jacobid::host); the test
+#    executables' own sources are compiled at -O1 (tests/CMakeLists.txt, JACOBID_TEST_OPTIMIZATION).
 #  - no benchmarks, no examples: the sanitizer run does not run them (scripts/sanitize-test.sh).
 #  - Debug build type without NDEBUG: assert() and Eigen's index and size checks stay on.
 #  - -gline-tables-only: file:line in every stack trace without the full debug info's compile time.
