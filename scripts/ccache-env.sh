@@ -17,5 +17,10 @@ if [ "${JACOBID_CCACHE:-1}" != "0" ] && command -v ccache >/dev/null 2>&1; then
   fi
   # All the builds of a test run share the cache: 8 GB unless CCACHE_MAXSIZE says otherwise (ccache's default is 5 GB).
   export CCACHE_DIR CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-8G}"
+  # Another clone (another path: CI's checkout, a worktree) hits the same objects: paths below the clone's
+  # root are hashed relative to the build directory, and the build directory's own path is not hashed
+  # (the sanitizer build's -gline-tables-only would add it; its debug info then names the first clone).
+  CCACHE_BASEDIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+  export CCACHE_BASEDIR CCACHE_NOHASHDIR=1
   export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
 fi
