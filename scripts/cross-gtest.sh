@@ -6,6 +6,7 @@
 #   scripts/cross-gtest.sh aarch64|armhf      prints the GTest_DIR to pass to cmake
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
+source "$root/scripts/ccache-env.sh"
 case "${1:-}" in
   aarch64) toolchain=aarch64-linux-gnu ;;
   armhf) toolchain=arm-linux-gnueabihf ;;

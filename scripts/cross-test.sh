@@ -10,6 +10,7 @@
 # Build dirs build-cross-<target>; --build-only skips the tests (scripts/vm-test.sh uses it).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
+source "$root/scripts/ccache-env.sh"
 cd "$root"
 build_only=""
 if [ "${1:-}" = --build-only ]; then build_only=1; shift; fi

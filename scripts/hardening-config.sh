@@ -6,15 +6,20 @@
 # the tree once instead of twice is a third of the CI budget.
 #  - clang, not gcc: with sanitizers it compiles the tree about 2.5 times faster (docs/reliability.md).
 #  - -O2: the simulated-identification tests do dense Eigen work that is 50 times slower at -O1 under ASan;
-#    ASan and UBSan lose no checks at -O2.
+#    ASan and UBSan lose no checks at -O2. That work is in the libraries (jacobid::host); the test
+#    executables' own sources are compiled at -O1 (tests/CMakeLists.txt, JACOBID_TEST_OPTIMIZATION).
+#  - no benchmarks, no examples: the sanitizer run does not run them (scripts/sanitize-test.sh).
 #  - Debug build type without NDEBUG: assert() and Eigen's index and size checks stay on.
 #  - -gline-tables-only: file:line in every stack trace without the full debug info's compile time.
 #  - -fno-sanitize-recover=all: every UBSan finding aborts (fails its test or its fuzz run).
 #  - fuzz/ubsan-ignorelist.txt: no UBSan checks inside Eigen's own functions (they cost a factor 100 on the
 #    simulation tests, see the file); ASan still covers them.
 hardening_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$hardening_root/scripts/ccache-env.sh"
 hardening_sanitizers="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 hardening_sanitizers+=" -fsanitize-ignorelist=$hardening_root/fuzz/ubsan-ignorelist.txt"
+# ccache 4.7 hashes a -fsanitize-blacklist= file but not an -fsanitize-ignorelist= one: hash it explicitly.
+export CCACHE_EXTRAFILES="$hardening_root/fuzz/ubsan-ignorelist.txt"
 
 # configure_hardening <source-dir> <build-dir>
 configure_hardening() {
@@ -24,7 +29,7 @@ configure_hardening() {
     -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only" -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
-    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_PYTHON=OFF >/dev/null
+    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_EXAMPLES=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_PYTHON=OFF >/dev/null
 }
 
 # Leaks inside system libraries we cannot fix (urdfdom on a cyclic URDF), each documented in the file.

@@ -11,10 +11,11 @@
 # Left out, and why:
 #  - tests/vm (ctest labels vcan, vm, gpio): those executables are linked -static for the VM initramfs,
 #    and ASan's runtime cannot be linked statically; they run unsanitized in scripts/vm-test.sh.
-#  - benchmarks: ctest does not run them, and timings under ASan mean nothing.
+#  - benchmarks: ctest does not run them, and timings under ASan mean nothing. Not even built.
 #  - ctest labels examples and end-to-end (the numbered examples, README's quick start): whole jobs on long
 #    logs through the code the unit and integration tests already run here; under ASan they cost minutes
-#    of the CI budget and find nothing those tests do not. The native run keeps them.
+#    of the CI budget and find nothing those tests do not. The native run keeps them. The C++ examples
+#    (examples/cpp) are not built here either (hardening-config.sh: JACOBID_BUILD_EXAMPLES=OFF).
 #  - two acceptance-scale tests, the longest of the suite (native 21-23 s each, about 6x that under ASan,
 #    a fifth of the sanitizer stage's test CPU): SerialIdentify.Puma560MeetsTheIssueAcceptance (a 6-axis
 #    log identified to the issue's bars; the 6-axis pipeline runs sanitized in PhysicalIdentify.*,

@@ -15,6 +15,7 @@
 # Usage: scripts/vm-test.sh [x86_64|aarch64]...   (default: both; JACOBID_VM_ARCHES likewise)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
+source "$root/scripts/ccache-env.sh"
 cd "$root"
 arches=("$@")
 [ ${#arches[@]} -gt 0 ] || arches=(${JACOBID_VM_ARCHES:-x86_64 aarch64})

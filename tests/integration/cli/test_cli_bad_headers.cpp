@@ -3,7 +3,6 @@
 // docs/reliability.md, "Bad input, round two: candump captures, CAN ids, log headers".
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -84,19 +83,22 @@ TEST(CliBadHeaders, LogFormatReadingTheTimeAsAPositionIsRefused) {
                    {"'positions[0]' reads raw column 1, which 'time' also reads"});
 }
 
-// 400 000 column names were checked for duplicates pairwise (8e10 comparisons: minutes).
+// 400 000 column names were checked for duplicates pairwise (8e10 comparisons: minutes). The work is bounded,
+// not timed: a million columns (5e11 pairs) under a CPU-time limit of 30 s (`ulimit -t`, the process is
+// killed beyond it), which a pairwise check cannot meet on any machine and the name index meets many times
+// over, under the sanitizers too; CPU time, not wall time, so other load on the machine does not count.
+// The time itself is measured by benchmarks/bench_csv_header.cpp.
 TEST(CliBadHeaders, WideHeaderIsReadInLinearTime) {
+    constexpr int kColumns = 1000000;
     std::string header = "t,q1,q2,tau1,tau2", row = "0,0,0,0,0";
-    for (int c = 0; c < 400000; ++c) {
+    for (int c = 0; c < kColumns; ++c) {
         header += ",x" + std::to_string(c);
         row += ",0";
     }
     const std::string wide = write("wide.csv", header + "\n" + row + "\n" + row + "\n");
-    const auto start = std::chrono::steady_clock::now();
-    const auto r = jacobid("identify --robot " + planar_robot() + " --in " + wide);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_EQ(r.exit_code, 2) << r.err;  // two identical time stamps: refused, after the header was read
-    EXPECT_LT(seconds, 5.0) << r.err;
+    const auto r = run_command("ulimit -t 30; timeout 600 " + std::string(JACOBID_EXECUTABLE) + " identify --robot " + planar_robot() + " --in " + wide);
+    EXPECT_EQ(r.exit_code, 2) << r.err;  // two identical time stamps: refused, after the header was read (killed: 152)
+    EXPECT_NE(r.err.find("time"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "sim/command_follower.hpp"
 #include "sim/simulator.hpp"
 #include "stream/recorder.hpp"
+#include "../stream/stream_test_support.hpp"
 
 namespace {
 
@@ -217,33 +218,15 @@ TEST(Chain, PlaybackLoopSimulatedRobotFollowsAndIdentifies) {
 // (3 s of robot), so the UdpPublisher and the recorder's socket path are part of it: 0 datagrams lost.
 TEST(Chain, UdpPublisherIntoJacobidRecordAtOneKilohertz) {
     const std::string csv = path("udp.csv"), summary = path("udp.summary.json"), err = path("udp.err");
-    const std::uint16_t port = static_cast<std::uint16_t>(20000 + (::getpid() % 20000));
-    const std::string cmd = std::string(JACOBID_EXECUTABLE) + " record --quiet --udp 127.0.0.1:" + std::to_string(port) + " -o " + csv +
-                            " --summary " + summary + " --idle-timeout 1.5";
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-        ::execl("/bin/sh", "sh", "-c", (cmd + " 2>" + err).c_str(), static_cast<char*>(nullptr));
-        ::_exit(127);
-    }
-    // Wait for "listening" before sending.
-    for (int i = 0; i < 200; ++i) {
-        std::ifstream e(err);
-        std::stringstream s;
-        s << e.rdbuf();
-        if (s.str().find("listening") != std::string::npos) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    // Port 0: the recorder picks a free one and says which in its "listening on" line; the datagrams are
+    // sent once that line is there (waited for, with a timeout), not after a pause.
+    test::Recorder recorder({"record", "--quiet", "--udp", "127.0.0.1:0", "-o", csv, "--summary", summary, "--idle-timeout", "1.5"}, err);
+    const int port = recorder.wait_for_port();
     firmware::UdpPublisher udp;
-    ASSERT_EQ(udp.open("127.0.0.1", port), "");
+    ASSERT_EQ(udp.open("127.0.0.1", static_cast<std::uint16_t>(port)), "");
     const ChainResult r = run_chain(3.0, udp, 1000.0);
-    int status = 0;
-    ::waitpid(child, &status, 0);
-    std::ifstream e(err);
-    std::stringstream err_text;
-    err_text << e.rdbuf();
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0) << err_text.str();
+    const int exit_code = recorder.wait(30.0);
+    EXPECT_EQ(exit_code, 0) << recorder.err();
     EXPECT_EQ(r.counters.publish_failures, 0u);
     std::ifstream in(summary);
     const json s = json::parse(in);

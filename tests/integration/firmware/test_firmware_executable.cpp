@@ -11,6 +11,7 @@
 #include "firmware_test_support.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
+#include "../stream/stream_test_support.hpp"
 
 namespace {
 
@@ -61,16 +62,17 @@ TEST(FirmwareExecutable, MissingCanInterfaceIsAClearDeviceError) {
 }
 
 TEST(FirmwareExecutable, DryRunLoopStreamsUntilSigtermAndPrintsJitter) {
-    const std::uint16_t port = static_cast<std::uint16_t>(40000 + (::getpid() % 20000));
+    // record (idle timeout ends it) first, on a port it picks; the firmware is started once record says it
+    // listens (waited for, with a timeout, not a pause) and is stopped by SIGTERM after ~1 s.
+    test::Recorder recorder({"record", "--quiet", "--on-gap", "mark", "--idle-timeout", "1", "--udp", "127.0.0.1:0", "-o", path("dry.csv"),
+                             "--summary", path("dry.json")},
+                            path("record.err"));
+    const int port = recorder.wait_for_port();
     std::string yaml = test::chain_config_yaml("realtime: {report_period: 0.2}\n");
     yaml.replace(yaml.find("port: 5005"), 10, "port: " + std::to_string(port));
     std::ofstream(path("dry.yaml")) << yaml;
-    // record (idle timeout ends it) in the background; the firmware is stopped by SIGTERM after ~1 s.
-    const std::string cmd = "(" + jacobid("record --quiet --on-gap mark --idle-timeout 1 --udp 127.0.0.1:" + std::to_string(port) + " -o " +
-                                          path("dry.csv") + " --summary " + path("dry.json")) +
-                            " 2>" + path("record.err") + " & sleep 0.3; timeout --preserve-status -s TERM 1.2 " + fw("--config " + path("dry.yaml")) +
-                            "; echo fw-exit=$?; wait)";
-    const auto r = run_command(cmd);
+    const auto r = run_command("(timeout --preserve-status -s TERM 1.2 " + fw("--config " + path("dry.yaml")) + "; echo fw-exit=$?)");
+    EXPECT_EQ(recorder.wait(30.0), 0) << recorder.err();
     EXPECT_NE(r.out.find("fw-exit=0"), std::string::npos) << r.out << r.err;
     EXPECT_NE(r.err.find("stopped (SIGTERM)"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("latency us: min"), std::string::npos) << r.err;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "command_cache.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -31,13 +32,18 @@ std::string robot() {
 }
 
 // 10 s, seed 3, torque noise 0.05 / 0.01 N.m, position noise 1e-3 rad on top of the 16-bit encoder.
+// Simulated once for all the test processes (tests/support/command_cache.hpp: each case runs in a process of
+// its own), keyed by the arguments and robot.yaml's contents; the log and its truth are copied here.
 const std::string& noisy_log() {
     static const std::string log = [] {
-        const std::string out = path("noisy.csv");
-        const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + out +
-                                   " --duration 10 --seed 3 --torque-noise 0.05,0.01 --position-noise 1e-3");
-        EXPECT_EQ(r.exit_code, 0) << r.err;
-        return out;
+        namespace fs = std::filesystem;
+        const std::string description = robot();
+        const auto c = jacobid::test::cached_command(std::string(JACOBID_EXECUTABLE) + " simulate --quiet --robot " + description +
+                                                         " --out {dir}/noisy.csv --duration 10 --seed 3 --torque-noise 0.05,0.01 --position-noise 1e-3",
+                                                     JACOBID_EXECUTABLE, {description});
+        EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
+        for (const char* file : {"noisy.csv", "noisy.truth.json"}) fs::copy_file(c.dir / file, path(file), fs::copy_options::overwrite_existing);
+        return path("noisy.csv");
     }();
     return log;
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "command_cache.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -38,10 +39,16 @@ std::string study_args(int threads) {
            kRun + " --threads " + std::to_string(threads);
 }
 
+// Run once for all the test processes (tests/support/command_cache.hpp: each case runs in a process of its
+// own, and three read the 2-thread study), keyed by the arguments and robot.yaml's contents.
 json study(int threads) {
-    const auto r = jacobid_cli(study_args(threads));
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    return json::parse(r.out);
+    const auto c = jacobid::test::cached_command(std::string(JACOBID_EXECUTABLE) + " " + study_args(threads), JACOBID_EXECUTABLE, {path("robot.yaml")});
+    EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
+    // The study names its robot file, which is the process's own that ran it; this process's has the same
+    // contents (they are part of the key).
+    json j = json::parse(c.result.out);
+    j["robot"] = path("robot.yaml");
+    return j;
 }
 
 const json& study_2_threads() {

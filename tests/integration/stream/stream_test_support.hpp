@@ -78,6 +78,7 @@ public:
         if (++sent_ % 16 == 0) std::this_thread::sleep_for(std::chrono::microseconds(300));
     }
     void send(const Datagram& d) { send(encode_bytes(d)); }
+    std::size_t sent() const { return sent_; }
 
 private:
     int fd_;
@@ -138,6 +139,28 @@ public:
         throw std::runtime_error("jacobid record did not start listening");
     }
     void signal(int sig) { ::kill(pid_, sig); }
+    // Waits until a progress line ("record: S s, N datagrams, ...", once a second without --quiet) counts
+    // at least `datagrams`; false if the recorder exits first or after `timeout_s`.
+    bool wait_for_received(std::size_t datagrams, double timeout_s = 10.0) {
+        const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+        while (std::chrono::steady_clock::now() < end) {
+            const std::string err = slurp_file(err_path_);
+            for (std::size_t at = err.find(" s, "); at != std::string::npos; at = err.find(" s, ", at + 1)) {
+                const std::size_t line_end = err.find('\n', at);
+                if (line_end == std::string::npos) break;  // a line still being written
+                const std::size_t digits = err.find_first_not_of("0123456789", at + 4);
+                if (digits == at + 4 || err.compare(digits, 11, " datagrams,") != 0) continue;
+                if (std::stoull(err.substr(at + 4, digits - at - 4)) >= datagrams) return true;
+            }
+            int status = 0;
+            if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+                exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+                return false;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
     // Exit code (-1 if killed by a signal); kills the child after `timeout_s`.
     int wait(double timeout_s = 10.0) {
         const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);

@@ -43,7 +43,9 @@ Recording record(const std::string& name, std::vector<std::string> args, Send se
     UdpSender sender(recorder.wait_for_port());
     send(sender);
     if (signal_after_send) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let it read what was sent
+        // Signalled once its progress line counts every datagram sent (not after a pause that a loaded
+        // machine may not honour).
+        EXPECT_TRUE(recorder.wait_for_received(sender.sent())) << recorder.err();
         recorder.signal(signal_after_send);
     }
     Recording r;
