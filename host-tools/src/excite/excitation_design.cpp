@@ -28,7 +28,7 @@ constexpr double kMargin = 0.985;
 constexpr double kFeasible = 1e-4;  // largest aggregated constraint of a result that counts as meeting the limits
 
 struct Callbacks {
-    ExcitationProblem* problem;
+    ExcitationProblem* problem = nullptr;
     int evaluations = 0;
     // The iterate of the lowest criterion the optimizer evaluated, feasible or not (restore_into_limits starts from it).
     Eigen::VectorXd best;
@@ -98,9 +98,18 @@ struct LocalResult {
     double violation = std::numeric_limits<double>::infinity();
 };
 
+// c with its criterion and its largest constraint.
+LocalResult judged(ExcitationProblem& problem, const Eigen::VectorXd& c) {
+    LocalResult r;
+    r.c = c;
+    r.f = problem.criterion(c, nullptr);
+    r.violation = problem.constraint_values(c, nullptr).maxCoeff();
+    return r;
+}
+
 // One optimizer run from `start` (MMA for the information criteria, SLSQP for cond and logdet); cb receives the
 // lowest-criterion iterate it evaluated.
-LocalResult slsqp_run(ExcitationProblem& problem, const Eigen::VectorXd& start, double seconds, int max_evaluations, int& evaluations, Callbacks& cb) {
+LocalResult optimizer_run(ExcitationProblem& problem, const Eigen::VectorXd& start, double seconds, int max_evaluations, int& evaluations, Callbacks& cb) {
     const auto n = static_cast<unsigned>(problem.variables());
     // The information criteria pull hard toward the limits: SLSQP's linearized steps then left half the PUMA 560's
     // starts wandering outside them (-603 and -774 where others reached -1013 in d-optimal, 30 s), while Svanberg's
@@ -124,11 +133,7 @@ LocalResult slsqp_run(ExcitationProblem& problem, const Eigen::VectorXd& start, 
         // "nlopt failure" (e.g. an infeasible linearization): the last iterate is still judged below.
     }
     evaluations += cb.evaluations;
-    LocalResult r;
-    r.c = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
-    r.f = problem.criterion(r.c, nullptr);
-    r.violation = problem.constraint_values(r.c, nullptr).maxCoeff();
-    return r;
+    return judged(problem, Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size())));
 }
 
 // A point the optimizer reached outside the limits brought back inside: scaled onto the kinematic limits (homogeneous in
@@ -143,20 +148,28 @@ Eigen::VectorXd restore_into_limits(ExcitationProblem& problem, Eigen::VectorXd 
     return {};
 }
 
-// The optimizer from `start`. A run that ends outside the limits or where it began (SLSQP on an information
-// criterion did, MMA rarely does) restarts from its best iterate brought back inside the limits, while time is
-// left (at most 3 runs). The best feasible point of all runs is the result.
+// The optimizer from `start`. A run that ends outside the limits counts as its end point brought back inside
+// (MMA can converge onto a face from just outside it: +2e-4 on the 2R's workspace box, which had used the whole
+// time); a run that ends outside or where it began (SLSQP on an information criterion did, MMA rarely does)
+// restarts from its best iterate brought back inside, while time is left (at most 3 runs). The best feasible
+// point of all runs is the result.
 LocalResult local_run(ExcitationProblem& problem, const Eigen::VectorXd& start, double seconds, int max_evaluations, int& evaluations) {
     const auto begin = Clock::now();
     auto left = [&] { return seconds - std::chrono::duration<double>(Clock::now() - begin).count(); };
     LocalResult best;
     Eigen::VectorXd from = start;
     for (int run = 0; run < 3 && from.size() > 0; ++run) {
-        Callbacks cb{&problem};
-        const LocalResult r = slsqp_run(problem, from, run == 0 ? seconds : left(), max_evaluations, evaluations, cb);
+        Callbacks cb;
+        cb.problem = &problem;
+        const LocalResult reached = optimizer_run(problem, from, run == 0 ? seconds : left(), max_evaluations, evaluations, cb);
+        LocalResult r = reached;
+        if (!(reached.violation <= kFeasible)) {
+            const Eigen::VectorXd inside = restore_into_limits(problem, reached.c);
+            if (inside.size() > 0) r = judged(problem, inside);
+        }
         const bool best_feasible = best.violation <= kFeasible;
         if (r.violation <= kFeasible ? (!best_feasible || r.f < best.f) : (!best_feasible && r.violation < best.violation)) best = r;
-        const bool stalled = !(r.violation <= kFeasible) || (r.c - from).norm() <= 1e-9 * std::max(1.0, from.norm());
+        const bool stalled = !(reached.violation <= kFeasible) || (reached.c - from).norm() <= 1e-9 * std::max(1.0, from.norm());
         if (!stalled || left() < 0.5 || cb.best.size() == 0) break;
         from = restore_into_limits(problem, cb.best);
         if (from.size() == 0 || (best.violation <= kFeasible && problem.criterion(from, nullptr) >= best.f)) break;
