@@ -21,6 +21,7 @@
 #include "cli/log_format_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
+#include "core/per_joint.hpp"
 #include "excite/excitation_design.hpp"
 #include "excite/frequency_rule.hpp"
 #include "excite/identification_bandwidth.hpp"
@@ -57,16 +58,6 @@ struct ExciteOptions {
     std::string workspace_frame;
     std::vector<double> workspace_point, workspace_box;
 };
-
-// One value for every joint, or one per joint; `what` names the option in errors.
-std::vector<double> per_joint(const std::vector<double>& given, int joints, double fallback, const char* what) {
-    if (given.empty()) return std::vector<double>(static_cast<std::size_t>(joints), fallback);
-    if (given.size() == 1) return std::vector<double>(static_cast<std::size_t>(joints), given.front());
-    if (static_cast<int>(given.size()) != joints) {
-        throw InputError(fmt::format("{}: {} values for a robot with {} joints (give one value or one per joint)", what, given.size(), joints));
-    }
-    return given;
-}
 
 // "LOWER:UPPER" (rad) of --position-limit for joint j (0-based).
 std::pair<double, double> position_range(const std::string& text, int j) {
@@ -106,9 +97,9 @@ std::vector<std::pair<double, double>> position_ranges(const robot::RobotDescrip
 
 std::vector<excite::JointLimits> joint_limits(const robot::RobotDescription& robot, const Eigen::VectorXd& pose, const ExciteOptions& o) {
     const int n = static_cast<int>(robot.joints.size());
-    const auto v = per_joint(o.velocity_limit, n, std::numeric_limits<double>::infinity(), "--velocity-limit");
-    const auto a = per_joint(o.acceleration_limit, n, std::numeric_limits<double>::infinity(), "--acceleration-limit");
-    const auto t = per_joint(o.torque_limit, n, std::numeric_limits<double>::infinity(), "--torque-limit");
+    const auto v = per_joint(o.velocity_limit, static_cast<std::size_t>(n), std::numeric_limits<double>::infinity(), "--velocity-limit");
+    const auto a = per_joint(o.acceleration_limit, static_cast<std::size_t>(n), std::numeric_limits<double>::infinity(), "--acceleration-limit");
+    const auto t = per_joint(o.torque_limit, static_cast<std::size_t>(n), std::numeric_limits<double>::infinity(), "--torque-limit");
     const auto ranges = position_ranges(robot, o);
     std::vector<excite::JointLimits> limits(static_cast<std::size_t>(n));
     for (int j = 0; j < n; ++j) {
@@ -288,7 +279,7 @@ void run(ExciteOptions o) {
     const ExcitePrior prior = resolve_prior(robot, *model, o.prior, o.torque_noise);
     const Eigen::VectorXd& x = prior.values;  // the model's torque for the torque limits, and the prior scales
     Eigen::VectorXd pose(n);
-    const auto given_pose = per_joint(o.pose, n, std::numeric_limits<double>::quiet_NaN(), "--pose");
+    const auto given_pose = per_joint(o.pose, static_cast<std::size_t>(n), std::numeric_limits<double>::quiet_NaN(), "--pose");
     const auto ranges = position_ranges(robot, o);
     for (int j = 0; j < n; ++j) {
         const auto k = static_cast<std::size_t>(j);
@@ -346,7 +337,7 @@ void run(ExciteOptions o) {
         const double distance = f % 2 == 0 ? box->box.upper[a] - d.workspace->max[a] : d.workspace->min[a] - box->box.lower[a];
         if (distance < margin) margin = distance, closest = f;
     }
-    const excite::Criterion criterion = *excite::criterion_from_string(o.criterion);
+    const excite::Criterion criterion = ps.criterion;
     const bool worse = compared_prediction && prediction_score(criterion, predicted) > prediction_score(criterion, *compared_prediction);
     const std::string worse_line =
         worse ? fmt::format("excite: warning: the design is worse than --compare {} by its own criterion ({}: {:.6g} against {:.6g}); worst relative std {:.3g} % "

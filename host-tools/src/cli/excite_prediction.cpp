@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/per_joint.hpp"
 #include "excite/parameter_scales.hpp"
 #include "excite/prior_file.hpp"
 #include "identify/log_columns.hpp"
@@ -44,11 +45,9 @@ ExcitePrior resolve_prior(const robot::RobotDescription& robot, const robot::Rob
         p.fallbacks = file.fallbacks;
     }
     if (!torque_noise.empty()) {
-        if (torque_noise.size() != 1 && static_cast<int>(torque_noise.size()) != n) {
-            throw InputError(fmt::format("--torque-noise: {} values for a robot with {} joints (give one value or one per joint)", torque_noise.size(), n));
-        }
+        const std::vector<double> noise = per_joint(torque_noise, static_cast<std::size_t>(n), 0.0, "--torque-noise");
         for (int j = 0; j < n; ++j) {
-            const double s = torque_noise[torque_noise.size() == 1 ? 0 : static_cast<std::size_t>(j)];
+            const double s = noise[static_cast<std::size_t>(j)];
             if (!(s > 0.0) || !std::isfinite(s)) throw InputError(fmt::format("--torque-noise: joint {}: {} N.m: expected a finite std > 0", j + 1, s));
             p.noise_std[j] = s;
         }

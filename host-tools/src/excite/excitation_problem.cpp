@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "excite/excitation_problem.hpp"
 
-#include <Eigen/SVD>
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -165,14 +163,7 @@ double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* g
 
 double ExcitationProblem::condition_number(const Eigen::VectorXd& c) {
     prepare(c);
-    const Eigen::VectorXd scales = W_.colwise().norm().transpose().cwiseMax(1e-300).cwiseInverse();
-    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(W_ * scales.asDiagonal()).singularValues();
-    return sigma[0] / sigma[sigma.size() - 1];
-}
-
-Eigen::MatrixXd ExcitationProblem::information(const Eigen::VectorXd& c) {
-    prepare(c);
-    return information_matrix(W_, joints_, settings_.information.noise_std, settings_.information.sample_weight);
+    return std::exp(evaluate_criterion(Criterion::Cond, W_, joints_, settings_.information, nullptr));  // log cond
 }
 
 Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, Eigen::MatrixXd* jacobian) {

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // The optimization problem of `jacobid excite` (docs/excite.md): the coefficients c of a Fourier
-// trajectory (fourier_trajectory.hpp) that minimise a criterion of the column-scaled base regressor
-// W(c) stacked over the samples of one period, subject to the joints' limits.
+// trajectory (fourier_trajectory.hpp) that minimise a criterion of the base regressor W(c) stacked over the
+// samples of one period, subject to the joints' limits.
 //
 //  - Criterion: one of information_criterion.hpp's (d-optimal, a-relative, e-relative on the noise-weighted
 //    information matrix; cond, logdet of the column-scaled W), with its exact gradient in W chained to c
 //    through dW/dc = dY/dq psi + dY/dqd psi' + dY/dqdd psi'': per sample i the 3n derivatives of <dF/dW_i, Y> in
-//    (q, qd, qdd) (regressor_derivatives.hpp), times the basis. The regressor's partial
+//    (q, qd, qdd) (regressor_derivatives.hpp), times the basis.
 //  - Constraints, per joint and kind (upper and lower position, |velocity|, |acceleration|, |torque|): the
 //    normalized values g = value / limit - 1 over the samples, aggregated by the Kreisselmeier-Steinhauser
 //    function KS(g) = max g + log(sum exp(rho (g - max g))) / rho >= max g (smooth, conservative); the
@@ -73,14 +73,11 @@ public:
         settings_.criterion = criterion;
         derivatives_for_.resize(0);
     }
-    const InformationModel& information_model() const { return settings_.information; }
     // The log samples each criterion sample stands for (InformationModel::sample_weight).
     void set_sample_weight(double weight) {
         settings_.information.sample_weight = weight;
         derivatives_for_.resize(0);
     }
-    // The information matrix of the base parameters at c (information_criterion.hpp).
-    Eigen::MatrixXd information(const Eigen::VectorXd& c);
 
     // c: joints x 2L coefficients, row-major flattened (joint 0's first). The criterion, its gradient when
     // `gradient` is not null.

@@ -8,7 +8,7 @@
 //   A = gamma sum_i W_i^T S^-1 W_i, the information matrix of the base parameters, S = diag(sigma_j^2) the
 //   per-joint torque noise variance, gamma the log samples each optimizer sample stands for (the rate times
 //   the duration over the samples: the sum approximates the integral over every sample identify's F_p and
-//   decimation keep the information of, see information_model() in the CLI), C = A^-1 the predicted
+//   decimation keep the information of: docs/excite.md, "The criterion and the limits"), C = A^-1 the predicted
 //   covariance of the WLS estimate;
 //   - d-optimal:  -log det A;
 //   - a-relative: log sum_k C_kk / s_k^2, s_k the prior scale of parameter k (parameter_scales.hpp);

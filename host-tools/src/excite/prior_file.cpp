@@ -46,7 +46,7 @@ PriorFile read_prior_file(const std::string& path, const robot::RobotModel& mode
         }
         const auto& entry = parameters[names[k]];
         const auto value = entry.is_object() && entry.contains("value") ? entry["value"] : nlohmann::json();
-        const bool identified = !entry.contains("identified") || entry["identified"].is_boolean() && entry["identified"].get<bool>();
+        const bool identified = !entry.contains("identified") || (entry["identified"].is_boolean() && entry["identified"].get<bool>());
         if (value.is_null() || !identified) {
             p.fallbacks.push_back(names[k]);
             continue;

@@ -244,7 +244,7 @@ std::unique_ptr<RegressorDerivatives> make_automatic(const robot::SerialRobotMod
 std::unique_ptr<RegressorDerivatives> make_regressor_derivatives(const robot::RobotModel& model, bool automatic) {
     const auto* serial = dynamic_cast<const robot::SerialRobotModel*>(&model);
     if (serial && automatic) {
-        if (auto automatic = make_automatic<1>(*serial)) return automatic;
+        if (auto route = make_automatic<1>(*serial)) return route;
     }
     return std::make_unique<CentralDifferences>(model);
 }

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/errors.hpp"
+#include "core/per_joint.hpp"
 
 namespace jacobid::sim {
 namespace {
@@ -15,15 +16,12 @@ namespace {
 constexpr double kPeakVelocity = 1.875;                  // of a quintic step: 15/8 d / T
 constexpr double kPeakAcceleration = 5.773502691896258;  // 10 / sqrt(3) d / T^2
 
-std::vector<double> per_joint(const std::vector<double>& given, std::size_t joints, const char* option) {
-    if (given.empty()) return std::vector<double>(joints, std::numeric_limits<double>::infinity());
-    if (given.size() != 1 && given.size() != joints) {
-        throw InputError(fmt::format("{}: {} values for a robot with {} joints (give one value or one per joint)", option, given.size(), joints));
-    }
+// One limit per joint (infinity: none), each > 0.
+std::vector<double> joint_limits(const std::vector<double>& given, std::size_t joints, const char* option) {
     for (const double v : given) {
         if (!(v > 0.0)) throw InputError(fmt::format("{}: {}: expected a limit > 0", option, v));
     }
-    return given.size() == 1 ? std::vector<double>(joints, given.front()) : given;
+    return per_joint(given, joints, std::numeric_limits<double>::infinity(), option);
 }
 
 }  // namespace
@@ -31,8 +29,8 @@ std::vector<double> per_joint(const std::vector<double>& given, std::size_t join
 QuinticTrajectory::QuinticTrajectory(std::vector<double> start, std::vector<double> lower, std::vector<double> upper,
                                      MoveSettings settings, std::uint64_t seed)
     : lower_(std::move(lower)), upper_(std::move(upper)), settings_(settings), rng_(seed), from_(start), to_(std::move(start)) {
-    velocity_limit_ = per_joint(settings_.velocity_limit, to_.size(), "--velocity-limit");
-    acceleration_limit_ = per_joint(settings_.acceleration_limit, to_.size(), "--acceleration-limit");
+    velocity_limit_ = joint_limits(settings_.velocity_limit, to_.size(), "--velocity-limit");
+    acceleration_limit_ = joint_limits(settings_.acceleration_limit, to_.size(), "--acceleration-limit");
     move_start_ = 0.0;
     move_end_ = 0.0;
     move_duration_ = 1.0;
