@@ -50,7 +50,7 @@ std::string simulate(const std::string& name, const std::string& args) {
         const auto c = jacobid::test::cached_command(std::string(JACOBID_EXECUTABLE) + " simulate --quiet --out {dir}/" + name + ".csv " + args,
                                                      JACOBID_EXECUTABLE);
         EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
-        for (const std::string file : {name + ".csv", name + ".truth.json"}) {
+        for (const std::string& file : {name + ".csv", name + ".truth.json"}) {
             if (fs::exists(c.dir / file)) fs::copy_file(c.dir / file, path(file), fs::copy_options::overwrite_existing);
         }
     }

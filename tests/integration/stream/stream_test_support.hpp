@@ -122,29 +122,25 @@ public:
     Recorder(const Recorder&) = delete;
     Recorder& operator=(const Recorder&) = delete;
 
-    // Waits for "listening on 127.0.0.1:PORT" and returns PORT (throws after 10 s).
+    // Waits for "listening on 127.0.0.1:PORT" and returns PORT (throws if the recorder exits first or after 10 s).
     int wait_for_port() {
         const std::string marker = "listening on 127.0.0.1:";
-        for (int i = 0; i < 1000; ++i) {
-            const std::string err = slurp_file(err_path_);
+        int port = -1;
+        const bool found = wait_for_err([&](const std::string& err) {
             const std::size_t at = err.find(marker);
-            if (at != std::string::npos && err.find('\n', at) != std::string::npos) return std::stoi(err.substr(at + marker.size()));
-            int status = 0;
-            if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-                exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-                throw std::runtime_error("jacobid record exited before listening: " + err);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
+            if (at == std::string::npos || err.find('\n', at) == std::string::npos) return false;
+            port = std::stoi(err.substr(at + marker.size()));
+            return true;
+        }, 10.0);
+        if (found) return port;
+        if (exit_code_ != -2) throw std::runtime_error("jacobid record exited before listening: " + err());
         throw std::runtime_error("jacobid record did not start listening");
     }
     void signal(int sig) { ::kill(pid_, sig); }
     // Waits until a progress line ("record: S s, N datagrams, ...", once a second without --quiet) counts
     // at least `datagrams`; false if the recorder exits first or after `timeout_s`.
     bool wait_for_received(std::size_t datagrams, double timeout_s = 10.0) {
-        const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-        while (std::chrono::steady_clock::now() < end) {
-            const std::string err = slurp_file(err_path_);
+        return wait_for_err([&](const std::string& err) {
             for (std::size_t at = err.find(" s, "); at != std::string::npos; at = err.find(" s, ", at + 1)) {
                 const std::size_t line_end = err.find('\n', at);
                 if (line_end == std::string::npos) break;  // a line still being written
@@ -152,14 +148,8 @@ public:
                 if (digits == at + 4 || err.compare(digits, 11, " datagrams,") != 0) continue;
                 if (std::stoull(err.substr(at + 4, digits - at - 4)) >= datagrams) return true;
             }
-            int status = 0;
-            if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-                exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-                return false;
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        return false;
+            return false;
+        }, timeout_s);
     }
     // Exit code (-1 if killed by a signal); kills the child after `timeout_s`.
     int wait(double timeout_s = 10.0) {
@@ -181,6 +171,23 @@ public:
     std::string err() const { return slurp_file(err_path_); }
 
 private:
+    // Polls the recorder's stderr (every 10 ms) until `found` says what it waits for is there: true; false when the
+    // recorder exits first (exit_code_ set) or after `timeout_s`. The one wait both waits above share.
+    template <typename Found>
+    bool wait_for_err(Found found, double timeout_s) {
+        const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+        while (std::chrono::steady_clock::now() < end) {
+            if (found(slurp_file(err_path_))) return true;
+            int status = 0;
+            if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+                exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+                return false;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        return false;
+    }
+
     pid_t pid_ = -1;
     int exit_code_ = -2;  // -2: still running
     std::string err_path_;
