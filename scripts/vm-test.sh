@@ -7,10 +7,11 @@
 #     -> jacobid-fw -> UDP -> record -> identify there (build-vm's own jacobid + jacobid-fw, without
 #     -march=native: qemu's TCG has no AVX-512). Opt-in: the aarch64 board below runs the same chain with
 #     the identification gated; the x86_64 one adds ~5 min of build and VM time (docs/targets.md).
-#  2. the emulated controller board (build-vm-aarch64: jacobid, jacobid-fw and the static VM test
-#     binaries cross-built for arm64) in qemu-system-aarch64 -M virt: vm.aarch64.hal-vcan,
-#     vm.aarch64.hal-gpio (PL061), vm.aarch64.board (sim-can -> vcan0 -> jacobid-fw with GPIO -> UDP ->
-#     record -> identify, gated on the bars) and vm.aarch64.board-load (6 joints, 1 kHz, 60 s;
+#  2. the emulated controller board (build-vm-aarch64: jacobid-board, the board's sim-can and record, jacobid-fw
+#     and the static VM test binaries cross-built for arm64; nothing of identification) in qemu-system-aarch64
+#     -M virt: vm.aarch64.hal-vcan, vm.aarch64.hal-gpio (PL061), vm.aarch64.board (sim-can -> vcan0 ->
+#     jacobid-fw with GPIO -> UDP -> record on the board; the log identified on this machine by the native
+#     build's jacobid, gated on the bars) and vm.aarch64.board-load (6 joints, 1 kHz, 60 s;
 #     JACOBID_VM_LOAD=0 leaves it out).
 # Usage: scripts/vm-test.sh [x86_64|aarch64]...   (default: both; JACOBID_VM_ARCHES likewise)
 set -euo pipefail
@@ -48,19 +49,22 @@ for arch in "${arches[@]}"; do
       sed -n 's/^\(vcan.host: SKIPPED: .*\)$/vm-test: \1/p' "$b/Testing/Temporary/LastTest.log" || true
       ;;
     aarch64)
-      # The emulated controller board: jacobid-fw and jacobid cross-built for arm64 against Debian's arm64
+      # The emulated controller board: jacobid-fw and jacobid-board cross-built for arm64 against Debian's arm64
       # libraries (scripts/cross-deps.sh: build-cross-sysroot/arm64-board), only the targets the VM runs.
       b="$root/build-vm-aarch64"
+      # The board's log is identified here, by the native build's jacobid (built if missing).
+      host_jacobid="${JACOBID_BUILD_DIR:-$root/build}/host-tools/jacobid"
+      [ -x "$host_jacobid" ] || bash "$root/scripts/build.sh" jacobid
       bash "$root/scripts/cross-deps.sh"
       gtest_dir="$(bash "$root/scripts/cross-gtest.sh" aarch64)"
       cmake -S "$root" -B "$b" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$root/toolchains/aarch64-linux-gnu.cmake" \
         -DCMAKE_BUILD_TYPE=Release -DJACOBID_TARGET_SYSROOT="${JACOBID_CROSS_SYSROOTS:-$root/build-cross-sysroot}/arm64-board" \
         -DGTest_DIR="$gtest_dir" -DJACOBID_BUILD_HOST_TOOLS=ON -DJACOBID_BUILD_FIRMWARE=ON -DJACOBID_BUILD_BENCHMARKS=OFF \
         -DJACOBID_BUILD_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_PYTHON=OFF \
-        -DJACOBID_VM_TESTS=ON >/dev/null
+        -DJACOBID_VM_TESTS=ON -DJACOBID_VM_HOST_JACOBID="$host_jacobid" >/dev/null
       step=$(now)
-      cmake --build "$b" -j "$jobs" --target jacobid-vcan-link test_hal_vcan test_hal_gpio_chardev jacobid jacobid-fw
-      timing+=("aarch64 cross build (jacobid, jacobid-fw, VM test binaries): $(( $(now) - step )) s")
+      cmake --build "$b" -j "$jobs" --target jacobid-vcan-link test_hal_vcan test_hal_gpio_chardev jacobid-board jacobid-fw
+      timing+=("aarch64 cross build (jacobid-board, jacobid-fw, VM test binaries): $(( $(now) - step )) s")
       exclude=()
       [ "${JACOBID_VM_LOAD:-1}" = "1" ] || exclude=(-LE load)
       # -j: the guests' clocks follow their own instructions (sleep=off), so running them side by side only

@@ -15,6 +15,13 @@ Scenario (tests/vm/scenarios/*.sh): a busybox sh script run by /init as root in 
     # memory: 1024   # smp: 2          qemu -m / -smp unless given on the command line (default 512 / 1)
     # qemu: -icount shift=1            more qemu options (after the harness's own)
     # cmdline: preempt=full            more kernel command line
+    # host: identify-on-host.sh        a bash script beside the scenario, run on the build machine after the
+                                       guest passed (the verdict is then its exit status), in the directory
+                                       of the files the guest exported, with JACOBID=--host-jacobid in its
+                                       environment: work that needs the PC's tools (identification)
+A guest exports a file by printing "JACOBID-VM-FILE-BEGIN name", the file gzip-compressed in base64 lines, and
+"JACOBID-VM-FILE-END name" (tests/vm/scenarios/chain-lib.sh export_files); the harness writes it to
+<work>/<arch>-<scenario>.files/name.
 Its exit status is the verdict. `binaries` must be static. `dynamic` ones: without --libdir (a native
 build for the VM's architecture) `ldd` resolves their libraries on the build machine and each goes to the
 same path in the VM; with --libdir DIR... (a cross build: the target's sysroot and cross C library) the
@@ -22,10 +29,12 @@ DT_NEEDED entries are resolved recursively in those directories (readelf), the l
 /usr/lib/jacobid-vm (on LD_LIBRARY_PATH in the VM) and the interpreter to its PT_INTERP path.
 """
 import argparse
+import base64
 import gzip
 import io
 import os
 import re
+import shutil
 import stat
 import subprocess
 import sys
@@ -37,6 +46,40 @@ QEMU = {
     "aarch64": (["qemu-system-aarch64", "-M", "virt", "-cpu", "cortex-a72", "-accel", "tcg"], "ttyAMA0"),
 }
 MARK = "JACOBID-VM:"
+FILE_BEGIN, FILE_END = "JACOBID-VM-FILE-BEGIN ", "JACOBID-VM-FILE-END "
+
+
+class ExportedFiles:
+    """The files a guest prints on its console between FILE_BEGIN and FILE_END, written to `directory`."""
+
+    def __init__(self, directory):
+        self.directory = directory
+        shutil.rmtree(directory, ignore_errors=True)  # a previous run's files are not this run's
+        self.name = None
+        self.lines = []
+        self.written = []
+
+    def take(self, line):
+        """True if the console line belongs to an exported file (and is not to be shown)."""
+        if line.startswith(FILE_BEGIN):
+            self.name, self.lines = os.path.basename(line[len(FILE_BEGIN):].strip()), []
+            return True
+        if self.name is None:
+            return False
+        if line.startswith(FILE_END):
+            try:
+                data = gzip.decompress(base64.b64decode("".join(self.lines), validate=True))
+            except (ValueError, OSError, EOFError) as e:  # a console line mangled, e.g. a kernel message inside
+                print(f"vm: exported file {self.name} is corrupt ({e}); left out", flush=True)
+            else:
+                os.makedirs(self.directory, exist_ok=True)
+                with open(os.path.join(self.directory, self.name), "wb") as f:
+                    f.write(data)
+                self.written.append(self.name)
+            self.name = None
+            return True
+        self.lines.append(line.strip())
+        return True
 
 
 class Cpio:
@@ -265,6 +308,7 @@ def main():
     p.add_argument("--memory", help="MiB (default: the scenario's '# memory:' header, else 512)")
     p.add_argument("--smp", help="CPUs (default: the scenario's '# smp:' header, else 1)")
     p.add_argument("--quiet", action="store_true", help="print only the scenario's lines and the verdict")
+    p.add_argument("--host-jacobid", help="the build machine's jacobid, for a scenario's '# host:' step")
     args = p.parse_args()
 
     assets = os.path.join(args.assets, args.arch)
@@ -289,6 +333,11 @@ def main():
                   "-append", " ".join([f"console={console} panic=-1 quiet loglevel=3"] + scenario_header(scenario_text, "cmdline"))] + scenario_header(scenario_text, "qemu")
     print(f"vm: {args.arch} {name}: {len(image) // 1024} KiB initramfs, modules {' '.join(mods) or '-'}; "
           f"console log {log_path}", flush=True)
+    host_step = scenario_header(scenario_text, "host")
+    if host_step and not args.host_jacobid:
+        print(f"vm: {args.arch} {name}: the scenario's host step ({host_step[0]}) needs --host-jacobid PATH", file=sys.stderr)
+        return 2
+    exported = ExportedFiles(os.path.join(args.work, f"{args.arch}-{name}.files"))
     start = time.monotonic()
     verdict = None
     with open(log_path, "w") as log:
@@ -299,6 +348,8 @@ def main():
             for raw in proc.stdout:
                 line = raw.decode(errors="replace").rstrip("\r\n")
                 log.write(line + "\n")
+                if exported.take(line):
+                    continue
                 if MARK in line:
                     m = re.search(MARK + r" (PASS|FAIL.*)$", line)
                     if m and verdict is None:
@@ -314,7 +365,27 @@ def main():
         print(f"vm: {args.arch} {name}: NO VERDICT ({why} after {elapsed:.0f} s; did the VM boot?) - see {log_path}")
         return 2
     print(f"vm: {args.arch} {name}: {verdict} in {elapsed:.0f} s")
-    return 0 if verdict == "PASS" else 1
+    if verdict != "PASS":
+        return 1
+    if host_step:
+        return run_host_step(args, name, host_step[0], exported)
+    return 0
+
+
+def run_host_step(args, name, script, exported):
+    """The scenario's '# host:' script, in the directory of the exported files; its exit status is the verdict."""
+    path = os.path.join(os.path.dirname(os.path.abspath(args.scenario)), script)
+    os.makedirs(exported.directory, exist_ok=True)
+    env = dict(os.environ, JACOBID=os.path.abspath(args.host_jacobid))
+    print(f"vm: {args.arch} {name}: host step {script} on {', '.join(exported.written) or 'no exported files'} "
+          f"in {exported.directory}", flush=True)
+    proc = subprocess.run(["bash", path], cwd=exported.directory, env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT)
+    for line in proc.stdout.decode(errors="replace").splitlines():
+        print(f"  [host] {line}", flush=True)
+    verdict = "PASS" if proc.returncode == 0 else f"FAIL (host step exit {proc.returncode})"
+    print(f"vm: {args.arch} {name}: host step {verdict}")
+    return 0 if proc.returncode == 0 else 1
 
 
 if __name__ == "__main__":

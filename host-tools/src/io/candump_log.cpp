@@ -19,7 +19,7 @@ constexpr std::uint8_t kFdFlagBrs = 0x1;            // linux/can.h CANFD_BRS
 constexpr std::uint8_t kFdFlagEsi = 0x2;            // CANFD_ESI
 constexpr std::uint8_t kFdFlagFdf = 0x4;            // CANFD_FDF (set by newer kernels; carries no meaning here)
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+bool is_field_separator(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 int hex_value(char c) {
@@ -39,9 +39,9 @@ std::vector<std::string_view> fields_of(std::string_view line) {
     std::vector<std::string_view> fields;
     std::size_t i = 0;
     while (i < line.size()) {
-        while (i < line.size() && is_space(line[i])) ++i;
+        while (i < line.size() && is_field_separator(line[i])) ++i;
         const std::size_t start = i;
-        while (i < line.size() && !is_space(line[i])) ++i;
+        while (i < line.size() && !is_field_separator(line[i])) ++i;
         if (i > start) fields.push_back(line.substr(start, i - start));
     }
     return fields;

@@ -2,10 +2,10 @@
 # Raw robot logs described by a YAML log format, resampled onto a uniform grid (docs/log-format.md;
 # included by host-tools/CMakeLists.txt). The CLI options shared by identify, diagnose and differentiate
 # go into the command line's support library (the jacobid executable and the Python module use them).
-target_sources(jacobid_host PRIVATE
+target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/log_format.cpp
   ${CMAKE_CURRENT_LIST_DIR}/resample.cpp
   ${CMAKE_CURRENT_LIST_DIR}/nonuniform_jacobi.cpp
 )
-target_link_libraries(jacobid_host PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)
+target_link_libraries(jacobid_host_base PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)
 target_sources(jacobid_cli_support PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/log_format_options.cpp)

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 # Closed-loop simulation (included by host-tools/CMakeLists.txt).
-target_sources(jacobid_host PRIVATE
+target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/quintic_trajectory.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tabulated_trajectory.cpp
   ${CMAKE_CURRENT_LIST_DIR}/measurement.cpp

@@ -1,11 +1,12 @@
 # SPDX-License-Identifier: MIT
 # The emulated controller board (docs/targets.md, "Emulated controller board"): qemu -M virt (aarch64,
-# TCG) with the cross-compiled jacobid-fw and jacobid. jacobid-fw plays an excitation table on the drives
+# TCG) with the cross-compiled jacobid-fw and jacobid-board (as `jacobid`: sim-can and record). jacobid-fw plays an excitation table on the drives
 # (fw.yaml trajectory:, docs/firmware.md "Trajectory playback": a 1 s ramp, then a 6 s period of five
 # harmonics 3 times), jacobid sim-can --follow plays the 2R robot's MIT drivers on vcan0 following those
 # commands (20 s at 1 kHz), jacobid-fw reads vcan0, drives the enable and cycle-sync outputs of the board's
 # PL061 GPIO chip through libgpiod (e-stop input on a third line) and streams estimate datagrams over UDP
-# on the loopback, jacobid record writes the CSV, jacobid identify compares with the Table II truth.
+# on the loopback, jacobid record writes the CSV; the board exports it and the build machine's jacobid
+# identifies it against the Table II truth (identify-on-host.sh), as a user identifies a controller's log on the PC.
 # Gated too: the playback finished (no stop) and the drives followed every command frame but the last.
 # Gated: the chain (chain-lib.sh gate_chain: every frame decoded, 0 datagrams lost/late/malformed, no firmware
 # overrun, the identification bars; rows with holes are reported) and the GPIO lines driven (enable high and sync toggling while running, as
@@ -16,6 +17,7 @@
 # binaries: jacobid-vcan-link
 # dynamic: jacobid jacobid-fw
 # include: chain-lib.sh
+# host: identify-on-host.sh
 # memory: 1024
 # smp: 1
 # qemu: -icount shift=1,sleep=off
@@ -52,6 +54,7 @@ trajectory:
     - {position: [-3, 3], velocity: 5, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}
 EOF
 SIM_ARGS=--follow
+IDENTIFY=host
 
 # The lines as gpiolib sees them (the chip's data register), every 0.25 s while sim-can runs.
 gpio_watch() {

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # Shared by the acquisition-chain scenarios (chain.sh, board.sh, board-load.sh; `# include: chain-lib.sh`,
-# sourced from /scenario-lib): starting and stopping the chain's processes, reading their reports, the
-# gates on a complete stream, and the identification bars. busybox sh + awk. Set SCENARIO first.
+# sourced from /scenario-lib) and board.sh's host step (identify-on-host.sh, on the build machine): starting
+# and stopping the chain's processes, reading their reports, the gates on a complete stream, and the
+# identification bars. busybox sh + awk (the host step: bash + Debian's awk). Set SCENARIO first.
 # run_chain + gate_chain are the whole 2R chain: sim-can -> vcan0 -> jacobid-fw -> UDP -> record -> identify.
 T0=$(cut -d' ' -f1 /proc/uptime)
 say() { echo "JACOBID-VM: $SCENARIO: $*"; }  # the prefix: shown by the harness under --quiet too
@@ -150,22 +151,40 @@ run_chain() {
   say "sim-can exit $sim_rc ($1 s of robot in $sim_time s of guest time); jacobid-fw exit $fw_rc; record exit $rec_rc"
 }
 
-# gate_chain DURATION: identify the run's rows and gate the chain. Every frame sim-can sent decoded; the
-# processes' exit codes; every datagram arrived; the log covers the run and is clean (no row with a stale
-# or undecodable joint, no missed period inside it: a held or missing sample costs more than the bars);
-# the identification bars. Status 1 if any gate fails.
-gate_chain() {
-  run_rows all.csv log.csv
-  rows=$(($(wc -l < log.csv) - 1))
-  inside=$(holes log.csv)
-  overruns=$(fw_overruns fw.out)
-  say "inside the run: $rows rows, $inside without a fresh sample of both joints, $overruns firmware overrun(s)"
+# export_files FILE...: the files to the build machine over the console, gzip-compressed in base64 between
+# markers (tests/vm/vm_harness.py writes them beside the console log for the scenario's `# host:` step).
+export_files() {
+  for f in "$@"; do
+    echo "JACOBID-VM-FILE-BEGIN $f"
+    gzip -c "$f" | base64
+    echo "JACOBID-VM-FILE-END $f"
+  done
+}
+
+# identify_bars: identify log.csv (robot.yaml) with the jacobid on PATH and check the Table II bars. Status 1 if
+# it fails or a bar is missed.
+identify_bars() {
   i0=$(uptime_s)
   jacobid identify --robot robot.yaml --in log.csv --method jacobi --format json --quiet > id.json 2> id.err
   id_rc=$?
   say "identify exit $id_rc in $(since "$i0") s"
   cat id.err
   [ $id_rc -eq 0 ] || echo '{}' > id.json  # counts as missing every bar below
+  check_bars id.json
+}
+
+# gate_chain DURATION: gate the chain and identify the run's rows. Every frame sim-can sent decoded; the
+# processes' exit codes; every datagram arrived; the log covers the run and is clean (no row with a stale
+# or undecodable joint, no missed period inside it: a held or missing sample costs more than the bars);
+# the identification bars: here (identify_bars), or with IDENTIFY=host on the build machine, where
+# robot.yaml and log.csv are exported to (the scenario's `# host:` step, identify-on-host.sh). Status 1 if
+# any gate fails.
+gate_chain() {
+  run_rows all.csv log.csv
+  rows=$(($(wc -l < log.csv) - 1))
+  inside=$(holes log.csv)
+  overruns=$(fw_overruns fw.out)
+  say "inside the run: $rows rows, $inside without a fresh sample of both joints, $overruns firmware overrun(s)"
   ok=0
   gate_can sim.err fw.out || ok=1
   [ "$sim_rc" -eq 0 ] && [ "$fw_rc" -eq 0 ] && [ "$rec_rc" -eq 0 ] || { say "a process failed"; ok=1; }
@@ -175,6 +194,12 @@ gate_chain() {
   # With SYNC pacing every answer has most of a period to arrive: a row without a fresh sample is a late
   # or lost frame, not a clock phase.
   [ "$inside" = 0 ] || { say "the log has $inside rows with a stale or undecodable joint"; ok=1; }
-  check_bars id.json || ok=1
+  if [ "${IDENTIFY:-here}" = host ]; then
+    e0=$(uptime_s)
+    export_files robot.yaml log.csv
+    say "robot.yaml and log.csv ($(wc -c < log.csv) bytes) exported in $(since "$e0") s; identified on the build machine"
+  else
+    identify_bars || ok=1
+  fi
   return $ok
 }
