@@ -20,6 +20,7 @@ namespace {
 // same double), text as is, a path as the OS sees it. InputError naming `option` for any other type.
 std::string value_text(const py::handle& value, const std::string& option) {
     if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+    if (py::isinstance<py::array>(value) && py::reinterpret_borrow<py::array>(value).ndim() == 0) return value_text(value.attr("item")(), option);
     if (is_path(value)) return path_text(value, option);
     const py::module_ numbers = py::module_::import("numbers");
     if (is_bool(value)) throw InputError(fmt::format("{}: expected a value, got {}", option, py::repr(value).cast<std::string>()));

@@ -324,7 +324,9 @@ py::dict diagnose(const py::object& robot_value, const py::object& source, const
 void bind_host(py::module_& m) {
     py::class_<Robot>(m, "Robot", "A robot description (YAML: planar2r, an MDH table or a URDF file; docs/robots.md) and its model.")
         .def_property_readonly("model", [](const Robot& r) { return r.model->model_name(); }, "the model's name (planar2r, mdh, urdf)")
-        .def_property_readonly("source", [](const Robot& r) { return r.description.source; }, "the description's file")
+        .def(py::init([](const py::object& path) { return load_robot(path, py::args(), py::kwargs()); }), py::arg("path") = py::none(),
+             "Robot(path=None): load_robot(path)")
+        .def_property_readonly("source", [](const Robot& r) { return text_of(r.description.source); }, "the description's file")
         .def_property_readonly("joint_names", [](const Robot& r) { return joint_field(r, &robot::JointDescription::name); })
         .def_property_readonly("position_columns", [](const Robot& r) { return joint_field(r, &robot::JointDescription::position_column); },
                                "the log's position column of each joint")
@@ -333,7 +335,7 @@ void bind_host(py::module_& m) {
         .def_property_readonly("parameter_names", [](const Robot& r) { return r.model->parameter_names(); }, "the base parameters, in order")
         .def("base_parameters", [](const Robot& r) { return to_python(robot::base_parameter_json(r.description, *r.model)); },
              "The base parameters with their regrouping relations and true values, as `jacobid identify --print-base --format json`.")
-        .def("__repr__", [](const Robot& r) { return fmt::format("Robot(model={}, joints={}, source={})", r.model->model_name(), r.model->joint_count(), r.description.source); });
+        .def("__repr__", [](const Robot& r) { return text_of(fmt::format("Robot(model={}, joints={}, source={})", r.model->model_name(), r.model->joint_count(), r.description.source)); });
     // Every argument defaults to None, so that a missing one reaches the checks instead of pybind11's
     // "incompatible function arguments" (None: the planar 2R for a robot, "expected a path ..." for a log).
     const py::object none = py::none();

@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "core/errors.hpp"
+#include "python_values.hpp"
 
 PYBIND11_MODULE(_jacobid, m) {
     m.doc() = "jacobid: robot dynamic identification with the Jacobi differentiator (compiled part; use `import jacobid`)";
@@ -26,11 +27,20 @@ PYBIND11_MODULE(_jacobid, m) {
         } catch (const jacobid::InputError&) {
             throw;
         } catch (const std::exception& e) {
-            PyErr_SetString(PyExc_RuntimeError, (std::string("internal error: ") + e.what()).c_str());
+            PyErr_SetObject(PyExc_RuntimeError, jacobid::python::text_of(std::string("internal error: ") + e.what()).ptr());
         }
     });
     // Bad input: the command line's one-line message (naming the file, line, column, option), as a ValueError.
-    pybind11::register_exception<jacobid::InputError>(m, "InputError", PyExc_ValueError);
+    // The message may name a path of any bytes: decoded as os.fsdecode does (pybind11's own translator gave an
+    // empty message for a path that is not UTF-8).
+    static pybind11::exception<jacobid::InputError> input_error(m, "InputError", PyExc_ValueError);
+    pybind11::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const jacobid::InputError& e) {
+            PyErr_SetObject(input_error.ptr(), jacobid::python::text_of(e.what()).ptr());
+        }
+    });
     jacobid::python::bind_core(m);
     jacobid::python::bind_host(m);
 }

@@ -32,6 +32,12 @@ std::string path_text(const py::handle& value, const std::string& what) {
     }
 }
 
+py::str text_of(const std::string& text) {
+    PyObject* s = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "surrogateescape");
+    if (s == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(s);
+}
+
 bool is_bool(const py::handle& value) {
     return py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_"));
 }

@@ -21,6 +21,11 @@ bool is_path(const pybind11::handle& value);
 // InputError naming `what` for anything else.
 std::string path_text(const pybind11::handle& value, const std::string& what);
 
+// `text` as a Python str: UTF-8, any other byte kept as a surrogate escape, as os.fsdecode does, so that a
+// path of raw bytes in a message or a result is shown (and os.fsencode gives the same bytes back) instead of
+// the conversion failing.
+pybind11::str text_of(const std::string& text);
+
 // Whether `value` is True or False (Python's bool or numpy's).
 bool is_bool(const pybind11::handle& value);
 

@@ -137,7 +137,10 @@ def test_cli11_internals_and_wrong_value_types_are_one_line_errors():
     assert refused(jacobid.kernel, window=0.01, ts=0.001 + 1j) == "--ts: expected a real number, got complex (0.001+1j)"
     # A text value that looks like an option is the value, not another option.
     assert refused(jacobid.kernel, window="--ts", ts=0.001) == "--window: expected a finite number > 0, got '--ts'"
-    # numpy scalars and arrays are numbers and lists.
+    # numpy scalars, 0-d arrays and one-dimensional arrays are numbers and lists.
+    assert jacobid.kernel(window=np.array(0.01), ts=0.001)["taps"] == 11
+    sim = jacobid.simulate(None, duration=0.5, torque_noise=np.array([0.05, 0.01]))
+    assert np.array_equal(sim["tau"], jacobid.simulate(None, duration=0.5, torque_noise=(0.05, 0.01))["tau"])
     np.testing.assert_array_equal(jacobid.kernel(window=np.float64(0.01), ts=np.float32(0.5) / 500, order=np.int64(1))["weights"],
                                   jacobid.kernel(window=0.01, ts=float(np.float32(0.5) / 500), order=1)["weights"])
 
@@ -234,9 +237,13 @@ def test_bytes_and_pathlike_paths_are_read_and_printed_decoded(small_run, tmp_pa
     missing = tmp_path / "nothere.yaml"
     for form in (os.fsencode(missing), CustomPath(os.fsencode(missing)), CustomPath(str(missing))):
         assert refused(jacobid.load_robot, form) == f"{missing}: cannot open robot description"
+    # A path that is not UTF-8 is named as os.fsdecode gives it (was an empty message).
+    odd = os.fsencode(tmp_path) + b"/\xff.yaml"
+    assert refused(jacobid.load_robot, odd) == f"{os.fsdecode(odd)}: cannot open robot description"
     for form in (os.fsencode(ROBOT), CustomPath(str(ROBOT))):
         robot = jacobid.load_robot(form)
         assert robot.source == str(ROBOT) and robot.joint_names == jacobid.load_robot(ROBOT).joint_names
+    assert jacobid.Robot(ROBOT).parameter_names == jacobid.load_robot(ROBOT).parameter_names
     robot, run = small_run
     path = tmp_path / "log.csv"
     with open(path, "w") as f:
