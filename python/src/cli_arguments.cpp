@@ -48,7 +48,8 @@ void refuse_unknown_keywords(const std::string& function, const py::dict& keywor
     for (const auto& [key, value] : keywords) {
         const std::string name = key.cast<std::string>();
         if (std::find(known.begin(), known.end(), name) == known.end()) {
-            throw InputError(fmt::format("{}: unknown keyword of {}{}; its keywords: {}", name, function, did_you_mean(name, known), joined(known)));
+            const std::string keywords_text = known.empty() ? "it takes none" : "its keywords: " + joined(known);
+            throw InputError(fmt::format("{}: unknown keyword of {}{}; {}", name, function, did_you_mean(name, known), keywords_text));
         }
     }
 }

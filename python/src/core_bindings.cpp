@@ -311,7 +311,13 @@ void bind_core(py::module_& m) {
              "Feeds samples x joints arrays of positions and torques, one row per cycle, and returns per row: position, "
              "velocity, acceleration, torque, raw_position (samples x joints), sample_index (the input sample each row "
              "refers to) and valid (False during warm-up). The history carries over to the next call.")
-        .def("reset", &Bank::reset, "Clears the history (e.g. after a gap); the kernels stay.")
+        .def("reset",
+             [](Bank& bank, const py::args& extra, const py::kwargs& keywords) {
+                 refuse_extra_positional("reset", extra, {});
+                 refuse_unknown_keywords("reset", keywords, {});
+                 bank.reset();
+             },
+             "Clears the history (e.g. after a gap); the kernels stay.")
         .def_property_readonly("delay_samples", &Bank::delay_samples, "common delay of every output, in samples")
         .def_property_readonly("warmup_samples", &Bank::warmup_samples, "cycles until the first valid output")
         .def_property_readonly("joints", &Bank::joints);

@@ -333,7 +333,12 @@ void bind_host(py::module_& m) {
         .def_property_readonly("torque_columns", [](const Robot& r) { return joint_field(r, &robot::JointDescription::torque_column); },
                                "the log's torque column of each joint")
         .def_property_readonly("parameter_names", [](const Robot& r) { return r.model->parameter_names(); }, "the base parameters, in order")
-        .def("base_parameters", [](const Robot& r) { return to_python(robot::base_parameter_json(r.description, *r.model)); },
+        .def("base_parameters",
+             [](const Robot& r, const py::args& extra, const py::kwargs& keywords) {
+                 refuse_extra_positional("base_parameters", extra, {});
+                 refuse_unknown_keywords("base_parameters", keywords, {});
+                 return to_python(robot::base_parameter_json(r.description, *r.model));
+             },
              "The base parameters with their regrouping relations and true values, as `jacobid identify --print-base --format json`.")
         .def("__repr__", [](const Robot& r) { return text_of(fmt::format("Robot(model={}, joints={}, source={})", r.model->model_name(), r.model->joint_count(), r.description.source)); });
     // Every argument defaults to None, so that a missing one reaches the checks instead of pybind11's

@@ -168,6 +168,8 @@ BAD_SCALARS = [
     (lambda: jacobid.differentiate(SAMPLES, 0.01, ts=0.001), "differentiate: got 2 positional arguments, takes 1 (x); give the options as keywords"),
     (lambda: jacobid.identify(None, "log.csv", None, None, "jacobi"),
      "identify: got 5 positional arguments, takes 4 (robot, log, validate, truth); give the options as keywords"),
+    (lambda: jacobid.Bank(1, **KERNEL).reset(True), "reset: got 1 positional argument, takes 0; give the options as keywords"),
+    (lambda: jacobid.load_robot().base_parameters(format="json"), "format: unknown keyword of base_parameters; it takes none"),
     (lambda: jacobid.kernel(window="", ts=0.001), "--window: expected a value, got ''"),
     (lambda: jacobid.simulate(None, torque_noise=[]), "--torque-noise: expected a value, got []"),
     # A log given as arrays: where the shared log checks name a line, the number is the sample's index.
