@@ -4,15 +4,14 @@
 numpy arrays in and out, the command line's options as keyword arguments (``bandwidth=5`` is ``--bandwidth 5``,
 ``log_format="ur10e.yaml"`` is ``--log-format ur10e.yaml``, ``weighted=True`` the flag ``--weighted``), results as
 plain dicts with the names of the command line's JSON output, and bad input raised as :class:`InputError` (a
-``ValueError``) with the one-line message ``jacobid`` prints. docs/python.md has the whole story.
+``ValueError``) with the one-line message ``jacobid`` prints. Every argument is checked before anything is computed:
+arrays must hold finite real numbers (no NaN, None, complex or text), keywords must be known (a misspelt one is
+named, with the closest valid keyword). docs/python.md has the whole story.
 
 Core (the real-time library, lib/): :func:`kernel`, :func:`frequency_response`, :func:`differentiate`,
 :class:`Bank`, :func:`butterworth_euler`. Host (jacobid::host): :func:`load_robot`, :func:`simulate`,
 :func:`identify` (with ``validate=``), :func:`diagnose`.
 """
-import json as _json
-import os as _os
-
 from ._jacobid import (  # noqa: F401  (the public API)
     Bank,
     Estimate,
@@ -34,29 +33,7 @@ __all__ = [
 ]
 
 
-def _robot(robot):
-    return robot if isinstance(robot, Robot) else load_robot(robot)
-
-
-def _log(log):
-    """A path stays a path (read as --in reads it); anything else is (t, q, tau)."""
-    if isinstance(log, (str, _os.PathLike)):
-        return _os.fspath(log)
-    if isinstance(log, dict):  # simulate()'s result
-        return (log["t"], log["q"], log["tau"])
-    return tuple(log)
-
-
-def _truth(truth):
-    if truth is None or isinstance(truth, dict) and "parameters" not in truth:
-        return truth
-    if isinstance(truth, (str, _os.PathLike)):  # simulate --truth's JSON file
-        with open(truth, encoding="utf-8") as f:
-            truth = _json.load(f)
-    return {name: float(value) for name, value in truth["parameters"].items()}
-
-
-def identify(robot, log, validate=None, truth=None, **options):
+def identify(robot=None, log=None, validate=None, truth=None, *extra, **options):
     """Identify the base dynamic parameters of ``robot`` from ``log``, as ``jacobid identify --format json``.
 
     robot: a :class:`Robot` or the path of its description. log and validate: a path (CSV, or a raw log with
@@ -71,16 +48,14 @@ def identify(robot, log, validate=None, truth=None, **options):
     methods (every method's result), log, model ... (docs/identify.md).
     One continuous log: --on-gap split, --period, --physical, --essential and the reports are the command line's.
     """
-    validate_log = None if validate is None else _log(validate)
-    return _jacobid._identify(_robot(robot), _log(log), validate_log, _truth(truth), **options)
+    return _jacobid._identify(robot, log, validate, truth, *extra, **options)
 
 
-def diagnose(robot, log, validate=None, **options):
+def diagnose(robot=None, log=None, validate=None, *extra, **options):
     """Where the identified model misses the data, as ``jacobid diagnose --format json`` (docs/diagnose.md).
 
     robot, log, validate: as for :func:`identify`. options: diagnose's options as keywords (alpha, min_gain,
     max_effects, folds, max_delay, no_delay=True, max_cogging_order, horizon, horizon_spacing, bandwidth, cutoff,
     log_format ..., quiet=True). Returns the CLI's JSON as a dict (effects named, before/after errors, verdict).
     """
-    validate_log = None if validate is None else _log(validate)
-    return _jacobid._diagnose(_robot(robot), _log(log), validate_log, **options)
+    return _jacobid._diagnose(robot, log, validate, *extra, **options)

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // lib/ through the host's checked wrappers: kernel options are parsed by the CLI's definitions (cli/kernel_options),
-// so a bad value raises the message `jacobid kernel` prints.
+// so a bad value raises the message `jacobid kernel` prints. Every argument is taken as a plain Python object and
+// checked by the module's one layer (checked_array for arrays, parse_keywords for everything else, the scalar
+// arguments given by position included), so pybind11 never converts (or refuses) a user's value itself.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <pybind11/complex.h>
@@ -12,6 +14,7 @@
 #include "bindings.hpp"
 #include "cli/kernel_description.hpp"
 #include "cli/kernel_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli_arguments.hpp"
 #include "core/errors.hpp"
 #include "json_to_python.hpp"
@@ -26,29 +29,44 @@ namespace py = pybind11;
 namespace jacobid::python {
 namespace {
 
-// The kernel of `jacobid kernel` options given as keywords (order, kappa, mu, q, window, ts, xi, discretization).
-KernelParams kernel_params(const py::kwargs& keywords) {
+// The keywords with the scalar arguments `function` was given by position added, to be parsed with them.
+py::dict with_arguments(const py::kwargs& keywords, std::initializer_list<std::pair<const char*, py::object>> arguments) {
+    py::dict all(keywords);
+    for (const auto& [name, value] : arguments) all[name] = value;
+    return all;
+}
+
+// The kernel of `jacobid kernel` options given as keywords (order, kappa, mu, q, window, ts, xi, discretization)
+// to `function`, whose own `arguments` are named among its keywords.
+KernelParams kernel_params(const py::dict& keywords, const std::string& function, const std::vector<std::string>& arguments = {}) {
     cli::KernelOptions options;
-    CLI::App app("kernel");
+    CLI::App app("", function);
     cli::add_kernel_options(&app, options, true, true);
     app.get_option("--window")->required();
-    parse_keywords(app, keywords);
+    parse_keywords(app, keywords, arguments);
     return cli::to_kernel_params(options);
 }
 
-py::dict kernel(const py::kwargs& keywords) {
-    const KernelParams p = kernel_params(keywords);
+py::dict kernel(const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("kernel", extra, {});
+    const KernelParams p = kernel_params(keywords, "kernel");
     std::vector<double> weights = cli::design_kernel_or_throw(p);
     py::dict d = to_python(cli::describe_kernel(p, weights));
     d["weights"] = owning_array(std::move(weights));
     return d;
 }
 
-py::dict frequency_response(const DoubleArray& weights, double ts, const DoubleArray& frequencies) {
-    const Span<const double> w = samples_of(weights, "weights");
-    const Span<const double> f = samples_of(frequencies, "frequencies");
-    if (w.size() == 0) throw InputError("weights: empty kernel");
-    if (!(ts > 0.0)) throw InputError(fmt::format("ts {}: the sample period must be > 0", ts));
+py::dict frequency_response(const py::object& weights_value, const py::object& ts_value, const py::object& frequencies_value, const py::args& extra,
+                            const py::kwargs& keywords) {
+    refuse_extra_positional("frequency_response", extra, {"weights", "ts", "frequencies"});
+    double ts = 0.0;
+    CLI::App app("", "frequency_response");
+    app.add_option("--ts", ts)->check(cli::positive_number())->required();
+    parse_keywords(app, with_arguments(keywords, {{"ts", ts_value}}), {"weights", "frequencies"});
+    const DoubleArray weights = checked_array(weights_value, "weights", Layout::Samples);
+    const DoubleArray frequencies = checked_array(frequencies_value, "frequencies", Layout::Samples);
+    const Span<const double> w = samples_of(weights);
+    const Span<const double> f = samples_of(frequencies);
     py::array_t<std::complex<double>> response(f.size());
     std::vector<double> magnitude(f.size()), phase(f.size()), group_delay(f.size());
     auto* h = response.mutable_data();
@@ -76,10 +94,12 @@ struct PyEstimate {
 
 PyEstimate as_python(signal::Estimate&& e) { return {owning_array(std::move(e.values)), e.first_index}; }
 
-PyEstimate differentiate(const DoubleArray& x, const py::kwargs& keywords) {
-    const KernelParams p = kernel_params(keywords);
+PyEstimate differentiate(const py::object& x_value, const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("differentiate", extra, {"x"});
+    const KernelParams p = kernel_params(keywords, "differentiate", {"x"});
+    const DoubleArray x = checked_array(x_value, "x", Layout::Samples);
     const std::vector<double> weights = cli::design_kernel_or_throw(p);
-    const Span<const double> samples = samples_of(x, "x");
+    const Span<const double> samples = samples_of(x);
     signal::Estimate e;
     {
         // The samples are read in place; other Python threads may run meanwhile.
@@ -89,11 +109,23 @@ PyEstimate differentiate(const DoubleArray& x, const py::kwargs& keywords) {
     return as_python(std::move(e));
 }
 
-PyEstimate butterworth_euler(const DoubleArray& x, double ts, const std::string& spec, int order, py::object crop) {
-    if (order < 0 || order > 2) throw InputError(fmt::format("order {}: the Butterworth + Euler baseline provides orders 0, 1 and 2", order));
+PyEstimate butterworth_euler(const py::object& x_value, const py::object& ts_value, const py::object& spec_value, const py::object& order_value,
+                             const py::object& crop_value, const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("butterworth_euler", extra, {"x", "ts", "butterworth", "order", "crop"});
+    double ts = 0.0;
+    std::string spec;
+    int order = 1;
+    std::size_t crop = 0;
+    CLI::App app("", "butterworth_euler");
+    app.add_option("--ts", ts)->check(cli::positive_number())->required();
+    app.add_option("--butterworth", spec)->required();
+    app.add_option("--order", order)->check(cli::whole_number_in(0, 2));
+    app.add_option("--crop", crop)->check(cli::whole_number_from(0));
+    parse_keywords(app, with_arguments(keywords, {{"ts", ts_value}, {"butterworth", spec_value}, {"order", order_value}, {"crop", crop_value}}), {"x"});
     const signal::ButterworthEuler bw = signal::parse_butterworth_spec(spec, "butterworth", ts);
-    const Span<const double> samples = samples_of(x, "x");
-    const std::size_t edge = crop.is_none() ? signal::butterworth_edge_samples(bw.cutoff_hz, ts) : crop.cast<std::size_t>();
+    const DoubleArray x = checked_array(x_value, "x", Layout::Samples);
+    const Span<const double> samples = samples_of(x);
+    const std::size_t edge = app.count("--crop") == 0 ? signal::butterworth_edge_samples(bw.cutoff_hz, ts) : crop;
     const std::vector<double> copy(samples.begin(), samples.end());  // the baseline's API takes a vector
     return as_python(signal::butterworth_euler_estimate(bw.sos, order, ts, copy, edge, "x"));
 }
@@ -182,19 +214,29 @@ std::unique_ptr<Bank> bank_of(int joints) {
 
 // Bank(joints, ts=..., window=..., kappa=..., ...): one kernel per channel (order 0, 1, 2) with the same
 // options; windows=(T0, T1, T2) gives each channel its own window.
-std::unique_ptr<Bank> make_bank(int joints, py::kwargs keywords) {
-    if (joints < 1) throw InputError(fmt::format("joints {}: expected 1 to {} joints", joints, kMaxJoints));
+std::unique_ptr<Bank> make_bank(const py::object& joints_value, const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("Bank", extra, {"joints"});
+    cli::KernelOptions options;
+    int joints = 0;
+    std::vector<double> windows;
+    CLI::App app("", "Bank");
+    cli::add_kernel_options(&app, options, true, true);
+    app.add_option("--joints", joints)->check(cli::whole_number_in(1, kMaxJoints))->required();
+    app.add_option("--windows", windows)->delimiter(',')->check(cli::positive_number());
+    parse_keywords(app, with_arguments(keywords, {{"joints", joints_value}}));
+    if (app.count("--order") != 0) throw InputError("order: a bank has one kernel per order (0, 1, 2); give window or windows");
+    if (app.count("--window") != 0 && app.count("--windows") != 0) throw InputError("--window and --windows: give one of them");
+    if (app.count("--windows") != 0 && windows.size() != static_cast<std::size_t>(kChannelCount)) {
+        throw InputError(fmt::format("--windows: expected {} windows (orders 0, 1, 2), got {}", kChannelCount, windows.size()));
+    }
+    if (app.count("--window") == 0 && app.count("--windows") == 0) throw InputError("--window is required (or --windows, one per order 0, 1, 2)");
     std::unique_ptr<Bank> bank = bank_of<1>(joints);
-    py::object windows = keywords.contains("windows") ? py::object(keywords["windows"]) : py::object(py::none());
-    if (keywords.contains("windows")) PyDict_DelItemString(keywords.ptr(), "windows");
-    if (keywords.contains("order")) throw InputError("order: a bank has one kernel per order (0, 1, 2); give window or windows");
     KernelParams channels[kChannelCount];
     for (int c = 0; c < kChannelCount; ++c) {
-        py::kwargs channel;
-        for (const auto& [key, value] : keywords) channel[key] = value;
-        channel["order"] = c;
-        if (!windows.is_none()) channel["window"] = windows[py::int_(c)];
-        channels[c] = kernel_params(channel);
+        cli::KernelOptions channel = options;
+        channel.order = c;
+        if (!windows.empty()) channel.window = windows[static_cast<std::size_t>(c)];
+        channels[c] = cli::to_kernel_params(channel);
     }
     const BankConfigResult r = bank->configure(channels);
     if (r.status != BankStatus::Ok) {
@@ -205,13 +247,25 @@ std::unique_ptr<Bank> make_bank(int joints, py::kwargs keywords) {
     return bank;
 }
 
-py::dict step(Bank& bank, const DoubleArray& q, const DoubleArray& tau) {
-    const Matrix qm = matrix_of(q, "q"), tm = matrix_of(tau, "tau");
+// Samples x joints of positions or torques for `bank`: checked, and a one-dimensional array only for one joint
+// (for several it is one sample or one joint's samples: the caller must say which).
+Matrix bank_input(const Bank& bank, const DoubleArray& array, const std::string& what) {
     const auto joints = static_cast<std::size_t>(bank.joints());
-    if (qm.columns != joints) throw InputError(fmt::format("q: {} columns, the bank has {} joints", qm.columns, joints));
-    if (tm.columns != joints || tm.rows != qm.rows) {
-        throw InputError(fmt::format("tau: {} x {} samples, q has {} x {}", tm.rows, tm.columns, qm.rows, qm.columns));
+    if (array.ndim() == 1 && joints > 1) {
+        throw InputError(fmt::format("{0}: a one-dimensional array of {1} values; expected samples x joints (1 x {2} for one sample: {0}.reshape(1, -1))",
+                                     what, array.shape(0), joints));
     }
+    const Matrix m = matrix_of(array);
+    if (m.columns != joints) throw InputError(fmt::format("{}: {} columns, the bank has {} joints", what, m.columns, joints));
+    return m;
+}
+
+py::dict step(Bank& bank, const py::object& q_value, const py::object& tau_value, const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("step", extra, {"q", "tau"});
+    refuse_unknown_keywords("step", keywords, {"q", "tau"});
+    const DoubleArray q = checked_array(q_value, "q", Layout::SamplesByJoints), tau = checked_array(tau_value, "tau", Layout::SamplesByJoints);
+    const Matrix qm = bank_input(bank, q, "q"), tm = bank_input(bank, tau, "tau");
+    if (tm.rows != qm.rows) throw InputError(fmt::format("tau: {} samples, q has {}", tm.rows, qm.rows));
     return bank.step(qm, tm);
 }
 
@@ -223,7 +277,10 @@ void bind_core(py::module_& m) {
           "The FIR weights of one Jacobi differentiator, as `jacobid kernel --format json` describes them: keys parameters, "
           "taps, effective_window, delay_samples, delay_seconds, cutoff_hz, weights_order, weights (a numpy array, oldest "
           "sample first). The keywords are the command's options (xi: a number in [-1, 1], 'central', 'causal' or 'delayed').");
-    m.def("frequency_response", &frequency_response, py::arg("weights"), py::arg("ts"), py::arg("frequencies"),
+    // Every argument defaults to None, so that a missing one reaches the checks ("x: expected an array of numbers,
+    // got None", "--ts is required") instead of pybind11's "incompatible function arguments".
+    const py::object none = py::none();
+    m.def("frequency_response", &frequency_response, py::arg("weights") = none, py::arg("ts") = none, py::arg("frequencies") = none,
           "frequency_response(weights, ts, frequencies) -> dict\n\n"
           "H(f) of FIR weights (oldest sample first) sampled every ts seconds, at each frequency in Hz: keys frequency, "
           "response (complex), magnitude, phase (rad), group_delay (s), numpy arrays.");
@@ -231,13 +288,13 @@ void bind_core(py::module_& m) {
         .def_readonly("values", &PyEstimate::values, "the estimates (numpy float64 array)")
         .def_readonly("first_index", &PyEstimate::first_index, "input sample index (fractional for a non-integer delay) of values[0]")
         .def("__repr__", [](const PyEstimate& e) { return fmt::format("Estimate(values=<{} samples>, first_index={})", e.values.size(), e.first_index); });
-    m.def("differentiate", &differentiate, py::arg("x"),
+    m.def("differentiate", &differentiate, py::arg("x") = none,
           "differentiate(x, *, ts, window, order=1, kappa=6, mu=6, q=2, xi='0', discretization='trapezoidal') -> Estimate\n\n"
           "The Jacobi estimate of the order-th derivative of the uniformly sampled x (float64, read in place when "
           "C-contiguous), through the same batch differentiation as `jacobid differentiate` (FFT for long kernels). "
           "Only the samples with a full window are returned: values[i] refers to input sample first_index + i.");
-    m.def("butterworth_euler", &butterworth_euler, py::arg("x"), py::arg("ts"), py::arg("butterworth"), py::arg("order") = 1,
-          py::arg("crop") = py::none(),
+    m.def("butterworth_euler", &butterworth_euler, py::arg("x") = none, py::arg("ts") = none, py::arg("butterworth") = none, py::arg("order") = 1,
+          py::arg("crop") = none,
           "butterworth_euler(x, ts, butterworth, order=1, crop=None) -> Estimate\n\n"
           "The baseline of `jacobid differentiate --method butterworth`: forward-backward Butterworth ('ORDER:CUTOFF_HZ', "
           "e.g. '4:5'), then the central Euler difference of order 0, 1 or 2; crop samples (default 3 / cutoff) dropped "
@@ -245,16 +302,22 @@ void bind_core(py::module_& m) {
     py::class_<Bank>(m, "Bank",
                      "The streaming differentiator bank of the firmware (lib/differentiator_bank.hpp): per joint the position, "
                      "velocity and acceleration estimates and the raw torque, all aligned to one common delay.")
-        .def(py::init(&make_bank), py::arg("joints"),
+        .def(py::init(&make_bank), py::arg("joints") = none,
              "Bank(joints, *, ts, window=None, windows=None, kappa=6, mu=6, q=2, xi='0', discretization='trapezoidal')\n\n"
              "Designs one kernel per channel (orders 0, 1, 2) from `jacobid kernel`'s options; windows=(T0, T1, T2) gives "
              "each channel its own window. 1 to 8 joints, up to 4096 taps per kernel.")
-        .def("step", &step, py::arg("q"), py::arg("tau"),
+        .def("step", &step, py::arg("q") = none, py::arg("tau") = none,
              "step(q, tau) -> dict\n\n"
              "Feeds samples x joints arrays of positions and torques, one row per cycle, and returns per row: position, "
              "velocity, acceleration, torque, raw_position (samples x joints), sample_index (the input sample each row "
              "refers to) and valid (False during warm-up). The history carries over to the next call.")
-        .def("reset", &Bank::reset, "Clears the history (e.g. after a gap); the kernels stay.")
+        .def("reset",
+             [](Bank& bank, const py::args& extra, const py::kwargs& keywords) {
+                 refuse_extra_positional("reset", extra, {});
+                 refuse_unknown_keywords("reset", keywords, {});
+                 bank.reset();
+             },
+             "Clears the history (e.g. after a gap); the kernels stay.")
         .def_property_readonly("delay_samples", &Bank::delay_samples, "common delay of every output, in samples")
         .def_property_readonly("warmup_samples", &Bank::warmup_samples, "cycles until the first valid output")
         .def_property_readonly("joints", &Bank::joints);

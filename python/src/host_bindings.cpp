@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // jacobid::host: the library calls of `jacobid simulate`, `identify` and `diagnose` on one continuous log, with
 // their options given as keywords and parsed by the command line's own definitions (cli/*_options), and their
-// results converted from the host library's JSON producers, so the names and values are the CLI's.
+// results converted from the host library's JSON producers, so the names and values are the CLI's. Arguments are
+// plain Python objects checked by the module's one layer (python_values, numpy_views, cli_arguments) before
+// anything is read or computed.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <pybind11/stl.h>
@@ -29,6 +31,8 @@
 #include "io/time_axis.hpp"
 #include "json_to_python.hpp"
 #include "numpy_views.hpp"
+#include "python_values.hpp"
+#include "truth_argument.hpp"
 #include "robot/base_parameter_report.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/simulated_parameters.hpp"
@@ -46,17 +50,26 @@ struct Robot {
     std::shared_ptr<const robot::RobotModel> model;
 };
 
-Robot load_robot(const py::object& path) {
+Robot load_robot(const py::object& path, const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("load_robot", extra, {"path"});
+    refuse_unknown_keywords("load_robot", keywords, {"path"});
     Robot r;
     if (path.is_none()) {
         r.description = robot::default_planar2r_description();
     } else {
-        const std::string file = py::str(path).cast<std::string>();
+        const std::string file = path_text(path, "path");
         cli::check_outputs({}, {{"--robot", file}});
         r.description = robot::load_robot_description(file);
     }
     r.model = robot::make_robot_model(r.description);
     return r;
+}
+
+// The `robot` argument of simulate, identify and diagnose: a Robot, or what load_robot reads (a path; None: the planar 2R).
+Robot robot_of(const py::handle& value) {
+    if (py::isinstance<Robot>(value)) return value.cast<const Robot&>();
+    if (value.is_none() || is_path(value)) return load_robot(py::reinterpret_borrow<py::object>(value), py::args(), py::kwargs());
+    throw InputError(fmt::format("robot: expected a Robot or the path of a robot description, got {}", type_name(value)));
 }
 
 std::vector<std::string> joint_field(const Robot& r, std::string robot::JointDescription::*field) {
@@ -67,11 +80,13 @@ std::vector<std::string> joint_field(const Robot& r, std::string robot::JointDes
 
 // --- simulate ---------------------------------------------------------------------------------------------
 
-py::dict simulate(const Robot& r, const py::kwargs& keywords) {
+py::dict simulate(const py::object& robot_value, const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("simulate", extra, {"robot"});
     cli::SimulationOptions o;
-    CLI::App app("simulate");
+    CLI::App app("", "simulate");
     cli::add_simulation_options(&app, o);
-    parse_keywords(app, keywords);
+    parse_keywords(app, keywords, {"robot"});
+    const Robot r = robot_of(robot_value);
     const robot::RobotModel& model = *r.model;
     const int n = model.joint_count();
     const Eigen::VectorXd x = robot::simulated_parameters(r.description, model);
@@ -135,12 +150,13 @@ void add_log_keywords(CLI::App& app, LogKeywords& o) {
     app.add_flag("--quiet", o.quiet, "no progress messages on stderr");
 }
 
-// The table of a log given as (t, q, tau): q and tau samples x joints, in the robot's column names.
-io::CsvTable table_of_arrays(const Robot& r, const py::tuple& arrays, const std::string& time_column, const std::string& what) {
-    if (arrays.size() != 3) throw InputError(fmt::format("{}: expected a path or a tuple (t, q, tau), got {} items", what, arrays.size()));
-    const DoubleArray t_array = arrays[0].cast<DoubleArray>(), q_array = arrays[1].cast<DoubleArray>(), tau_array = arrays[2].cast<DoubleArray>();
-    const Span<const double> t = samples_of(t_array, what + " t");
-    const Matrix q = matrix_of(q_array, what + " q"), tau = matrix_of(tau_array, what + " tau");
+// The table of a log given as t, q, tau: q and tau samples x joints, in the robot's column names.
+io::CsvTable table_of_arrays(const Robot& r, const py::handle& t_value, const py::handle& q_value, const py::handle& tau_value,
+                             const std::string& time_column, const std::string& what) {
+    const DoubleArray t_array = checked_array(t_value, what + " t", Layout::Samples), q_array = checked_array(q_value, what + " q", Layout::SamplesByJoints),
+                      tau_array = checked_array(tau_value, what + " tau", Layout::SamplesByJoints);
+    const Span<const double> t = samples_of(t_array);
+    const Matrix q = matrix_of(q_array), tau = matrix_of(tau_array);
     const std::size_t joints = r.description.joints.size();
     for (const auto& [name, m] : {std::pair<const char*, const Matrix&>{"q", q}, {"tau", tau}}) {
         if (m.rows != t.size() || m.columns != joints) {
@@ -151,39 +167,50 @@ io::CsvTable table_of_arrays(const Robot& r, const py::tuple& arrays, const std:
     std::vector<std::string> header{time_column};
     for (const auto& j : r.description.joints) header.push_back(j.position_column);
     for (const auto& j : r.description.joints) header.push_back(j.torque_column);
-    io::CsvTable table(what, header);
-    auto fill = [&](std::size_t column, const std::string& name, auto value_at) {
+    // Named "--in arrays" with rows numbered from 0: where a shared check names a line ("--in arrays:5: column
+    // 'q2': ..."), the number is the sample's index in t, q and tau.
+    io::CsvTable table(what + " arrays", header);
+    table.set_first_line(0);
+    // `index` names sample i in messages ("[i]", "[i, j]").
+    auto fill = [&](std::size_t column, const std::string& name, auto value_at, auto index) {
         std::vector<double>& c = table.mutable_column(column);
         c.resize(t.size());
         for (std::size_t i = 0; i < t.size(); ++i) {
             c[i] = value_at(i);
-            // What the CSV reader refuses, refused here too (never identified from).
-            if (!std::isfinite(c[i]) || io::beyond_log_range(c[i])) {
-                throw InputError(fmt::format("{} {}: sample {} is {}; expected a finite number", what, name, i, c[i]));
-            }
+            // What the CSV reader refuses, refused here too (never identified from); non-finite values are refused by checked_array.
+            if (io::beyond_log_range(c[i])) throw InputError(fmt::format("{} {}{}: {} {}", what, name, index(i), c[i], io::kBeyondLogRange));
         }
     };
-    fill(0, "t", [&](std::size_t i) { return t[i]; });
+    fill(0, "t", [&](std::size_t i) { return t[i]; }, [](std::size_t i) { return fmt::format("[{}]", i); });
     for (std::size_t j = 0; j < joints; ++j) {
-        fill(1 + j, fmt::format("q[:, {}]", j), [&](std::size_t i) { return q.at(i, j); });
-        fill(1 + joints + j, fmt::format("tau[:, {}]", j), [&](std::size_t i) { return tau.at(i, j); });
+        const auto at_joint = [j](std::size_t i) { return fmt::format("[{}, {}]", i, j); };
+        fill(1 + j, "q", [&](std::size_t i) { return q.at(i, j); }, at_joint);
+        fill(1 + joints + j, "tau", [&](std::size_t i) { return tau.at(i, j); }, at_joint);
     }
     return table;
 }
 
-bool is_path(const py::handle& source) { return py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__"); }
+std::string source_name(const py::handle& source, const std::string& option) { return is_path(source) ? path_text(source, option) : option; }
 
-std::string source_name(const py::handle& source, const std::string& option) {
-    return is_path(source) ? py::str(source).cast<std::string>() : option;
-}
-
-// `option` names the source in messages ("--in", "--validate"), as the command line does.
+// A log: a path (read as --in reads it), a tuple or list (t, q, tau), or simulate()'s result (a dict with t, q,
+// tau). `option` names the source in messages ("--in", "--validate"), as the command line does.
 io::CsvTable read_log(const Robot& r, const py::handle& source, const LogKeywords& o, const std::string& option, double period = 0.0) {
-    if (!is_path(source)) {
-        if (!py::isinstance<py::tuple>(source)) throw InputError(fmt::format("{}: expected a path or a tuple (t, q, tau)", option));
-        return table_of_arrays(r, source.cast<py::tuple>(), o.time_column, option);
+    if (py::isinstance<py::dict>(source)) {
+        const py::dict run = py::reinterpret_borrow<py::dict>(source);
+        for (const char* key : {"t", "q", "tau"}) {
+            if (!run.contains(key)) throw InputError(fmt::format("{}: a dict without '{}'; expected simulate()'s result (keys t, q, tau)", option, key));
+        }
+        return table_of_arrays(r, run["t"], run["q"], run["tau"], o.time_column, option);
     }
-    const std::string path = py::str(source).cast<std::string>();
+    if (py::isinstance<py::tuple>(source) || py::isinstance<py::list>(source)) {
+        const py::sequence arrays = py::reinterpret_borrow<py::sequence>(source);
+        if (arrays.size() != 3) throw InputError(fmt::format("{}: expected a path or a tuple (t, q, tau), got {} items", option, arrays.size()));
+        return table_of_arrays(r, arrays[0], arrays[1], arrays[2], o.time_column, option);
+    }
+    if (!is_path(source)) {
+        throw InputError(fmt::format("{}: expected a path, a tuple (t, q, tau) or simulate()'s result, got {}", option, type_name(source)));
+    }
+    const std::string path = path_text(source, option);
     cli::check_outputs({}, {{option, path}, {"--log-format", o.log_format.file}});
     return cli::read_log_table(path, o.log_format, cli::robot_column_names(r.description, o.time_column), o.quiet, period);
 }
@@ -196,18 +223,23 @@ struct IdentifyKeywords : cli::FitOptions {
     std::string velocity;  // measured | jacobi | butterworth; empty: the method's own
 };
 
-py::dict identify(const Robot& r, const py::object& source, const py::object& validation, const py::object& truth, const py::kwargs& keywords) {
+py::dict identify(const py::object& robot_value, const py::object& source, const py::object& validation, const py::object& truth,
+                  const py::args& extra, const py::kwargs& keywords) {
+    refuse_extra_positional("identify", extra, {"robot", "log", "validate", "truth"});
     IdentifyKeywords o;
-    CLI::App app("identify");
+    CLI::App app("", "identify");
     cli::add_fit_options(&app, o);
     add_log_keywords(app, o.log);
     app.add_option("--method", o.method)->check(CLI::IsMember({"jacobi", "butterworth", "both"}));
     app.add_option("--velocity", o.velocity)->check(CLI::IsMember({"measured", "jacobi", "butterworth"}));
-    parse_keywords(app, keywords);
+    parse_keywords(app, keywords, {"robot", "log", "validate", "truth"});
+    const Robot r = robot_of(robot_value);
     o.pipeline.exact_discretization = o.discretization == "exact";
     // One continuous log (--on-gap split, --period, --physical, --essential: the command line).
     cli::refuse_split(o.log.log_format, "the Python module's identify");
     const robot::RobotModel& model = *r.model;
+    // Before the log is read: a wrong truth is refused at once.
+    const std::map<std::string, double> truth_by_name = truth.is_none() ? std::map<std::string, double>{} : truth_values(truth, model.parameter_names());
     const auto parse_start = std::chrono::steady_clock::now();
     const io::CsvTable table = read_log(r, source, o.log, "--in");
     const identify::LogColumns log = identify::log_columns(table, r.description, o.log.time_column, o.log.time_tolerance);
@@ -222,7 +254,7 @@ py::dict identify(const Robot& r, const py::object& source, const py::object& va
     ctx.log_source = source_name(source, "--in");
     ctx.model_name = model.model_name();
     ctx.joint_names = joint_field(r, &robot::JointDescription::name);
-    if (!truth.is_none()) ctx.truth = truth.cast<std::map<std::string, double>>();
+    if (!truth.is_none()) ctx.truth = truth_by_name;
 
     std::vector<identify::MethodResult> results;
     {
@@ -248,14 +280,17 @@ py::dict identify(const Robot& r, const py::object& source, const py::object& va
 
 // --- diagnose -----------------------------------------------------------------------------------------------
 
-py::dict diagnose(const Robot& r, const py::object& source, const py::object& validation, const py::kwargs& keywords) {
+py::dict diagnose(const py::object& robot_value, const py::object& source, const py::object& validation, const py::args& extra,
+                  const py::kwargs& keywords) {
+    refuse_extra_positional("diagnose", extra, {"robot", "log", "validate"});
     diagnose::DiagnoseSettings settings;
     bool no_delay = false;
     LogKeywords o;
-    CLI::App app("diagnose");
+    CLI::App app("", "diagnose");
     cli::add_diagnose_search_options(&app, settings, no_delay);
     add_log_keywords(app, o);
-    parse_keywords(app, keywords);
+    parse_keywords(app, keywords, {"robot", "log", "validate"});
+    const Robot r = robot_of(robot_value);
     cli::refuse_split(o.log_format, "diagnose");
     const robot::RobotModel& model = *r.model;
     const io::CsvTable table = read_log(r, source, o, "--in");
@@ -289,27 +324,37 @@ py::dict diagnose(const Robot& r, const py::object& source, const py::object& va
 void bind_host(py::module_& m) {
     py::class_<Robot>(m, "Robot", "A robot description (YAML: planar2r, an MDH table or a URDF file; docs/robots.md) and its model.")
         .def_property_readonly("model", [](const Robot& r) { return r.model->model_name(); }, "the model's name (planar2r, mdh, urdf)")
-        .def_property_readonly("source", [](const Robot& r) { return r.description.source; }, "the description's file")
+        .def(py::init([](const py::object& path) { return load_robot(path, py::args(), py::kwargs()); }), py::arg("path") = py::none(),
+             "Robot(path=None): load_robot(path)")
+        .def_property_readonly("source", [](const Robot& r) { return text_of(r.description.source); }, "the description's file")
         .def_property_readonly("joint_names", [](const Robot& r) { return joint_field(r, &robot::JointDescription::name); })
         .def_property_readonly("position_columns", [](const Robot& r) { return joint_field(r, &robot::JointDescription::position_column); },
                                "the log's position column of each joint")
         .def_property_readonly("torque_columns", [](const Robot& r) { return joint_field(r, &robot::JointDescription::torque_column); },
                                "the log's torque column of each joint")
         .def_property_readonly("parameter_names", [](const Robot& r) { return r.model->parameter_names(); }, "the base parameters, in order")
-        .def("base_parameters", [](const Robot& r) { return to_python(robot::base_parameter_json(r.description, *r.model)); },
+        .def("base_parameters",
+             [](const Robot& r, const py::args& extra, const py::kwargs& keywords) {
+                 refuse_extra_positional("base_parameters", extra, {});
+                 refuse_unknown_keywords("base_parameters", keywords, {});
+                 return to_python(robot::base_parameter_json(r.description, *r.model));
+             },
              "The base parameters with their regrouping relations and true values, as `jacobid identify --print-base --format json`.")
-        .def("__repr__", [](const Robot& r) { return fmt::format("Robot(model={}, joints={}, source={})", r.model->model_name(), r.model->joint_count(), r.description.source); });
-    m.def("load_robot", &load_robot, py::arg("path") = py::none(),
+        .def("__repr__", [](const Robot& r) { return text_of(fmt::format("Robot(model={}, joints={}, source={})", r.model->model_name(), r.model->joint_count(), r.description.source)); });
+    // Every argument defaults to None, so that a missing one reaches the checks instead of pybind11's
+    // "incompatible function arguments" (None: the planar 2R for a robot, "expected a path ..." for a log).
+    const py::object none = py::none();
+    m.def("load_robot", &load_robot, py::arg("path") = none,
           "load_robot(path=None) -> Robot\n\nReads a robot description as `--robot` does; None: the paper's planar 2R (Table II).");
-    m.def("simulate", &simulate, py::arg("robot"),
+    m.def("simulate", &simulate, py::arg("robot") = none,
           "simulate(robot, *, duration=..., rate=..., seed=..., torque_noise=..., ...) -> dict\n\n"
           "A closed-loop simulated log as `jacobid simulate` writes it (the keywords are its simulation options: duration, "
           "rate, control_rate, substeps, omega_dyn, damping, seed, move_duration, dwell, encoder_counts, position_noise, "
           "torque_noise, ripple, ripple_periods, noise_seed; a sequence for per-joint values). Returns t (s), q, tau, q_ref, "
           "qd_ref (samples x joints numpy arrays) and the truth as simulate's --truth JSON names it: model, parameters, "
           "parameter_order, samples.");
-    m.def("_identify", &identify, py::arg("robot"), py::arg("log"), py::arg("validate") = py::none(), py::arg("truth") = py::none());
-    m.def("_diagnose", &diagnose, py::arg("robot"), py::arg("log"), py::arg("validate") = py::none());
+    m.def("_identify", &identify, py::arg("robot") = none, py::arg("log") = none, py::arg("validate") = none, py::arg("truth") = none);
+    m.def("_diagnose", &diagnose, py::arg("robot") = none, py::arg("log") = none, py::arg("validate") = none);
 }
 
 }  // namespace jacobid::python

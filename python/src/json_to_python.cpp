@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "json_to_python.hpp"
 
+#include "python_values.hpp"
+
 namespace py = pybind11;
 
 namespace jacobid::python {
@@ -12,7 +14,7 @@ py::object to_python(const nlohmann::json& value) {
         case nlohmann::json::value_t::number_integer: return py::int_(value.get<std::int64_t>());
         case nlohmann::json::value_t::number_unsigned: return py::int_(value.get<std::uint64_t>());
         case nlohmann::json::value_t::number_float: return py::float_(value.get<double>());
-        case nlohmann::json::value_t::string: return py::str(value.get_ref<const std::string&>());
+        case nlohmann::json::value_t::string: return text_of(value.get_ref<const std::string&>());  // a path may be any bytes
         case nlohmann::json::value_t::array: {
             py::list list;
             for (const auto& item : value) list.append(to_python(item));
