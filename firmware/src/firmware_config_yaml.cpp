@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "jacobid/differentiator_bank.hpp"
+#include "jacobid/firmware/trajectory_player.hpp"
 #include "jacobid/firmware/trajectory_table.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
@@ -126,7 +127,7 @@ std::string relative_to(const std::string& source, const std::string& path) {
     return slash == std::string::npos ? path : source.substr(0, slash + 1) + path;
 }
 
-// trajectory: {file, mode, ramp_time, repeat, max_stale_cycles, joints: [{position, velocity, torque,
+// trajectory: {file, mode, ramp_time, repeat, max_stale_cycles, joints: [{position, velocity, acceleration, torque,
 // following_error, kp, kd}, ...]} (docs/firmware.md, "Trajectory playback"). Every limit is required: a
 // robot is never moved within limits the file did not state.
 void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
@@ -141,13 +142,14 @@ void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
     const YAML::Node joints = s.list("joints", c.joints.size(), c.joints.size(), "limits (one per joint of `joints:`)");
     for (std::size_t j = 0; j < joints.size(); ++j) {
         Section limits(c.source, joints[j], fmt::format("trajectory.joints[{}]", j));
-        for (const char* key : {"position", "velocity", "torque", "following_error"}) {
+        for (const char* key : {"position", "velocity", "acceleration", "torque", "following_error"}) {
             if (!limits.has(key)) limits.fail(joints[j], key, "missing (required): this joint's limit");
         }
         const auto [lo, hi] = limits.range("position", {0.0, 0.0}, "rad");
         p.position_min[j] = lo;
         p.position_max[j] = hi;
         p.velocity_limit[j] = limits.positive("velocity", 0.0, "rad/s");
+        p.acceleration_limit[j] = limits.positive("acceleration", 0.0, "rad/s^2");
         p.torque_limit[j] = limits.positive("torque", 0.0, "N.m");
         p.following_error[j] = limits.positive("following_error", 0.0, "rad");
         p.kp[j] = limits.number("kp", 0.0, "N.m/rad");
@@ -158,6 +160,9 @@ void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
     }
     s.reject_unknown();
     p.rows = load_trajectory_table(p.file, c.joints.size(), c.rate, p.mode == hal::CommandMode::Torque);
+    // The same check the player makes before its first command, here so that jacobid-fw refuses an unsafe
+    // table before it opens a device or an output file; the message names the table's file:line itself.
+    if (std::string why = check_playback(p, c.joints.size(), c.sample_period()); !why.empty()) throw ConfigError(why);
     c.playback = true;
 }
 

@@ -79,6 +79,7 @@ std::vector<TrajectoryRow> load_trajectory_table(const std::string& path, std::s
                                           path, number, t_column + 1, t, expected, rate));
         }
         TrajectoryRow r;
+        r.line = number;
         for (std::size_t j = 0; j < joints; ++j) {
             r.q[j] = value(q[j]);
             r.qd[j] = value(qd[j]);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -50,6 +51,32 @@ TEST(FirmwareExecutable, InvalidDurationAndParseErrorsExitTwoOnOneLine) {
     EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
     EXPECT_EQ(unknown.err.rfind("jacobid-fw: error: ", 0), 0u) << unknown.err;
     EXPECT_NE(unknown.err.find("--bogus"), std::string::npos) << unknown.err;
+}
+
+// Issue 36: a table with a 2 rad jump between two rows (each row within the limits) is refused before
+// jacobid-fw opens the bus or any output: exit 2, one line naming the table's line, the joint, the step
+// and the limit, and neither stream.log nor trajectory.log created.
+TEST(FirmwareExecutable, UnsafeTrajectoryIsRefusedOnOneLineBeforeAnythingIsOpened) {
+    {
+        std::ofstream table(path("jump.csv"));
+        table << "t,q1,q2,qd1,qd2\n";
+        for (int k = 0; k < 2000; ++k) table << k * 1e-3 << ',' << (k < 1000 ? 0.0 : 2.0) << ",0,0,0\n";
+    }
+    std::remove(path("jump_stream.bin").c_str());
+    std::remove(path("jump_commands.csv").c_str());
+    std::string yaml = test::chain_config_yaml(
+        "trajectory:\n  file: jump.csv\n  log: jump_commands.csv\n  joints:\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01}\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n");
+    yaml.replace(yaml.find("port: 5005}"), 11, "port: 5005, log: jump_stream.bin}");
+    std::ofstream(path("jump.yaml")) << yaml;
+    const auto r = run_command("timeout 10 " + fw("--config " + path("jump.yaml") + " --no-realtime --duration 1"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "jacobid-fw: error: " + path("jump.csv") +
+                         ":1002: joint 1: the position steps 2 rad from line 1001, 2000 rad/s at 1000 Hz, beyond the velocity limit 3 rad/s "
+                         "(trajectory.joints[0].velocity, +1 %)\n");
+    EXPECT_FALSE(std::ifstream(path("jump_stream.bin")).good()) << "stream.log opened";
+    EXPECT_FALSE(std::ifstream(path("jump_commands.csv")).good()) << "trajectory.log opened";
 }
 
 TEST(FirmwareExecutable, MissingCanInterfaceIsAClearDeviceError) {
