@@ -20,6 +20,7 @@
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 #include "jacobid/yaml/input_file.hpp"
+#include "output_files.hpp"
 
 namespace jacobid::firmware {
 namespace {
@@ -204,7 +205,7 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     c.stream.host = st.required_text("host");
     if (!st.has("port")) st.fail(top.get("stream"), "port", "missing (required)");
     c.stream.port = static_cast<std::uint16_t>(st.integer("port", 0, 1, 65535));
-    c.stream.log = st.text("log", "");
+    c.stream.log = relative_to(source, st.text("log", ""));
     st.reject_unknown();
 
     top.mark_used("gpio");
@@ -241,6 +242,11 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
         read_trajectory(t, top.get("trajectory"), c);
     }
     top.reject_unknown();
+    // Before anything is opened for writing: no output over an input or over another output.
+    const YAML::Node stream = top.get("stream"), trajectory = top.get("trajectory");
+    require_outputs_apart(source,
+                          {{"this configuration file", source, YAML::Node()}, {"trajectory.file", c.trajectory.file, c.playback ? trajectory["file"] : YAML::Node()}},
+                          {{"stream.log", c.stream.log, stream["log"]}, {"trajectory.log", c.trajectory.log, c.playback ? trajectory["log"] : YAML::Node()}});
     return c;
 }
 

@@ -2,9 +2,13 @@
 // fw.yaml errors: one line naming the file, line, column and the key, for each kind of mistake.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "firmware_test_support.hpp"
+#include "scratch_directory.hpp"
 
 namespace {
 
@@ -105,6 +109,54 @@ TEST(FirmwareConfig, SyncIdIsOptionalHexOrDecimalAndAStandardId) {
 TEST(FirmwareConfig, RepeatedKeyIsAnError) {
     EXPECT_EQ(error_of("can: {interface: vcan0, interface: can0}\n" + kJoints + kStream), "fw.yaml:1:25: can.interface: appears twice");
     EXPECT_EQ(error_of(kCan + "rate: 1000\nrate: 500\n" + kJoints + kStream), "fw.yaml:3:1: rate: appears twice");
+}
+
+// Issue 36: stream.log or trajectory.log onto fw.yaml itself or onto the trajectory table (also through a
+// symlink or a hard link: compared as files), or both logs onto one file, is refused when fw.yaml is read,
+// before jacobid-fw opens anything for writing. Output paths are relative to fw.yaml's folder, as the table's.
+TEST(FirmwareConfig, AnOutputThatIsAnInputOrAnotherOutputIsRefusedAsAFile) {
+    namespace fs = std::filesystem;
+    const fs::path dir = test::scratch_directory() / "outputs";
+    fs::create_directories(dir);
+    std::ofstream(dir / "table.csv") << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,0,0,0\n0.002,0,0,0,0\n";
+    std::error_code ignored;
+    fs::remove(dir / "fw-link.yaml", ignored);
+    fs::remove(dir / "table-hard.csv", ignored);
+    fs::create_symlink("fw.yaml", dir / "fw-link.yaml");
+    fs::create_hard_link(dir / "table.csv", dir / "table-hard.csv");
+    const std::string limits = "  joints:\n    - {position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1}\n"
+                               "    - {position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1}\n";
+    auto error_with = [&](const std::string& stream_log, const std::string& trajectory_log) {
+        const std::string config = (dir / "fw.yaml").string();
+        std::string stream = kStream;
+        if (!stream_log.empty()) stream = "stream: {host: 127.0.0.1, port: 5005, log: " + stream_log + "}\n";
+        std::ofstream(config) << kCan + kJoints + stream + "trajectory:\n  file: table.csv\n" +
+                                     (trajectory_log.empty() ? "" : "  log: " + trajectory_log + "\n") + limits;
+        try {
+            firmware::load_firmware_config(config);
+        } catch (const firmware::ConfigError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    const std::string config = (dir / "fw.yaml").string(), folder = dir.string() + "/";
+    EXPECT_EQ(error_with("fw.yaml", ""), config + ":5:44: stream.log: '" + folder + "fw.yaml' is the same file as this configuration file ('" + config +
+                                             "'): writing there would overwrite that input; give another file");
+    EXPECT_NE(error_with("fw-link.yaml", "").find("stream.log: '" + folder + "fw-link.yaml' is the same file as this configuration file"), std::string::npos)
+        << error_with("fw-link.yaml", "");
+    EXPECT_NE(error_with("", "table-hard.csv").find(":8:8: trajectory.log: '" + folder + "table-hard.csv' is the same file as trajectory.file ('" +
+                                                    folder + "table.csv')"),
+              std::string::npos)
+        << error_with("", "table-hard.csv");
+    EXPECT_NE(error_with("", "../outputs/fw.yaml").find("trajectory.log: '" + folder + "../outputs/fw.yaml' is the same file as this configuration file"),
+              std::string::npos)
+        << error_with("", "../outputs/fw.yaml");
+    EXPECT_NE(error_with("out.bin", "./out.bin").find("trajectory.log: '" + folder + "./out.bin' is the same file as stream.log ('" + folder +
+                                                       "out.bin'): give each output its own file"),
+              std::string::npos)
+        << error_with("out.bin", "./out.bin");
+    EXPECT_EQ(error_with("stream.bin", "commands.csv"), "(no error)");
+    EXPECT_EQ(firmware::load_firmware_config(config).stream.log, folder + "stream.bin") << "relative to fw.yaml's folder, as every path in it";
 }
 
 TEST(FirmwareConfig, MissingFileIsNamed) {

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 
 #include "firmware_test_support.hpp"
 #include "run_command.hpp"
@@ -77,6 +79,22 @@ TEST(FirmwareExecutable, UnsafeTrajectoryIsRefusedOnOneLineBeforeAnythingIsOpene
                          "(trajectory.joints[0].velocity, +1 %)\n");
     EXPECT_FALSE(std::ifstream(path("jump_stream.bin")).good()) << "stream.log opened";
     EXPECT_FALSE(std::ifstream(path("jump_commands.csv")).good()) << "trajectory.log opened";
+}
+
+// Issue 36: stream.log through a symlink to fw.yaml itself: refused (exit 2, one line) and fw.yaml intact.
+TEST(FirmwareExecutable, AStreamLogOntoItsOwnConfigIsRefusedAndTheConfigIsIntact) {
+    std::string yaml = test::chain_config_yaml();
+    yaml.replace(yaml.find("port: 5005}"), 11, "port: 5005, log: self-link.bin}");
+    std::ofstream(path("self.yaml")) << yaml;
+    std::remove(path("self-link.bin").c_str());
+    ASSERT_EQ(::symlink("self.yaml", path("self-link.bin").c_str()), 0);
+    const auto r = run_command("timeout 10 " + fw("--config " + path("self.yaml") + " --no-realtime --duration 0.2"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("stream.log: '" + path("self-link.bin") + "' is the same file as this configuration file"), std::string::npos) << r.err;
+    std::ifstream in(path("self.yaml"));
+    const std::string after((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(after, yaml) << "fw.yaml overwritten";
 }
 
 TEST(FirmwareExecutable, MissingCanInterfaceIsAClearDeviceError) {
