@@ -20,6 +20,7 @@
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 #include "jacobid/yaml/input_file.hpp"
+#include "can_id_checks.hpp"
 #include "output_files.hpp"
 
 namespace jacobid::firmware {
@@ -56,40 +57,6 @@ JointConfig read_joint(const std::string& source, const YAML::Node& node, std::s
         }
     });
     return j;
-}
-
-// The ids a joint's entry states ("motor_id: 1, reply_id: 0"), to name what two joints share.
-std::string stated_ids(const YAML::Node& joint) {
-    std::string ids;
-    for (const auto& kv : joint) {
-        const std::string key = kv.first.Scalar();
-        if (key.size() > 3 && key.compare(key.size() - 3, 3, "_id") == 0 && kv.second.IsScalar()) {
-            ids += (ids.empty() ? "" : ", ") + key + ": " + kv.second.Scalar();
-        }
-    }
-    return ids.empty() ? "the default ids" : ids;
-}
-
-// Two joints listening to one device would each take the other's frames (the first joint in the list
-// takes them all, and a capture reads as "a frame was lost"): every joint's own telemetry frames must
-// reach its decoder, which is the decoders' own test (NotMine), so no profile's ids are named here.
-void require_distinct_devices(const std::string& source, const YAML::Node& joints, const std::vector<JointConfig>& configs) {
-    std::vector<hal::ProfileConfig> decoders;
-    for (const JointConfig& j : configs) decoders.push_back(j.decoder);
-    hal::JointDecoderSet<kMaxJoints> set;
-    if (set.configure(Span<const hal::ProfileConfig>(decoders.data(), decoders.size())).status != hal::ConfigStatus::Ok) return;
-    for (std::size_t j = 0; j < configs.size(); ++j) {
-        std::array<hal::CanFrame, hal::kMaxTelemetryFrames> frames{};
-        const std::size_t count = hal::encode_telemetry(configs[j].decoder, 0.0, 0.0, 0.0, frames.data());
-        for (std::size_t f = 0; f < count; ++f) {
-            const hal::RouteResult r = set.route(frames[f]);
-            if (r.joint == hal::RouteResult::kNoJoint || r.joint == j) continue;
-            throw ConfigError(fmt::format("{}: joints[{}] ({}) and joints[{}] ({}) listen to the same device (CAN id 0x{:X}; {} and {}): joints[{}] "
-                                          "would take every frame of joints[{}]; give each joint its own id",
-                                          yaml::where(source, joints[j]), r.joint, configs[r.joint].name, j, configs[j].name, frames[f].id,
-                                          stated_ids(joints[r.joint]), stated_ids(joints[j]), r.joint, j));
-        }
-    }
 }
 
 void read_estimator(Section& s, EstimatorConfig& e, double rate) {
@@ -189,6 +156,7 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     if (joints.size() > kMaxJoints) top.fail("joints", fmt::format("at most {} joints", kMaxJoints));
     for (std::size_t i = 0; i < joints.size(); ++i) c.joints.push_back(read_joint(source, joints[i], i));
     require_distinct_devices(source, joints, c.joints);
+    if (c.sync_id >= 0) require_sync_id_unused(source, top.get("can")["sync_id"], static_cast<std::uint32_t>(c.sync_id), joints, c.joints);
 
     top.mark_used("estimator");
     if (top.has("estimator")) {

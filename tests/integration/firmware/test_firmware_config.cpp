@@ -105,6 +105,31 @@ TEST(FirmwareConfig, SyncIdIsOptionalHexOrDecimalAndAStandardId) {
     EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 0}\n" + joints_stream), "fw.yaml:1:34: can.sync_id: must be an integer in 1..2047");
 }
 
+// Issue 36: a SYNC on the id of a joint's command or telemetry frames was accepted (the drive would read each
+// SYNC as one of its frames). Refused at can.sync_id, naming the joint and its id keys; decided by the
+// profiles' own encoders, for every profile.
+TEST(FirmwareConfig, SyncIdOnAJointsCommandOrTelemetryIdIsRefusedNamingBothKeys) {
+    EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 1}\n" + kJoints + kStream),
+              "fw.yaml:1:34: can.sync_id: 0x1 is also the CAN id of joints[0] (j1)'s command frames (motor_id: 1): the drives would take each SYNC "
+              "for one of those frames and those frames for SYNCs; give can.sync_id an id no joint uses (0x80 by convention)");
+    EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 2}\n" + kJoints + kStream).rfind("fw.yaml:1:34: can.sync_id: 0x2 is also the CAN id of joints[1] (j2)'s command frames (motor_id: 2)", 0), 0u);
+    const std::string cia = "joints:\n  - {profile: cia402, node_id: 3}\n";
+    EXPECT_NE(error_of("can: {interface: vcan0, sync_id: 0x183}\n" + cia + kStream).find("0x183 is also the CAN id of joints[0] (j1)'s telemetry frames (node_id: 3)"),
+              std::string::npos)
+        << error_of("can: {interface: vcan0, sync_id: 0x183}\n" + cia + kStream);
+    EXPECT_NE(error_of("can: {interface: vcan0, sync_id: 0x203}\n" + cia + kStream).find("0x203 is also the CAN id of joints[0] (j1)'s command frames (node_id: 3)"),
+              std::string::npos)
+        << error_of("can: {interface: vcan0, sync_id: 0x203}\n" + cia + kStream);
+    const std::string odrive = "joints:\n  - {profile: odrive, node_id: 4}\n";
+    EXPECT_NE(error_of("can: {interface: vcan0, sync_id: 0x8C}\n" + odrive + kStream).find("0x8C is also the CAN id of joints[0] (j1)'s command frames (node_id: 4)"),
+              std::string::npos)
+        << error_of("can: {interface: vcan0, sync_id: 0x8C}\n" + odrive + kStream);
+    const std::string replies_on_0x80 = "can: {interface: vcan0, sync_id: 0x80}\njoints:\n  - {profile: mit, motor_id: 1, reply_id: 0x80}\n" + kStream;
+    EXPECT_NE(error_of(replies_on_0x80).find("telemetry frames (motor_id: 1, reply_id: 0x80)"), std::string::npos) << error_of(replies_on_0x80);
+    EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 0x80}\n" + cia + kStream), "(no error)") << "the CANopen SYNC id beside a CiA 402 node";
+    EXPECT_EQ(error_of("can: {interface: vcan0, sync_id: 0x80}\n" + odrive + kStream), "(no error)");
+}
+
 // yaml-cpp keeps both entries of a repeated key and a lookup returns the first: an error instead.
 TEST(FirmwareConfig, RepeatedKeyIsAnError) {
     EXPECT_EQ(error_of("can: {interface: vcan0, interface: can0}\n" + kJoints + kStream), "fw.yaml:1:25: can.interface: appears twice");
