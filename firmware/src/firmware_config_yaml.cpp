@@ -28,6 +28,11 @@ namespace {
 
 using Section = yaml::YamlSection<ConfigError>;
 
+constexpr double kMinRate = 1.0, kMaxRate = 10000.0;  // Hz
+constexpr double kMinReportPeriod = 0.1;               // s
+constexpr double kMaxSeconds = 1e9;                    // s, as jacobid-fw --duration
+constexpr double kMaxRampTime = 3600.0;                // s
+
 // "a, b or c" for the missing-key message.
 std::string one_of(const std::vector<std::string>& names) {
     std::string all;
@@ -88,6 +93,20 @@ void read_estimator(Section& s, EstimatorConfig& e, double rate) {
     }
 }
 
+// Whether the joint's drive reads a position command with these gains as one: the profile's own encoder
+// and decoder decide (an MIT frame with kp = kd = 0 is a torque command: the drive would go limp).
+bool reads_position_commands(const hal::ProfileConfig& joint, double kp, double kd) {
+    std::array<hal::CanFrame, hal::kMaxCommandFrames> frames{};
+    const std::size_t n = hal::encode_command(joint, hal::JointCommand{hal::CommandMode::Position, 0.0, 0.0, 0.0, kp, kd}, frames.data());
+    for (std::size_t f = 0; f < n; ++f) {
+        hal::JointCommand read;
+        if (hal::decode_command(joint, hal::CommandMode::Position, frames[f], read) == hal::DecodeStatus::Ok && read.mode != hal::CommandMode::Position) {
+            return false;
+        }
+    }
+    return true;
+}
+
 // A path in fw.yaml is relative to the file's own folder (the config and its trajectory travel together).
 std::string relative_to(const std::string& source, const std::string& path) {
     if (path.empty() || path.front() == '/') return path;
@@ -104,6 +123,8 @@ void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
     p.log = relative_to(c.source, s.text("log", ""));
     p.mode = s.choice("mode", "position", {"position", "torque"}) == "position" ? hal::CommandMode::Position : hal::CommandMode::Torque;
     p.ramp_time = s.positive("ramp_time", p.ramp_time, "s");
+    // An hour is no ramp anyone means (ms written as s?); far longer ones overflow the ramp's cycle count.
+    if (p.ramp_time > kMaxRampTime) s.fail("ramp_time", fmt::format("{:g} s: expected at most {:g} s (in seconds, not ms)", p.ramp_time, kMaxRampTime));
     p.repeat = static_cast<int>(s.integer("repeat", p.repeat, 1, 1'000'000));
     p.max_stale_cycles = static_cast<std::uint32_t>(s.integer("max_stale_cycles", 0, 0, 1000));
     if (!s.has("joints")) s.fail(node, "joints", "missing (required): one entry of limits per joint");
@@ -124,6 +145,16 @@ void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
         p.kd[j] = limits.number("kd", 0.0, "N.m.s/rad");
         if (p.kp[j] < 0.0) limits.fail("kp", "must be >= 0");
         if (p.kd[j] < 0.0) limits.fail("kd", "must be >= 0");
+        // A following error as wide as the position range could never stop the playback.
+        if (!(p.following_error[j] < hi - lo)) {
+            limits.fail("following_error", fmt::format("{} rad is not below the width of the position limits, {} rad: it could never stop the "
+                                                       "playback", p.following_error[j], hi - lo));
+        }
+        if (p.mode == hal::CommandMode::Position && !reads_position_commands(c.joints[j].decoder, p.kp[j], p.kd[j])) {
+            limits.fail(joints[j], "kp", fmt::format("with kp: {} and kd: {} joints[{}]'s {} drive reads each position command as a torque command "
+                                                     "and holds no position (nor the stop); give the drive's own gains kp and kd",
+                                                     p.kp[j], p.kd[j], j, hal::profile_name(c.joints[j].decoder)));
+        }
         limits.reject_unknown();
     }
     s.reject_unknown();
@@ -138,7 +169,11 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     FirmwareConfig c;
     c.source = source;
     Section top(source, root, "");
-    c.rate = top.positive("rate", c.rate);
+    c.rate = top.positive("rate", c.rate, "Hz");
+    // Beyond these the rate only gives wrong messages or undefined arithmetic: above 10 kHz the cycle cannot
+    // meet its bus (a 1 Mbit/s CAN bus carries about 8000 classic frames a second), and the estimator
+    // windows would be blamed; below 1 Hz the loop's period in ns approaches what int64 holds.
+    if (c.rate < kMinRate || c.rate > kMaxRate) top.fail("rate", fmt::format("{:g} Hz: expected a control rate in [{:g}, {:g}] Hz", c.rate, kMinRate, kMaxRate));
     c.max_age = static_cast<std::uint32_t>(top.integer("max_age", c.max_age, 0, 1000));
 
     top.mark_used("can");
@@ -200,8 +235,13 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
         c.realtime.priority = static_cast<int>(r.integer("priority", c.realtime.priority, 0, 99));
         c.realtime.cpu = static_cast<int>(r.integer("cpu", c.realtime.cpu, -1, 1023));
         c.realtime.lock_memory = r.boolean("lock_memory", c.realtime.lock_memory);
-        c.realtime.report_period = r.number("report_period", c.realtime.report_period);
-        if (c.realtime.report_period < 0.0) r.fail("report_period", "must be >= 0 s (0: only at exit)");
+        c.realtime.report_period = r.number("report_period", c.realtime.report_period, "s");
+        // Each report is a write to stderr from the cycle loop: more than ten a second distorts the latency
+        // it reports. Above 1e9 s its deadline in ns would overflow int64.
+        const double period = c.realtime.report_period;
+        if (period != 0.0 && !(period >= kMinReportPeriod && period <= kMaxSeconds)) {
+            r.fail("report_period", fmt::format("{:g} s: expected 0 (only at exit) or a period in [{:g}, {:g}] s", period, kMinReportPeriod, kMaxSeconds));
+        }
         r.reject_unknown();
     }
     top.mark_used("trajectory");

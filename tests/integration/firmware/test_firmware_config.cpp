@@ -149,8 +149,8 @@ TEST(FirmwareConfig, AnOutputThatIsAnInputOrAnotherOutputIsRefusedAsAFile) {
     fs::remove(dir / "table-hard.csv", ignored);
     fs::create_symlink("fw.yaml", dir / "fw-link.yaml");
     fs::create_hard_link(dir / "table.csv", dir / "table-hard.csv");
-    const std::string limits = "  joints:\n    - {position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1}\n"
-                               "    - {position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1}\n";
+    const std::string limits = "  joints:\n    - {position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 1}\n"
+                               "    - {position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 1}\n";
     auto error_with = [&](const std::string& stream_log, const std::string& trajectory_log) {
         const std::string config = (dir / "fw.yaml").string();
         std::string stream = kStream;
@@ -182,6 +182,49 @@ TEST(FirmwareConfig, AnOutputThatIsAnInputOrAnotherOutputIsRefusedAsAFile) {
         << error_with("out.bin", "./out.bin");
     EXPECT_EQ(error_with("stream.bin", "commands.csv"), "(no error)");
     EXPECT_EQ(firmware::load_firmware_config(config).stream.log, folder + "stream.bin") << "relative to fw.yaml's folder, as every path in it";
+}
+
+// Issue 36's audit of fw.yaml: values a careless user gives that were accepted and gave a wrong, unsafe or
+// undefined result, each refused at its key.
+TEST(FirmwareConfig, CarelessValuesAreRefusedAtTheirKey) {
+    const std::string head = kCan + kJoints + kStream;
+    // rate: 1e12 Hz was blamed on estimator.position_window (at line 1:1, a key not in the file).
+    EXPECT_EQ(error_of("rate: 1e12\n" + head), "fw.yaml:1:7: rate: 1e+12 Hz: expected a control rate in [1, 10000] Hz");
+    EXPECT_EQ(error_of("rate: 0.5\n" + head), "fw.yaml:1:7: rate: 0.5 Hz: expected a control rate in [1, 10000] Hz");
+    // report_period: 1e300 s overflowed the report deadline (int64), 1e-9 s printed a report every cycle.
+    EXPECT_EQ(error_of(head + "realtime: {report_period: 1e300}\n"),
+              "fw.yaml:6:27: realtime.report_period: 1e+300 s: expected 0 (only at exit) or a period in [0.1, 1e+09] s");
+    EXPECT_NE(error_of(head + "realtime: {report_period: 1e-9}\n").find("realtime.report_period: 1e-09 s: expected 0"), std::string::npos);
+    EXPECT_EQ(firmware::parse_firmware_config(head + "realtime: {report_period: 0}\n", "fw.yaml").realtime.report_period, 0.0);
+
+    const std::string table = (test::scratch_directory() / "careless.csv").string();
+    std::ofstream(table) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,0,0,0\n0.002,0,0,0,0\n";
+    auto trajectory = [&](const std::string& settings, const std::string& joint1) {
+        return head + "trajectory:\n  file: " + table + "\n" + settings + "  joints:\n    - " + joint1 +
+               "\n    - {position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 1}\n";
+    };
+    const std::string ok = "{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 1}";
+    EXPECT_EQ(error_of(trajectory("", ok)), "(no error)");
+    // ramp_time: 1e300 s overflowed the ramp's cycle count; 5000 is 5 s written in ms.
+    EXPECT_EQ(error_of(trajectory("  ramp_time: 5000\n", ok)), "fw.yaml:8:14: trajectory.ramp_time: 5000 s: expected at most 3600 s (in seconds, not ms)");
+    EXPECT_NE(error_of(trajectory("  ramp_time: 1e300\n", ok)).find("trajectory.ramp_time: 1e+300 s: expected at most 3600 s"), std::string::npos);
+    // A following error as wide as the position range never stops anything.
+    EXPECT_NE(error_of(trajectory("", "{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 5, kp: 10, kd: 1}"))
+                  .find("trajectory.joints[0].following_error: 5 rad is not below the width of the position limits, 2 rad: it could never stop the playback"),
+              std::string::npos);
+    // No kp, kd with an MIT drive in position mode: every command frame said "torque only" (kp = kd = 0),
+    // so the drive held no position, and neither did the stop.
+    const std::string limp = error_of(trajectory("", "{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1}"));
+    EXPECT_NE(limp.find("trajectory.joints[0].kp: with kp: 0 and kd: 0 joints[0]'s mit drive reads each position command as a torque command"),
+              std::string::npos)
+        << limp;
+    EXPECT_EQ(error_of(trajectory("  mode: torque\n", "{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1}")).find("kp"),
+              std::string::npos)
+        << "torque mode needs no gains";
+    // A table for three joints on a two-joint config: q3, qd3 were dropped silently.
+    std::ofstream(table) << "t,q1,q2,q3,qd1,qd2,qd3\n0,0,0,0,0,0,0\n0.001,0,0,0,0,0,0\n";
+    EXPECT_EQ(error_of(trajectory("", ok)), table + ":1:4: column 'q3' is for joint 3, but fw.yaml has 2 joints: a table for another robot? (its values "
+                                                    "would not be played)");
 }
 
 TEST(FirmwareConfig, MissingFileIsNamed) {

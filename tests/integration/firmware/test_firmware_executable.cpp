@@ -68,8 +68,8 @@ TEST(FirmwareExecutable, UnsafeTrajectoryIsRefusedOnOneLineBeforeAnythingIsOpene
     std::remove(path("jump_commands.csv").c_str());
     std::string yaml = test::chain_config_yaml(
         "trajectory:\n  file: jump.csv\n  log: jump_commands.csv\n  joints:\n"
-        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01}\n"
-        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n");
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 10, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n");
     yaml.replace(yaml.find("port: 5005}"), 11, "port: 5005, log: jump_stream.bin}");
     std::ofstream(path("jump.yaml")) << yaml;
     const auto r = run_command("timeout 10 " + fw("--config " + path("jump.yaml") + " --no-realtime --duration 1"));

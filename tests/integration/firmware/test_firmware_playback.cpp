@@ -289,20 +289,20 @@ TEST(FirmwarePlayback, ConfigNamesTheMissingLimitAndTheBadTableLine) {
         }
         return std::string("no error");
     };
-    const std::string no_torque = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, following_error: 0.01}\n"
-                                  "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n";
+    const std::string no_torque = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, following_error: 0.01, kp: 10, kd: 1}\n"
+                                  "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_NE(error_of(no_torque).find("trajectory.joints[0].torque: missing (required)"), std::string::npos) << error_of(no_torque);
-    const std::string one_joint = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n";
+    const std::string one_joint = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_NE(error_of(one_joint).find("trajectory.joints: must be a list of 2"), std::string::npos) << error_of(one_joint);
     const std::string bad = (test::scratch_directory() / "bad_table.csv").string();
     std::ofstream(bad) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,x,0,0\n";
-    const std::string bad_table = "trajectory:\n  file: " + bad + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n"
-                                  "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n";
+    const std::string bad_table = "trajectory:\n  file: " + bad + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n"
+                                  "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_EQ(error_of(bad_table), bad + ":3:3: column q2: 'x' is not a finite number");
     std::ofstream(bad) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.002,0,0,0,0\n";
     EXPECT_NE(error_of(bad_table).find(":3:1: t = 0.002 s, expected 0.001 s"), std::string::npos) << error_of(bad_table);
-    const std::string device = "trajectory:\n  file: /dev/zero\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n"
-                               "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01}\n";
+    const std::string device = "trajectory:\n  file: /dev/zero\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n"
+                               "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_EQ(error_of(device), "/dev/zero: cannot read the trajectory table: not a regular file (a device, FIFO or socket)");
     // A row beyond a limit is refused at start-up by the cycle, naming the table, the joint and the row.
     firmware::FirmwareConfig c = test::chain_config(playback_yaml());
