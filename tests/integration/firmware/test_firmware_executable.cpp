@@ -97,6 +97,22 @@ TEST(FirmwareExecutable, AStreamLogOntoItsOwnConfigIsRefusedAndTheConfigIsIntact
     EXPECT_EQ(after, yaml) << "fw.yaml overwritten";
 }
 
+// Issue 36's audit: a playback on a real bus without a gpio: section has no e-stop input and no drive
+// enable; said before the bus is opened (here it cannot be: exit 1 naming the interface after the warning).
+TEST(FirmwareExecutable, PlaybackWithoutSafetyIoIsWarnedBeforeTheBusIsOpened) {
+    std::ofstream(path("quiet.csv")) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,0,0,0\n0.002,0,0,0,0\n";
+    std::string yaml = test::chain_config_yaml(
+        "trajectory:\n  file: quiet.csv\n  joints:\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 10, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n");
+    yaml.replace(0, std::string("can: {interface: virtual}").size(), "can: {interface: jacobidnocan0}");
+    std::ofstream(path("quiet.yaml")) << yaml;
+    const auto r = run_command(fw("--config " + path("quiet.yaml") + " --no-realtime --duration 0.2"));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err.rfind("jacobid-fw: warning: " + path("quiet.yaml") + ": trajectory playback without a gpio: section: no e-stop input", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("can.interface 'jacobidnocan0'"), std::string::npos) << r.err;
+}
+
 TEST(FirmwareExecutable, MissingCanInterfaceIsAClearDeviceError) {
     std::ofstream(path("can.yaml")) << test::chain_config_yaml().replace(0, std::string("can: {interface: virtual}").size(),
                                                                           "can: {interface: jacobidnocan0}");
