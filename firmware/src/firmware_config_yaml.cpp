@@ -21,6 +21,7 @@
 #include "jacobid/yaml/yaml_section.hpp"
 #include "jacobid/yaml/input_file.hpp"
 #include "can_id_checks.hpp"
+#include "drive_reading.hpp"
 #include "output_files.hpp"
 
 namespace jacobid::firmware {
@@ -93,20 +94,6 @@ void read_estimator(Section& s, EstimatorConfig& e, double rate) {
     }
 }
 
-// Whether the joint's drive reads a position command with these gains as one: the profile's own encoder
-// and decoder decide (an MIT frame with kp = kd = 0 is a torque command: the drive would go limp).
-bool reads_position_commands(const hal::ProfileConfig& joint, double kp, double kd) {
-    std::array<hal::CanFrame, hal::kMaxCommandFrames> frames{};
-    const std::size_t n = hal::encode_command(joint, hal::JointCommand{hal::CommandMode::Position, 0.0, 0.0, 0.0, kp, kd}, frames.data());
-    for (std::size_t f = 0; f < n; ++f) {
-        hal::JointCommand read;
-        if (hal::decode_command(joint, hal::CommandMode::Position, frames[f], read) == hal::DecodeStatus::Ok && read.mode != hal::CommandMode::Position) {
-            return false;
-        }
-    }
-    return true;
-}
-
 // A path in fw.yaml is relative to the file's own folder (the config and its trajectory travel together).
 std::string relative_to(const std::string& source, const std::string& path) {
     if (path.empty() || path.front() == '/') return path;
@@ -154,6 +141,12 @@ void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
             limits.fail(joints[j], "kp", fmt::format("with kp: {} and kd: {} joints[{}]'s {} drive reads each position command as a torque command "
                                                      "and holds no position (nor the stop); give the drive's own gains kp and kd",
                                                      p.kp[j], p.kd[j], j, hal::profile_name(c.joints[j].decoder)));
+        }
+        // A limit the command frames cannot carry: a command there would reach the drive saturated.
+        if (const std::optional<UncarriedLimit> u = uncarried_limit(c.joints[j].decoder, p, j)) {
+            limits.fail(u->key, fmt::format("{:g} cannot be sent to joints[{}]'s {} drive: its command frames carry {:g} there (the encoder "
+                                            "saturates); keep the limit within what the profile's ranges and gear ratio allow",
+                                            u->asked, j, hal::profile_name(c.joints[j].decoder), u->carried));
         }
         limits.reject_unknown();
     }

@@ -221,6 +221,28 @@ TEST(FirmwareConfig, CarelessValuesAreRefusedAtTheirKey) {
     EXPECT_EQ(error_of(trajectory("  mode: torque\n", "{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1}")).find("kp"),
               std::string::npos)
         << "torque mode needs no gains";
+    // A limit beyond what the joint's command frames carry: an MIT position, velocity, torque or gain beyond its
+    // range was clamped by the encoder (exit 0 with other commands than the table's). Refused at the key;
+    // a limit at the range's edge, a value merely quantized, and fields a profile does not send are not.
+    auto uncarried = [&](const std::string& joint1) { return error_of(trajectory("", joint1)); };
+    EXPECT_NE(uncarried("{position: [-10, 10], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 1}")
+                  .find("trajectory.joints[0].position: -10 cannot be sent to joints[0]'s mit drive: its command frames carry -"),
+              std::string::npos)
+        << uncarried("{position: [-10, 10], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 1}");
+    EXPECT_NE(uncarried("{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 5000, kd: 1}")
+                  .find("trajectory.joints[0].kp: 5000 cannot be sent to joints[0]'s mit drive: its command frames carry 500 there (the encoder saturates)"),
+              std::string::npos);
+    EXPECT_NE(uncarried("{position: [-1, 1], velocity: 1000, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 1}").find("trajectory.joints[0].velocity: -1000"),
+              std::string::npos);
+    EXPECT_NE(uncarried("{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1e4, following_error: 0.1, kp: 10, kd: 1}").find("trajectory.joints[0].torque: -10000"),
+              std::string::npos);
+    EXPECT_EQ(uncarried("{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 0.0013}"), "(no error)");
+    // CiA 402 wraps its position (a modulo counter) and sends no velocity or torque in position mode: nothing saturates.
+    const std::string one_joint = (test::scratch_directory() / "careless1.csv").string();
+    std::ofstream(one_joint) << "t,q1,qd1\n0,0,0\n0.001,0,0\n";
+    EXPECT_EQ(error_of(kCan + "joints:\n  - {profile: cia402, node_id: 3}\n" + kStream + "trajectory:\n  file: " + one_joint +
+                       "\n  joints:\n    - {position: [-1000, 1000], velocity: 1000, acceleration: 10, torque: 1000, following_error: 0.1}\n"),
+              "(no error)");
     // A table for three joints on a two-joint config: q3, qd3 were dropped silently.
     std::ofstream(table) << "t,q1,q2,q3,qd1,qd2,qd3\n0,0,0,0,0,0,0\n0.001,0,0,0,0,0,0\n";
     EXPECT_EQ(error_of(trajectory("", ok)), table + ":1:4: column 'q3' is for joint 3, but fw.yaml has 2 joints: a table for another robot? (its values "
