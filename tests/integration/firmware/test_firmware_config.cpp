@@ -237,6 +237,8 @@ TEST(FirmwareConfig, CarelessValuesAreRefusedAtTheirKey) {
     EXPECT_NE(uncarried("{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1e4, following_error: 0.1, kp: 10, kd: 1}").find("trajectory.joints[0].torque: -10000"),
               std::string::npos);
     EXPECT_EQ(uncarried("{position: [-1, 1], velocity: 1, acceleration: 10, torque: 1, following_error: 0.1, kp: 10, kd: 0.0013}"), "(no error)");
+    EXPECT_EQ(uncarried("{position: [-3.125, 3.125], velocity: 16.25, acceleration: 10, torque: 120, following_error: 0.1, kp: 500, kd: 5}"), "(no error)")
+        << "the MIT ranges' edges at gear 4 (12.5 rad, 65 rad/s, 30 N.m motor side; kp 0..500, kd 0..5)";
     // CiA 402 wraps its position (a modulo counter) and sends no velocity or torque in position mode: nothing saturates.
     const std::string one_joint = (test::scratch_directory() / "careless1.csv").string();
     std::ofstream(one_joint) << "t,q1,qd1\n0,0,0\n0.001,0,0\n";
