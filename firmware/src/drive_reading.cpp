@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "drive_reading.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -10,7 +11,7 @@
 namespace jacobid::firmware {
 namespace {
 
-// The command as the drive reads it; fields the frames do not carry stay NaN.
+// The command as the drive reads it; fields the frames do not carry (or a frame the drive refuses) stay NaN.
 hal::JointCommand as_read(const hal::ProfileConfig& joint, const hal::JointCommand& sent) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     hal::JointCommand read{sent.mode, nan, nan, nan, nan, nan};
