@@ -133,7 +133,7 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
     firmware::CsvCommandLog command_log;
     if (config.playback && !config.trajectory.log.empty()) {
         if (const std::string e = command_log.open(config.trajectory.log, config.joints.size()); !e.empty()) {
-            std::fprintf(stderr, "jacobid-fw: %s\n", e.c_str());
+            std::fprintf(stderr, "jacobid-fw: error: %s: %s\n", config.source.c_str(), e.c_str());
             return kExitDevice;
         }
     }
