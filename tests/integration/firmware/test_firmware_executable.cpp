@@ -113,6 +113,18 @@ TEST(FirmwareExecutable, PlaybackWithoutSafetyIoIsWarnedBeforeTheBusIsOpened) {
     EXPECT_NE(r.err.find("can.interface 'jacobidnocan0'"), std::string::npos) << r.err;
 }
 
+// A trajectory.log that cannot be opened: exit 1, one error line naming fw.yaml and the key, as for stream.log.
+TEST(FirmwareExecutable, ATrajectoryLogThatCannotBeOpenedIsAnErrorNamingTheConfig) {
+    std::ofstream(path("unopened.csv")) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,0,0,0\n";
+    std::ofstream(path("unopened.yaml")) << test::chain_config_yaml(
+        "trajectory:\n  file: unopened.csv\n  log: /proc/jacobid-no-such-dir/commands.csv\n  joints:\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 10, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n");
+    const auto r = run_command(fw("--config " + path("unopened.yaml") + " --no-realtime --duration 0.2"));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("jacobid-fw: error: " + path("unopened.yaml") + ": trajectory.log /proc/jacobid-no-such-dir/commands.csv: "), std::string::npos) << r.err;
+}
+
 TEST(FirmwareExecutable, MissingCanInterfaceIsAClearDeviceError) {
     std::ofstream(path("can.yaml")) << test::chain_config_yaml().replace(0, std::string("can: {interface: virtual}").size(),
                                                                           "can: {interface: jacobidnocan0}");
