@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iterator>
 #include <fstream>
@@ -55,30 +56,48 @@ TEST(FirmwareExecutable, InvalidDurationAndParseErrorsExitTwoOnOneLine) {
     EXPECT_NE(unknown.err.find("--bogus"), std::string::npos) << unknown.err;
 }
 
-// Issue 36: a table with a 2 rad jump between two rows (each row within the limits) is refused before
-// jacobid-fw opens the bus or any output: exit 2, one line naming the table's line, the joint, the step
-// and the limit, and neither stream.log nor trajectory.log created.
-TEST(FirmwareExecutable, UnsafeTrajectoryIsRefusedOnOneLineBeforeAnythingIsOpened) {
-    {
-        std::ofstream table(path("jump.csv"));
-        table << "t,q1,q2,qd1,qd2\n";
-        for (int k = 0; k < 2000; ++k) table << k * 1e-3 << ',' << (k < 1000 ? 0.0 : 2.0) << ",0,0,0\n";
-    }
-    std::remove(path("jump_stream.bin").c_str());
-    std::remove(path("jump_commands.csv").c_str());
+// Issue 36: a table with a 2 rad jump between two rows (each row within the limits), and one that does not
+// end where it starts played with repeat: 3, are refused before jacobid-fw opens the bus or any output:
+// exit 2, one line naming the table's line, the joint, the step and the limit, and neither stream.log nor
+// trajectory.log created.
+void expect_refused_before_anything_is_opened(const std::string& table, const std::string& settings, const std::string& message) {
+    std::remove(path("unsafe_stream.bin").c_str());
+    std::remove(path("unsafe_commands.csv").c_str());
     std::string yaml = test::chain_config_yaml(
-        "trajectory:\n  file: jump.csv\n  log: jump_commands.csv\n  joints:\n"
+        "trajectory:\n  file: " + table + "\n  log: unsafe_commands.csv\n" + settings + "  joints:\n"
         "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 10, kd: 1}\n"
         "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n");
-    yaml.replace(yaml.find("port: 5005}"), 11, "port: 5005, log: jump_stream.bin}");
-    std::ofstream(path("jump.yaml")) << yaml;
-    const auto r = run_command("timeout 10 " + fw("--config " + path("jump.yaml") + " --no-realtime --duration 1"));
+    yaml.replace(yaml.find("port: 5005}"), 11, "port: 5005, log: unsafe_stream.bin}");
+    std::ofstream(path("unsafe.yaml")) << yaml;
+    const auto r = run_command("timeout 10 " + fw("--config " + path("unsafe.yaml") + " --no-realtime --duration 1"));
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_EQ(r.err, "jacobid-fw: error: " + path("jump.csv") +
-                         ":1002: joint 1: the position steps 2 rad from line 1001, 2000 rad/s at 1000 Hz, beyond the velocity limit 3 rad/s "
-                         "(trajectory.joints[0].velocity, +1 %)\n");
-    EXPECT_FALSE(std::ifstream(path("jump_stream.bin")).good()) << "stream.log opened";
-    EXPECT_FALSE(std::ifstream(path("jump_commands.csv")).good()) << "trajectory.log opened";
+    EXPECT_EQ(r.err.rfind("jacobid-fw: error: " + path(table) + message, 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::ifstream(path("unsafe_stream.bin")).good()) << "stream.log opened";
+    EXPECT_FALSE(std::ifstream(path("unsafe_commands.csv")).good()) << "trajectory.log opened";
+}
+
+TEST(FirmwareExecutable, UnsafeTrajectoryIsRefusedOnOneLineBeforeAnythingIsOpened) {
+    {
+        std::ofstream jump(path("jump.csv"));
+        jump << "t,q1,q2,qd1,qd2\n";
+        for (int k = 0; k < 2000; ++k) jump << k * 1e-3 << ',' << (k < 1000 ? 0.0 : 2.0) << ",0,0,0\n";
+        // 0 -> 0.4 rad in 1 s, at rest at both ends (q = 0.2 (1 - cos(pi t))): no jump, but no way back.
+        std::ofstream half(path("half.csv"));
+        half.precision(17);
+        half << "t,q1,q2,qd1,qd2\n";
+        for (int k = 0; k <= 1000; ++k) {
+            const double t = k * 1e-3, pi = 3.14159265358979323846;
+            half << t << ',' << 0.2 * (1.0 - std::cos(pi * t)) << ",0," << 0.2 * pi * std::sin(pi * t) << ",0\n";
+        }
+    }
+    expect_refused_before_anything_is_opened("jump.csv", "",
+                                             ":1002: joint 1: the position steps 2 rad from line 1001, 2000 rad/s at 1000 Hz, beyond the velocity "
+                                             "limit 3 rad/s (trajectory.joints[0].velocity, +1 %)\n");
+    expect_refused_before_anything_is_opened("half.csv", "  repeat: 3\n",
+                                             ":2: joint 1: the position steps -0.4 rad from line 1002, -400 rad/s at 1000 Hz, beyond the velocity "
+                                             "limit 3 rad/s (trajectory.joints[0].velocity, +1 %); this is the wrap from the table's last row "
+                                             "(line 1002) to its next pass (repeat: 3)");
 }
 
 // Issue 36: stream.log through a symlink to fw.yaml itself: refused (exit 2, one line) and fw.yaml intact.
