@@ -15,15 +15,24 @@
 #include <vector>
 
 #include "jacobid/differentiator_bank.hpp"
+#include "jacobid/firmware/trajectory_player.hpp"
 #include "jacobid/firmware/trajectory_table.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 #include "jacobid/yaml/input_file.hpp"
+#include "can_id_checks.hpp"
+#include "drive_reading.hpp"
+#include "output_files.hpp"
 
 namespace jacobid::firmware {
 namespace {
 
 using Section = yaml::YamlSection<ConfigError>;
+
+constexpr double kMinRate = 1.0, kMaxRate = 10000.0;  // Hz
+constexpr double kMinReportPeriod = 0.1;               // s
+constexpr double kMaxSeconds = 1e9;                    // s, as jacobid-fw --duration
+constexpr double kMaxRampTime = 3600.0;                // s
 
 // "a, b or c" for the missing-key message.
 std::string one_of(const std::vector<std::string>& names) {
@@ -54,40 +63,6 @@ JointConfig read_joint(const std::string& source, const YAML::Node& node, std::s
         }
     });
     return j;
-}
-
-// The ids a joint's entry states ("motor_id: 1, reply_id: 0"), to name what two joints share.
-std::string stated_ids(const YAML::Node& joint) {
-    std::string ids;
-    for (const auto& kv : joint) {
-        const std::string key = kv.first.Scalar();
-        if (key.size() > 3 && key.compare(key.size() - 3, 3, "_id") == 0 && kv.second.IsScalar()) {
-            ids += (ids.empty() ? "" : ", ") + key + ": " + kv.second.Scalar();
-        }
-    }
-    return ids.empty() ? "the default ids" : ids;
-}
-
-// Two joints listening to one device would each take the other's frames (the first joint in the list
-// takes them all, and a capture reads as "a frame was lost"): every joint's own telemetry frames must
-// reach its decoder, which is the decoders' own test (NotMine), so no profile's ids are named here.
-void require_distinct_devices(const std::string& source, const YAML::Node& joints, const std::vector<JointConfig>& configs) {
-    std::vector<hal::ProfileConfig> decoders;
-    for (const JointConfig& j : configs) decoders.push_back(j.decoder);
-    hal::JointDecoderSet<kMaxJoints> set;
-    if (set.configure(Span<const hal::ProfileConfig>(decoders.data(), decoders.size())).status != hal::ConfigStatus::Ok) return;
-    for (std::size_t j = 0; j < configs.size(); ++j) {
-        std::array<hal::CanFrame, hal::kMaxTelemetryFrames> frames{};
-        const std::size_t count = hal::encode_telemetry(configs[j].decoder, 0.0, 0.0, 0.0, frames.data());
-        for (std::size_t f = 0; f < count; ++f) {
-            const hal::RouteResult r = set.route(frames[f]);
-            if (r.joint == hal::RouteResult::kNoJoint || r.joint == j) continue;
-            throw ConfigError(fmt::format("{}: joints[{}] ({}) and joints[{}] ({}) listen to the same device (CAN id 0x{:X}; {} and {}): joints[{}] "
-                                          "would take every frame of joints[{}]; give each joint its own id",
-                                          yaml::where(source, joints[j]), r.joint, configs[r.joint].name, j, configs[j].name, frames[f].id,
-                                          stated_ids(joints[r.joint]), stated_ids(joints[j]), r.joint, j));
-        }
-    }
 }
 
 void read_estimator(Section& s, EstimatorConfig& e, double rate) {
@@ -126,7 +101,7 @@ std::string relative_to(const std::string& source, const std::string& path) {
     return slash == std::string::npos ? path : source.substr(0, slash + 1) + path;
 }
 
-// trajectory: {file, mode, ramp_time, repeat, max_stale_cycles, joints: [{position, velocity, torque,
+// trajectory: {file, mode, ramp_time, repeat, max_stale_cycles, joints: [{position, velocity, acceleration, torque,
 // following_error, kp, kd}, ...]} (docs/firmware.md, "Trajectory playback"). Every limit is required: a
 // robot is never moved within limits the file did not state.
 void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
@@ -135,29 +110,51 @@ void read_trajectory(Section& s, const YAML::Node& node, FirmwareConfig& c) {
     p.log = relative_to(c.source, s.text("log", ""));
     p.mode = s.choice("mode", "position", {"position", "torque"}) == "position" ? hal::CommandMode::Position : hal::CommandMode::Torque;
     p.ramp_time = s.positive("ramp_time", p.ramp_time, "s");
+    // An hour is no ramp anyone means (ms written as s?); far longer ones overflow the ramp's cycle count.
+    if (p.ramp_time > kMaxRampTime) s.fail("ramp_time", fmt::format("{:g} s: expected at most {:g} s (in seconds, not ms)", p.ramp_time, kMaxRampTime));
     p.repeat = static_cast<int>(s.integer("repeat", p.repeat, 1, 1'000'000));
     p.max_stale_cycles = static_cast<std::uint32_t>(s.integer("max_stale_cycles", 0, 0, 1000));
     if (!s.has("joints")) s.fail(node, "joints", "missing (required): one entry of limits per joint");
     const YAML::Node joints = s.list("joints", c.joints.size(), c.joints.size(), "limits (one per joint of `joints:`)");
     for (std::size_t j = 0; j < joints.size(); ++j) {
         Section limits(c.source, joints[j], fmt::format("trajectory.joints[{}]", j));
-        for (const char* key : {"position", "velocity", "torque", "following_error"}) {
+        for (const char* key : {"position", "velocity", "acceleration", "torque", "following_error"}) {
             if (!limits.has(key)) limits.fail(joints[j], key, "missing (required): this joint's limit");
         }
         const auto [lo, hi] = limits.range("position", {0.0, 0.0}, "rad");
         p.position_min[j] = lo;
         p.position_max[j] = hi;
         p.velocity_limit[j] = limits.positive("velocity", 0.0, "rad/s");
+        p.acceleration_limit[j] = limits.positive("acceleration", 0.0, "rad/s^2");
         p.torque_limit[j] = limits.positive("torque", 0.0, "N.m");
         p.following_error[j] = limits.positive("following_error", 0.0, "rad");
         p.kp[j] = limits.number("kp", 0.0, "N.m/rad");
         p.kd[j] = limits.number("kd", 0.0, "N.m.s/rad");
         if (p.kp[j] < 0.0) limits.fail("kp", "must be >= 0");
         if (p.kd[j] < 0.0) limits.fail("kd", "must be >= 0");
+        // A following error as wide as the position range could never stop the playback.
+        if (!(p.following_error[j] < hi - lo)) {
+            limits.fail("following_error", fmt::format("{} rad is not below the width of the position limits, {} rad: it could never stop the "
+                                                       "playback", p.following_error[j], hi - lo));
+        }
+        if (p.mode == hal::CommandMode::Position && !reads_position_commands(c.joints[j].decoder, p.kp[j], p.kd[j])) {
+            limits.fail(joints[j], "kp", fmt::format("with kp: {} and kd: {} joints[{}]'s {} drive reads each position command as a torque command "
+                                                     "and holds no position (nor the stop); give the drive's own gains kp and kd",
+                                                     p.kp[j], p.kd[j], j, hal::profile_name(c.joints[j].decoder)));
+        }
+        // A limit the command frames cannot carry: a command there would reach the drive saturated.
+        if (const std::optional<UncarriedLimit> u = uncarried_limit(c.joints[j].decoder, p, j)) {
+            limits.fail(u->key, fmt::format("{:g} cannot be sent to joints[{}]'s {} drive: its command frames carry {:g} there (the encoder "
+                                            "saturates); keep the limit within what the profile's ranges and gear ratio allow",
+                                            u->asked, j, hal::profile_name(c.joints[j].decoder), u->carried));
+        }
         limits.reject_unknown();
     }
     s.reject_unknown();
     p.rows = load_trajectory_table(p.file, c.joints.size(), c.rate, p.mode == hal::CommandMode::Torque);
+    // The same check the player makes before its first command, here so that jacobid-fw refuses an unsafe
+    // table before it opens a device or an output file; the message names the table's file:line itself.
+    if (std::string why = check_playback(p, c.joints.size(), c.sample_period()); !why.empty()) throw ConfigError(why);
     c.playback = true;
 }
 
@@ -165,7 +162,11 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     FirmwareConfig c;
     c.source = source;
     Section top(source, root, "");
-    c.rate = top.positive("rate", c.rate);
+    c.rate = top.positive("rate", c.rate, "Hz");
+    // Beyond these the rate only gives wrong messages or undefined arithmetic: above 10 kHz the cycle cannot
+    // meet its bus (a 1 Mbit/s CAN bus carries about 8000 classic frames a second), and the estimator
+    // windows would be blamed; below 1 Hz the loop's period in ns approaches what int64 holds.
+    if (c.rate < kMinRate || c.rate > kMaxRate) top.fail("rate", fmt::format("{:g} Hz: expected a control rate in [{:g}, {:g}] Hz", c.rate, kMinRate, kMaxRate));
     c.max_age = static_cast<std::uint32_t>(top.integer("max_age", c.max_age, 0, 1000));
 
     top.mark_used("can");
@@ -183,6 +184,7 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     if (joints.size() > kMaxJoints) top.fail("joints", fmt::format("at most {} joints", kMaxJoints));
     for (std::size_t i = 0; i < joints.size(); ++i) c.joints.push_back(read_joint(source, joints[i], i));
     require_distinct_devices(source, joints, c.joints);
+    if (c.sync_id >= 0) require_sync_id_unused(source, top.get("can")["sync_id"], static_cast<std::uint32_t>(c.sync_id), joints, c.joints);
 
     top.mark_used("estimator");
     if (top.has("estimator")) {
@@ -199,7 +201,7 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
     c.stream.host = st.required_text("host");
     if (!st.has("port")) st.fail(top.get("stream"), "port", "missing (required)");
     c.stream.port = static_cast<std::uint16_t>(st.integer("port", 0, 1, 65535));
-    c.stream.log = st.text("log", "");
+    c.stream.log = relative_to(source, st.text("log", ""));
     st.reject_unknown();
 
     top.mark_used("gpio");
@@ -226,8 +228,13 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
         c.realtime.priority = static_cast<int>(r.integer("priority", c.realtime.priority, 0, 99));
         c.realtime.cpu = static_cast<int>(r.integer("cpu", c.realtime.cpu, -1, 1023));
         c.realtime.lock_memory = r.boolean("lock_memory", c.realtime.lock_memory);
-        c.realtime.report_period = r.number("report_period", c.realtime.report_period);
-        if (c.realtime.report_period < 0.0) r.fail("report_period", "must be >= 0 s (0: only at exit)");
+        c.realtime.report_period = r.number("report_period", c.realtime.report_period, "s");
+        // Each report is a write to stderr from the cycle loop: more than ten a second distorts the latency
+        // it reports. Above 1e9 s its deadline in ns would overflow int64.
+        const double period = c.realtime.report_period;
+        if (period != 0.0 && !(period >= kMinReportPeriod && period <= kMaxSeconds)) {
+            r.fail("report_period", fmt::format("{:g} s: expected 0 (only at exit) or a period in [{:g}, {:g}] s", period, kMinReportPeriod, kMaxSeconds));
+        }
         r.reject_unknown();
     }
     top.mark_used("trajectory");
@@ -236,6 +243,11 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
         read_trajectory(t, top.get("trajectory"), c);
     }
     top.reject_unknown();
+    // Before anything is opened for writing: no output over an input or over another output.
+    const YAML::Node stream = top.get("stream"), trajectory = top.get("trajectory");
+    require_outputs_apart(source,
+                          {{"this configuration file", source, YAML::Node()}, {"trajectory.file", c.trajectory.file, c.playback ? trajectory["file"] : YAML::Node()}},
+                          {{"stream.log", c.stream.log, stream["log"]}, {"trajectory.log", c.trajectory.log, c.playback ? trajectory["log"] : YAML::Node()}});
     return c;
 }
 

@@ -56,7 +56,8 @@ std::string FirmwareCycle::configure(const FirmwareConfig& config) {
     holding_ = false;
     deadline_missed_ = false;
     if (playback_) {
-        if (std::string why = player_.configure(config.trajectory, joint_count_, sample_period_); !why.empty()) return config.trajectory.file + ": " + why;
+        // The player's reasons name the table (file:line) themselves.
+        if (std::string why = player_.configure(config.trajectory, joint_count_, sample_period_); !why.empty()) return why;
     }
     if (config.sync_id > static_cast<std::int32_t>(hal::kCanStandardIdMask)) return "can.sync_id must be a standard (11-bit) id";
     send_sync_ = config.sync_id >= 0;

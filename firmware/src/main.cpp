@@ -69,6 +69,14 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
         return kExitConfig;
     }
 
+    // Without a gpio: section the e-stop input and the drive enable do not exist: a playback on real drives
+    // then stops only by its own checks and the hold command. Allowed (the drives may have their own safe
+    // torque off), but said before anything moves.
+    if (config.playback && !config.gpio.enabled && config.can_interface != "virtual") {
+        std::fprintf(stderr, "jacobid-fw: warning: %s: trajectory playback without a gpio: section: no e-stop input and no drive enable; "
+                             "a stop is only the hold command sent to the drives\n", config.source.c_str());
+    }
+
     // CAN. "virtual" is a dry run on an in-process bus nobody else talks on: every joint stays stale, but
     // the loop, the stream and the statistics run as on the target.
     hal::VirtualCanBus<2, 256> virtual_bus;
@@ -125,7 +133,7 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
     firmware::CsvCommandLog command_log;
     if (config.playback && !config.trajectory.log.empty()) {
         if (const std::string e = command_log.open(config.trajectory.log, config.joints.size()); !e.empty()) {
-            std::fprintf(stderr, "jacobid-fw: %s\n", e.c_str());
+            std::fprintf(stderr, "jacobid-fw: error: %s: %s\n", config.source.c_str(), e.c_str());
             return kExitDevice;
         }
     }

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "jacobid/firmware/trajectory_player.hpp"
 
+#include "jacobid/firmware/trajectory_motion.hpp"
+
+#include <fmt/core.h>
+
 #include <cmath>
 #include <string>
 
@@ -11,12 +15,9 @@ namespace {
 double blend(double u) noexcept { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
 double blend_rate(double u) noexcept { return 30.0 * u * u * (1.0 - u) * (1.0 - u); }
 
-bool same_position(const TrajectoryRow& a, const TrajectoryRow& b, std::size_t joints) noexcept {
-    for (std::size_t j = 0; j < joints; ++j) {
-        if (std::abs(a.q[j] - b.q[j]) > 1e-9) return false;
-    }
-    return true;
-}
+// The quintic's peaks over [0, 1]: s' at u = 1/2, s'' at u = 1/2 - sqrt(3)/6.
+constexpr double kBlendPeakRate = 1.875;
+constexpr double kBlendPeakAcceleration = 5.773502691896258;  // 10 / sqrt(3)
 
 }  // namespace
 
@@ -41,15 +42,13 @@ const char* to_string(StopReason reason) noexcept {
         case StopReason::FollowingError: return "following error";
         case StopReason::PositionLimit: return "position limit";
         case StopReason::VelocityLimit: return "velocity limit";
+        case StopReason::AccelerationLimit: return "acceleration limit";
         case StopReason::TorqueLimit: return "torque limit";
     }
     return "?";
 }
 
-std::string TrajectoryPlayer::configure(const PlaybackConfig& config, std::size_t joints, double sample_period) {
-    phase_ = PlaybackPhase::Idle;
-    reason_ = StopReason::None;
-    stop_joint_ = -1;
+std::string check_playback(const PlaybackConfig& config, std::size_t joints, double sample_period) {
     if (joints == 0 || joints > kMaxJoints) return "trajectory: " + std::to_string(joints) + " joints (1.." + std::to_string(kMaxJoints) + ")";
     if (!(sample_period > 0.0)) return "trajectory: the sample period must be > 0";
     if (config.rows.size() < 2) return "trajectory: the table needs at least two rows";
@@ -61,20 +60,39 @@ std::string TrajectoryPlayer::configure(const PlaybackConfig& config, std::size_
         const std::string joint = "trajectory: joint " + std::to_string(j + 1) + ": ";
         if (!(config.position_min[j] < config.position_max[j])) return joint + "position limits [min, max] with min < max are required";
         if (!(config.velocity_limit[j] > 0.0)) return joint + "velocity_limit > 0 is required";
+        if (!(config.acceleration_limit[j] > 0.0)) return joint + "acceleration_limit > 0 is required";
         if (!(config.torque_limit[j] > 0.0)) return joint + "torque_limit > 0 is required";
         if (!(config.following_error[j] > 0.0)) return joint + "following_error > 0 is required";
         for (std::size_t r = 0; r < config.rows.size(); ++r) {
             const TrajectoryRow& row = config.rows[r];
-            const std::string where = joint + "row " + std::to_string(r + 1) + ": ";
+            const std::string where = table_location(config, r) + ": joint " + std::to_string(j + 1) + ": ";
             if (!std::isfinite(row.q[j]) || !std::isfinite(row.qd[j]) || !std::isfinite(row.tau[j])) return where + "not a finite number";
-            if (row.q[j] < config.position_min[j] || row.q[j] > config.position_max[j]) return where + "position outside the limits";
-            if (std::abs(row.qd[j]) > config.velocity_limit[j]) return where + "velocity above velocity_limit";
-            if (std::abs(row.tau[j]) > config.torque_limit[j]) return where + "torque above torque_limit";
+            if (row.q[j] < config.position_min[j] || row.q[j] > config.position_max[j]) {
+                return where + fmt::format("position {:.6g} rad outside the limits [{:.6g}, {:.6g}] rad (trajectory.joints[{}].position)", row.q[j],
+                                           config.position_min[j], config.position_max[j], j);
+            }
+            if (std::abs(row.qd[j]) > config.velocity_limit[j]) {
+                return where + fmt::format("velocity {:.6g} rad/s beyond the limit {:.6g} rad/s (trajectory.joints[{}].velocity)", row.qd[j], config.velocity_limit[j], j);
+            }
+            if (std::abs(row.tau[j]) > config.torque_limit[j]) {
+                return where + fmt::format("torque {:.6g} N.m beyond the limit {:.6g} N.m (trajectory.joints[{}].torque)", row.tau[j], config.torque_limit[j], j);
+            }
         }
     }
+    // Each row is within the limits; now every step between the rows the player will command.
+    return check_trajectory_motion(config, joints, sample_period);
+}
+
+std::string TrajectoryPlayer::configure(const PlaybackConfig& config, std::size_t joints, double sample_period) {
+    phase_ = PlaybackPhase::Idle;
+    reason_ = StopReason::None;
+    stop_joint_ = -1;
+    joints_ = 0;  // until accepted: start() does nothing
+    if (std::string why = check_playback(config, joints, sample_period); !why.empty()) return why;
     config_ = config;
     joints_ = joints;
     sample_period_ = sample_period;
+    next_pass_row_ = next_pass_row(config, joints);
     return "";
 }
 
@@ -132,11 +150,15 @@ void TrajectoryPlayer::step(const PlayerInput& in) noexcept {
     const std::size_t n = config_.rows.size();
     if (phase_ == PlaybackPhase::RampIn) {
         if (cycles_ == 1) {
-            // The quintic's peak velocity is 15/8 distance / ramp_time: refused before the first move.
+            // The quintic's peak velocity, 15/8 distance / ramp_time, and peak acceleration, 10/sqrt(3)
+            // distance / ramp_time^2: refused before the first move. (Its end, at rest on row 0, and the step
+            // on to row 1 are checked at configure: check_trajectory_motion.)
             for (std::size_t j = 0; j < joints_; ++j) {
                 ramp_start_[j] = in.q[j];
-                if (1.875 * std::abs(config_.rows.front().q[j] - in.q[j]) / config_.ramp_time > config_.velocity_limit[j]) {
-                    return stop(StopReason::VelocityLimit, static_cast<int>(j));
+                const double distance = std::abs(config_.rows.front().q[j] - in.q[j]);
+                if (kBlendPeakRate * distance / config_.ramp_time > config_.velocity_limit[j]) return stop(StopReason::VelocityLimit, static_cast<int>(j));
+                if (kBlendPeakAcceleration * distance / (config_.ramp_time * config_.ramp_time) > config_.acceleration_limit[j]) {
+                    return stop(StopReason::AccelerationLimit, static_cast<int>(j));
                 }
             }
         }
@@ -151,7 +173,6 @@ void TrajectoryPlayer::step(const PlayerInput& in) noexcept {
         if (cycles_ >= ramp_cycles_) phase_ = PlaybackPhase::Playing;  // this cycle commanded row 0 exactly
     } else {
         // The row after the last commanded one; a table that ends where it starts repeats without its first row.
-        const bool closed = same_position(config_.rows.front(), config_.rows.back(), joints_);
         const bool first_command = !has_command_;
         if (first_command && config_.mode == hal::CommandMode::Torque) {
             row_ = 0;
@@ -159,7 +180,7 @@ void TrajectoryPlayer::step(const PlayerInput& in) noexcept {
             ++row_;
         } else if (pass_ + 1 < config_.repeat) {
             ++pass_;
-            row_ = closed ? 1 : 0;
+            row_ = next_pass_row_;
         } else {
             phase_ = PlaybackPhase::Finished;
             return;

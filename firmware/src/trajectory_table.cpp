@@ -28,6 +28,18 @@ std::vector<std::string> split(const std::string& line) {
     return cells;
 }
 
+// The joint a per-joint column names ("qd3" -> 3; q, qd, qdd, tau), or 0 for any other column.
+std::size_t joint_of_column(const std::string& name) {
+    for (const char* prefix : {"qdd", "qd", "q", "tau"}) {
+        const std::string p = prefix;
+        if (name.size() <= p.size() || name.compare(0, p.size(), p) != 0) continue;
+        std::size_t joint = 0;
+        const auto [end, ec] = std::from_chars(name.data() + p.size(), name.data() + name.size(), joint);
+        return ec == std::errc() && end == name.data() + name.size() ? joint : 0;
+    }
+    return 0;
+}
+
 }  // namespace
 
 std::vector<TrajectoryRow> load_trajectory_table(const std::string& path, std::size_t joints, double rate, bool torques) {
@@ -39,6 +51,12 @@ std::vector<TrajectoryRow> load_trajectory_table(const std::string& path, std::s
     std::map<std::string, std::size_t> column;
     for (std::size_t c = 0; c < header.size(); ++c) {
         if (!column.emplace(header[c], c).second) throw ConfigError(fmt::format("{}:1:{}: column '{}' appears twice", path, c + 1, header[c]));
+        // A table for more joints than fw.yaml has would have those columns dropped silently.
+        if (joint_of_column(header[c]) > joints) {
+            throw ConfigError(fmt::format("{}:1:{}: column '{}' is for joint {}, but fw.yaml has {} joint{}: a table for another robot? (its values "
+                                          "would not be played)",
+                                          path, c + 1, header[c], joint_of_column(header[c]), joints, joints == 1 ? "" : "s"));
+        }
     }
     auto find = [&](const std::string& name, bool required) -> std::optional<std::size_t> {
         const auto it = column.find(name);
@@ -79,6 +97,7 @@ std::vector<TrajectoryRow> load_trajectory_table(const std::string& path, std::s
                                           path, number, t_column + 1, t, expected, rate));
         }
         TrajectoryRow r;
+        r.line = number;
         for (std::size_t j = 0; j < joints; ++j) {
             r.q[j] = value(q[j]);
             r.qd[j] = value(qd[j]);

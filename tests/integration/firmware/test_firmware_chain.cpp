@@ -192,8 +192,8 @@ TEST(Chain, PlaybackLoopSimulatedRobotFollowsAndIdentifies) {
     RecorderPublisher publisher(recorder);
     const firmware::FirmwareConfig config = test::chain_config(
         "trajectory:\n  file: " + write_excitation_table() + "\n  ramp_time: 1\n  repeat: 3\n  joints:\n"
-        "    - {position: [-3, 3], velocity: 5, torque: 120, following_error: 0.2, kp: 40, kd: 1}\n"
-        "    - {position: [-3, 3], velocity: 5, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}\n");
+        "    - {position: [-3, 3], velocity: 5, acceleration: 20, torque: 120, following_error: 0.2, kp: 40, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 5, acceleration: 20, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}\n");
     ChainBench bench(publisher, config);
     sim::CommandFollower follower(*bench.sim_end, test::profiles_of(config), {0.0, 0.0});
     sim::SimulationSettings settings;

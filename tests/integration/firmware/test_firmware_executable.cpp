@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iterator>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 
 #include "firmware_test_support.hpp"
 #include "run_command.hpp"
@@ -50,6 +54,94 @@ TEST(FirmwareExecutable, InvalidDurationAndParseErrorsExitTwoOnOneLine) {
     EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
     EXPECT_EQ(unknown.err.rfind("jacobid-fw: error: ", 0), 0u) << unknown.err;
     EXPECT_NE(unknown.err.find("--bogus"), std::string::npos) << unknown.err;
+}
+
+// Issue 36: a table with a 2 rad jump between two rows (each row within the limits), and one that does not
+// end where it starts played with repeat: 3, are refused before jacobid-fw opens the bus or any output:
+// exit 2, one line naming the table's line, the joint, the step and the limit, and neither stream.log nor
+// trajectory.log created.
+void expect_refused_before_anything_is_opened(const std::string& table, const std::string& settings, const std::string& message) {
+    std::remove(path("unsafe_stream.bin").c_str());
+    std::remove(path("unsafe_commands.csv").c_str());
+    std::string yaml = test::chain_config_yaml(
+        "trajectory:\n  file: " + table + "\n  log: unsafe_commands.csv\n" + settings + "  joints:\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 10, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n");
+    yaml.replace(yaml.find("port: 5005}"), 11, "port: 5005, log: unsafe_stream.bin}");
+    std::ofstream(path("unsafe.yaml")) << yaml;
+    const auto r = run_command("timeout 10 " + fw("--config " + path("unsafe.yaml") + " --no-realtime --duration 1"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("jacobid-fw: error: " + path(table) + message, 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::ifstream(path("unsafe_stream.bin")).good()) << "stream.log opened";
+    EXPECT_FALSE(std::ifstream(path("unsafe_commands.csv")).good()) << "trajectory.log opened";
+}
+
+TEST(FirmwareExecutable, UnsafeTrajectoryIsRefusedOnOneLineBeforeAnythingIsOpened) {
+    {
+        std::ofstream jump(path("jump.csv"));
+        jump << "t,q1,q2,qd1,qd2\n";
+        for (int k = 0; k < 2000; ++k) jump << k * 1e-3 << ',' << (k < 1000 ? 0.0 : 2.0) << ",0,0,0\n";
+        // 0 -> 0.4 rad in 1 s, at rest at both ends (q = 0.2 (1 - cos(pi t))): no jump, but no way back.
+        std::ofstream half(path("half.csv"));
+        half.precision(17);
+        half << "t,q1,q2,qd1,qd2\n";
+        for (int k = 0; k <= 1000; ++k) {
+            const double t = k * 1e-3, pi = 3.14159265358979323846;
+            half << t << ',' << 0.2 * (1.0 - std::cos(pi * t)) << ",0," << 0.2 * pi * std::sin(pi * t) << ",0\n";
+        }
+    }
+    expect_refused_before_anything_is_opened("jump.csv", "",
+                                             ":1002: joint 1: the position steps 2 rad from line 1001, 2000 rad/s at 1000 Hz, beyond the velocity "
+                                             "limit 3 rad/s (trajectory.joints[0].velocity, +1 %)\n");
+    expect_refused_before_anything_is_opened("half.csv", "  repeat: 3\n",
+                                             ":2: joint 1: the position steps -0.4 rad from line 1002, -400 rad/s at 1000 Hz, beyond the velocity "
+                                             "limit 3 rad/s (trajectory.joints[0].velocity, +1 %); this is the wrap from the table's last row "
+                                             "(line 1002) to its next pass (repeat: 3)");
+}
+
+// Issue 36: stream.log through a symlink to fw.yaml itself: refused (exit 2, one line) and fw.yaml intact.
+TEST(FirmwareExecutable, AStreamLogOntoItsOwnConfigIsRefusedAndTheConfigIsIntact) {
+    std::string yaml = test::chain_config_yaml();
+    yaml.replace(yaml.find("port: 5005}"), 11, "port: 5005, log: self-link.bin}");
+    std::ofstream(path("self.yaml")) << yaml;
+    std::remove(path("self-link.bin").c_str());
+    ASSERT_EQ(::symlink("self.yaml", path("self-link.bin").c_str()), 0);
+    const auto r = run_command("timeout 10 " + fw("--config " + path("self.yaml") + " --no-realtime --duration 0.2"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("stream.log: '" + path("self-link.bin") + "' is the same file as this configuration file"), std::string::npos) << r.err;
+    std::ifstream in(path("self.yaml"));
+    const std::string after((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(after, yaml) << "fw.yaml overwritten";
+}
+
+// Issue 36's audit: a playback on a real bus without a gpio: section has no e-stop input and no drive
+// enable; said before the bus is opened (here it cannot be: exit 1 naming the interface after the warning).
+TEST(FirmwareExecutable, PlaybackWithoutSafetyIoIsWarnedBeforeTheBusIsOpened) {
+    std::ofstream(path("quiet.csv")) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,0,0,0\n0.002,0,0,0,0\n";
+    std::string yaml = test::chain_config_yaml(
+        "trajectory:\n  file: quiet.csv\n  joints:\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 10, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n");
+    yaml.replace(0, std::string("can: {interface: virtual}").size(), "can: {interface: jacobidnocan0}");
+    std::ofstream(path("quiet.yaml")) << yaml;
+    const auto r = run_command(fw("--config " + path("quiet.yaml") + " --no-realtime --duration 0.2"));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err.rfind("jacobid-fw: warning: " + path("quiet.yaml") + ": trajectory playback without a gpio: section: no e-stop input", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("can.interface 'jacobidnocan0'"), std::string::npos) << r.err;
+}
+
+// A trajectory.log that cannot be opened: exit 1, one error line naming fw.yaml and the key, as for stream.log.
+TEST(FirmwareExecutable, ATrajectoryLogThatCannotBeOpenedIsAnErrorNamingTheConfig) {
+    std::ofstream(path("unopened.csv")) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,0,0,0\n";
+    std::ofstream(path("unopened.yaml")) << test::chain_config_yaml(
+        "trajectory:\n  file: unopened.csv\n  log: /proc/jacobid-no-such-dir/commands.csv\n  joints:\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 10, kd: 1}\n"
+        "    - {position: [-3, 3], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n");
+    const auto r = run_command(fw("--config " + path("unopened.yaml") + " --no-realtime --duration 0.2"));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("jacobid-fw: error: " + path("unopened.yaml") + ": trajectory.log /proc/jacobid-no-such-dir/commands.csv: "), std::string::npos) << r.err;
 }
 
 TEST(FirmwareExecutable, MissingCanInterfaceIsAClearDeviceError) {

@@ -48,8 +48,8 @@ std::string playback_yaml() {
            "  ramp_time: 0.5\n"
            "  repeat: 2\n"
            "  joints:\n"
-           "    - {position: [-2, 2], velocity: 3, torque: 100, following_error: 0.01, kp: 40, kd: 1}\n"
-           "    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01, kp: 10, kd: 0.5}\n";
+           "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 100, following_error: 0.01, kp: 40, kd: 1}\n"
+           "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 0.5}\n";
 }
 
 // Keeps every record the cycle hands out (reserved up front: the cycle's step() must not allocate).
@@ -76,9 +76,17 @@ struct PlaybackRig : test::BenchWiring {
     std::uint64_t step_allocations = 0;  // heap allocations inside the firmware's step()
 
     MemoryCommandLog log;
+    std::string configured;  // configure()'s answer ("" unless `edit` made the config unsafe)
+    std::uint64_t frames_at_drives = 0;  // every frame the drives' end of the bus received
 
-    PlaybackRig() {
-        EXPECT_EQ(cycle->configure(config), "");
+    // `edit` changes the parsed configuration before the cycle is configured (a table fw.yaml's parser
+    // would already refuse, to test the cycle's own gate).
+    explicit PlaybackRig(void (*edit)(firmware::FirmwareConfig&) = nullptr) {
+        if (edit != nullptr) edit(config);
+        configured = cycle->configure(config);
+        if (edit == nullptr) {
+            EXPECT_EQ(configured, "");
+        }
         cycle->set_command_log(&log);
         EXPECT_TRUE(cycle->reset_estop());
     }
@@ -88,6 +96,7 @@ struct PlaybackRig : test::BenchWiring {
         std::array<bool, 2> seen{};
         hal::CanFrame f;
         while (sim_end->receive(f) == hal::CanStatus::Ok) {
+            ++frames_at_drives;
             for (std::size_t j = 0; j < 2; ++j) {
                 hal::JointCommand c;
                 if (hal::decode_command(profiles[j], hal::CommandMode::Position, f, c) == hal::DecodeStatus::Ok) {
@@ -202,6 +211,46 @@ TEST(FirmwarePlayback, ADeadlineMissedBeforeThePlaybackStartsDoesNotStopIt) {
     EXPECT_EQ(rig.cycle->counters().stop_cycles, 0u);
 }
 
+// Issue 36's acceptance: a table with a step beyond the limits never reaches a drive. The cycle refuses it
+// in configure() (one line naming the table's line, the joint, the step and the limit), and a cycle that
+// was refused sends nothing, however long it is stepped with the drives answering.
+void expect_no_command_frame(void (*edit)(firmware::FirmwareConfig&), const std::string& message_start, const std::string& message_part) {
+    PlaybackRig rig(edit);
+    const std::string& table = rig.config.trajectory.file;
+    EXPECT_EQ(rig.configured.rfind(table + message_start, 0), 0u) << rig.configured;
+    EXPECT_NE(rig.configured.find(message_part), std::string::npos) << rig.configured;
+    EXPECT_EQ(rig.configured.find('\n'), std::string::npos) << "one line: " << rig.configured;
+    rig.run(1 + 500 + 3000);
+    EXPECT_EQ(rig.frames_at_drives, 0u) << "no frame at all reached the drives";
+    EXPECT_EQ(rig.cycle->counters().command_frames, 0u);
+    EXPECT_EQ(rig.cycle->player().phase(), firmware::PlaybackPhase::Idle);
+    EXPECT_TRUE(rig.log.records.empty());
+}
+
+TEST(FirmwarePlayback, AStepBeyondTheLimitsSendsNoCommandFrame) {
+    // A 2 rad jump of joint 1 between lines 1001 and 1002, every row within the (widened) position limits
+    // and the velocity column untouched (within its limit).
+    expect_no_command_frame(
+        [](firmware::FirmwareConfig& c) {
+            for (std::size_t j = 0; j < 2; ++j) {
+                c.trajectory.position_min[j] = -4.0;
+                c.trajectory.position_max[j] = 4.0;
+            }
+            for (std::size_t r = 1000; r < c.trajectory.rows.size(); ++r) c.trajectory.rows[r].q[0] += 2.0;
+        },
+        ":1002: joint 1: the position steps 2 rad from line 1001, 2000 rad/s at 1000 Hz, beyond the velocity limit 3 rad/s "
+        "(trajectory.joints[0].velocity, +1 %)",
+        "");
+}
+
+TEST(FirmwarePlayback, AWrapWithoutARampSendsNoCommandFrame) {
+    // Half of the 2 s period (0.2 -> 1.2 rad, at rest at both ends), repeat: 2: the next pass would start
+    // with a 1 rad step in one cycle.
+    expect_no_command_frame([](firmware::FirmwareConfig& c) { c.trajectory.rows.resize(1001); },
+                            ":2: joint 1: the position steps -1 rad from line 1002, -1000 rad/s at 1000 Hz, beyond the velocity limit 3 rad/s",
+                            "this is the wrap from the table's last row (line 1002) to its next pass (repeat: 2)");
+}
+
 TEST(FirmwarePlayback, CsvCommandLogWritesAHeaderAndOneLinePerRecord) {
     const std::string file = (test::scratch_directory() / "commands.csv").string();
     {
@@ -240,20 +289,20 @@ TEST(FirmwarePlayback, ConfigNamesTheMissingLimitAndTheBadTableLine) {
         }
         return std::string("no error");
     };
-    const std::string no_torque = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, following_error: 0.01}\n"
-                                  "    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n";
+    const std::string no_torque = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, following_error: 0.01, kp: 10, kd: 1}\n"
+                                  "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_NE(error_of(no_torque).find("trajectory.joints[0].torque: missing (required)"), std::string::npos) << error_of(no_torque);
-    const std::string one_joint = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n";
+    const std::string one_joint = "trajectory:\n  file: " + table + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_NE(error_of(one_joint).find("trajectory.joints: must be a list of 2"), std::string::npos) << error_of(one_joint);
     const std::string bad = (test::scratch_directory() / "bad_table.csv").string();
     std::ofstream(bad) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.001,0,x,0,0\n";
-    const std::string bad_table = "trajectory:\n  file: " + bad + "\n  joints:\n    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n"
-                                  "    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n";
+    const std::string bad_table = "trajectory:\n  file: " + bad + "\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n"
+                                  "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_EQ(error_of(bad_table), bad + ":3:3: column q2: 'x' is not a finite number");
     std::ofstream(bad) << "t,q1,q2,qd1,qd2\n0,0,0,0,0\n0.002,0,0,0,0\n";
     EXPECT_NE(error_of(bad_table).find(":3:1: t = 0.002 s, expected 0.001 s"), std::string::npos) << error_of(bad_table);
-    const std::string device = "trajectory:\n  file: /dev/zero\n  joints:\n    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n"
-                               "    - {position: [-2, 2], velocity: 3, torque: 8, following_error: 0.01}\n";
+    const std::string device = "trajectory:\n  file: /dev/zero\n  joints:\n    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n"
+                               "    - {position: [-2, 2], velocity: 3, acceleration: 10, torque: 8, following_error: 0.01, kp: 10, kd: 1}\n";
     EXPECT_EQ(error_of(device), "/dev/zero: cannot read the trajectory table: not a regular file (a device, FIFO or socket)");
     // A row beyond a limit is refused at start-up by the cycle, naming the table, the joint and the row.
     firmware::FirmwareConfig c = test::chain_config(playback_yaml());
@@ -261,7 +310,7 @@ TEST(FirmwarePlayback, ConfigNamesTheMissingLimitAndTheBadTableLine) {
     test::TestBus bus;
     test::MemoryPublisher publisher;
     firmware::FirmwareCycle cycle(*bus.attach(), publisher, nullptr);
-    EXPECT_EQ(cycle.configure(c), c.trajectory.file + ": trajectory: joint 2: row 11: position outside the limits");
+    EXPECT_EQ(cycle.configure(c), c.trajectory.file + ":12: joint 2: position 2.5 rad outside the limits [-2, 2] rad (trajectory.joints[1].position)");
 }
 
 }  // namespace

@@ -23,15 +23,16 @@ using jacobid::firmware::TrajectoryRow;
 constexpr double kTs = 1e-3;
 constexpr double kPi = 3.14159265358979323846;
 
-// Two joints, one period of a sine (closed: the last row is the first), 500 rows.
+// Two joints, one period of a cosine (closed: the last row is the first; at rest there, as the ramp-in
+// leaves the robot), 500 rows; peak velocity 3.8 rad/s, peak acceleration 47 rad/s^2.
 PlaybackConfig sine_config(int repeat = 1) {
     PlaybackConfig c;
     const int n = 500;
     for (int k = 0; k <= n; ++k) {
         TrajectoryRow r;
         const double w = 2.0 * kPi / (n * kTs);
-        r.q[0] = 0.3 * std::sin(w * k * kTs);
-        r.qd[0] = 0.3 * w * std::cos(w * k * kTs);
+        r.q[0] = 0.3 * (1.0 - std::cos(w * k * kTs));
+        r.qd[0] = 0.3 * w * std::sin(w * k * kTs);
         r.q[1] = 1.0 - 0.2 * std::cos(w * k * kTs);
         r.qd[1] = 0.2 * w * std::sin(w * k * kTs);
         r.tau[1] = 2.0;
@@ -41,6 +42,7 @@ PlaybackConfig sine_config(int repeat = 1) {
         c.position_min[j] = -2.0;
         c.position_max[j] = 2.0;
         c.velocity_limit[j] = 5.0;
+        c.acceleration_limit[j] = 60.0;
         c.torque_limit[j] = 10.0;
         c.following_error[j] = 0.05;
         c.kp[j] = 50.0;
@@ -93,12 +95,11 @@ TEST(TrajectoryPlayer, RampPeakVelocityIsTheQuinticsAndATooFastRampIsRefusedBefo
         peak = std::max(peak, std::abs(p.commands()[0].velocity));
     }
     EXPECT_NEAR(peak, 15.0 / 8.0 * 0.4 / 0.5, 1e-5);
-    // The same ramp with a velocity limit below that peak: stopped in the first cycle, naming joint 1.
-    c.velocity_limit[0] = 1.4;
-    for (auto& r : c.rows) r.qd[0] = std::clamp(r.qd[0], -1.4, 1.4);
+    // A ramp from further away, whose peak (1.875 x 1.5 rad / 0.5 s = 5.6 rad/s) is above the velocity
+    // limit 5 rad/s: stopped in the first cycle, naming joint 1.
     ASSERT_EQ(p.configure(c, 2, kTs), "");
     p.start();
-    p.step(fresh_input(p, true, -0.4, 0.8));
+    p.step(fresh_input(p, true, -1.5, 0.8));
     EXPECT_EQ(p.phase(), PlaybackPhase::Stopped);
     EXPECT_EQ(p.stop_reason(), StopReason::VelocityLimit);
     EXPECT_EQ(p.stop_joint(), 0);
@@ -177,13 +178,13 @@ TEST(TrajectoryPlayer, ConfigureNamesTheRowAndJointBeyondALimit) {
     TrajectoryPlayer p;
     PlaybackConfig c = sine_config();
     c.rows[42].tau[1] = 11.0;
-    EXPECT_EQ(p.configure(c, 2, kTs), "trajectory: joint 2: row 43: torque above torque_limit");
+    EXPECT_EQ(p.configure(c, 2, kTs), "trajectory table row 43: joint 2: torque 11 N.m beyond the limit 10 N.m (trajectory.joints[1].torque)");
     c = sine_config();
     c.following_error[0] = 0.0;
     EXPECT_EQ(p.configure(c, 2, kTs), "trajectory: joint 1: following_error > 0 is required");
     c = sine_config();
     c.rows[7].q[0] = std::nan("");
-    EXPECT_EQ(p.configure(c, 2, kTs), "trajectory: joint 1: row 8: not a finite number");
+    EXPECT_EQ(p.configure(c, 2, kTs), "trajectory table row 8: joint 1: not a finite number");
     EXPECT_NE(p.configure(sine_config(), 9, kTs), "");
 }
 

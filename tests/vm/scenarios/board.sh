@@ -50,8 +50,8 @@ trajectory:
   ramp_time: 1
   repeat: 3
   joints:
-    - {position: [-3, 3], velocity: 5, torque: 120, following_error: 0.2, kp: 40, kd: 1}
-    - {position: [-3, 3], velocity: 5, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}
+    - {position: [-3, 3], velocity: 5, acceleration: 20, torque: 120, following_error: 0.2, kp: 40, kd: 1}
+    - {position: [-3, 3], velocity: 5, acceleration: 20, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}
 EOF
 SIM_ARGS=--follow
 IDENTIFY=host

@@ -4,6 +4,7 @@
 // "Trajectory playback"): the table at the control rate and, per joint, the limits every cycle is
 // checked against. Read once at start-up; TrajectoryPlayer only reads it.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@ namespace jacobid::firmware {
 // One row per control cycle; joints beyond the robot's are unused.
 struct TrajectoryRow {
     std::array<double, kMaxJoints> q{}, qd{}, tau{};  // rad, rad/s, N.m (feed-forward; 0 if not given)
+    std::size_t line = 0;  // the row's line in the table file, for messages (0: not read from a file)
 };
 
 struct PlaybackConfig {
@@ -25,7 +27,8 @@ struct PlaybackConfig {
     hal::CommandMode mode = hal::CommandMode::Position;
     double ramp_time = 3.0;  // s
     int repeat = 1;          // passes over the table
-    std::array<double, kMaxJoints> position_min{}, position_max{}, velocity_limit{}, torque_limit{}, following_error{};
+    std::array<double, kMaxJoints> position_min{}, position_max{}, velocity_limit{}, acceleration_limit{}, torque_limit{},
+        following_error{};
     std::array<double, kMaxJoints> kp{}, kd{};  // MIT drives' own PD gains (device side), else ignored
     std::uint32_t max_stale_cycles = 0;
 };

@@ -13,7 +13,8 @@
 //   e-stop input, a missed cycle deadline, a drive fault, a joint not fresh for more than
 //   `max_stale_cycles`, the following error |measured - previous command| above `following_error`, the
 //   command's position outside [position_min, position_max], |velocity| above `velocity_limit`,
-//   |feed-forward torque| above `torque_limit`.
+//   |feed-forward torque| above `torque_limit`. The ramp's first cycle also checks the quintic's peak
+//   velocity and acceleration against the limits; every step of the table itself was checked at configure.
 // Model/Data split: configure() copies the table (start-up, may allocate); step() allocates nothing and
 // never throws.
 #include <array>
@@ -37,6 +38,7 @@ enum class StopReason : std::uint8_t {
     FollowingError,
     PositionLimit,
     VelocityLimit,
+    AccelerationLimit,  // the ramp-in from where the robot stands (checked in its first cycle)
     TorqueLimit,
 };
 const char* to_string(PlaybackPhase phase) noexcept;
@@ -50,10 +52,16 @@ struct PlayerInput {
     bool deadline_missed = false;
 };
 
+// The start-up check of a playback: every row within the limits, and every step the player will command
+// (along the table, from the ramp-in's end, at the wrap) within the velocity and acceleration limits at the
+// control rate (trajectory_motion.hpp). "" or a one-line reason naming the table's file:line and joint.
+// Shared by fw.yaml's parser (so jacobid-fw refuses before it opens anything) and configure() (the last
+// gate before any command, whoever built the PlaybackConfig).
+std::string check_playback(const PlaybackConfig& config, std::size_t joints, double sample_period);
+
 class TrajectoryPlayer {
 public:
-    // Checks the table and the limits (every row within them; the rows' step consistent with their
-    // velocities is the designer's job). Returns "" or a one-line reason.
+    // check_playback(), then copies the table. Returns "" or its one-line reason (and plays nothing).
     std::string configure(const PlaybackConfig& config, std::size_t joints, double sample_period);
     // Arms the player: the next step() starts the ramp from the measured pose.
     void start() noexcept;
@@ -88,6 +96,7 @@ private:
     std::uint64_t cycles_ = 0;      // active cycles since start
     std::uint64_t ramp_cycles_ = 0;
     std::size_t row_ = 0;
+    std::size_t next_pass_row_ = 0;  // where each pass after the first starts (next_pass_row)
     int pass_ = 0;
     bool has_command_ = false;  // a previous command exists (for the following error)
 };
