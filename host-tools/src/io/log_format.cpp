@@ -296,8 +296,15 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
                 throw InputError(fmt::format("{}:{}: {}: no column '{}': the header is one column '{}': {}", source, header_line, key,
                                              printable_cell(ref.name), printable_cell(header.front()), delimiter));
             }
-            throw InputError(fmt::format("{}:{}: {}: no column '{}' in the header{} (columns: {})", source, header_line, key, printable_cell(ref.name),
-                                         number_hint, describe_columns(header)));
+            // A header of numbers is the first data row of a log without one.
+            const bool all_numbers = std::all_of(header.begin(), header.end(), [](const std::string& c) {
+                double v = 0.0;
+                return parses_as_number(c, v);
+            });
+            throw InputError(fmt::format("{}:{}: {}: no column '{}' in the header{} (columns: {}){}", source, header_line, key, printable_cell(ref.name),
+                                         number_hint, describe_columns(header),
+                                         all_numbers ? fmt::format("; that line is all numbers: has the log no header? (header: false in {})", format.source)
+                                                     : std::string()));
         }
         return found;
     };
@@ -393,7 +400,12 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             double v = 0.0;
             const auto r = fast_float::from_chars(cell.data(), cell.data() + cell.size(), v);
             if (r.ec != std::errc() || r.ptr != cell.data() + cell.size() || cell.empty()) {
-                bad_row(fmt::format("column {} ({}): expected a number, got '{}'", uses[k].column + 1, uses[k].key, printable_cell(cell)));
+                // Text in the first data row of a log read without a header is most likely its header.
+                const std::string decimal_comma = decimal_comma_hint(cell);
+                const bool header_row = !format.header && raw.lines.empty() && skipped.empty() && decimal_comma.empty();
+                bad_row(fmt::format("column {} ({}): expected a number, got '{}'{}{}", uses[k].column + 1, uses[k].key, printable_cell(cell),
+                                    decimal_comma,
+                                    header_row ? fmt::format(" (is line {} a header? header: true or skip_rows in {})", line, format.source) : std::string()));
                 ok = false;
             } else if (!std::isfinite(v)) {
                 bad_row(fmt::format("column {} ({}): value '{}' is not finite (NaN or Inf)", uses[k].column + 1, uses[k].key, printable_cell(cell)));

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/log_text_checks.hpp"
 
+#include <fast_float/fast_float.h>
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -53,16 +54,41 @@ std::size_t most_common_cell_count(std::string_view text, char delimiter) {
 }
 
 void require_readable_log_text(std::string_view first_line, const std::string& source) {
-    const bool utf16_bom = first_line.substr(0, 2) == "\xFF\xFE" || first_line.substr(0, 2) == "\xFE\xFF";
-    if (utf16_bom || first_line.find('\0') != std::string_view::npos) {
+    const auto starts = [&](std::string_view magic) { return first_line.substr(0, magic.size()) == magic; };
+    if (starts("\x1F\x8B") || starts("PK\x03\x04") || starts("\xFD" "7zXZ") || starts("BZh")) {
+        throw InputError(fmt::format("{}:1: the file is compressed (gzip, zip, xz or bzip2): unpack it and give the CSV", source));
+    }
+    // UTF-16: a byte order mark, or NUL in every other byte of ASCII text; any other NUL: not a text file.
+    std::size_t nul_even = 0, nul_odd = 0;
+    const std::size_t probe = std::min<std::size_t>(first_line.size(), 256);
+    for (std::size_t i = 0; i < probe; ++i) {
+        if (first_line[i] == '\0') ++(i % 2 ? nul_odd : nul_even);
+    }
+    const bool utf16 = starts("\xFF\xFE") || starts("\xFE\xFF") || (probe >= 4 && std::max(nul_even, nul_odd) * 2 + 1 >= probe);
+    if (utf16) {
         throw InputError(fmt::format("{}:1: the file is encoded as UTF-16 (NUL bytes between the characters): save it as UTF-8 or ASCII text", source));
     }
+    // Control characters other than tab and CR: not text (random or binary data has them in its first line).
+    const bool control = std::any_of(first_line.begin(), first_line.end(), [](char c) {
+        const auto u = static_cast<unsigned char>(c);
+        return u < 0x20 && c != '\t' && c != '\r';
+    });
+    if (control) throw InputError(fmt::format("{}:1: the file holds control characters (NUL, ...): a binary file, not a text log", source));
     const std::size_t cr = first_line.find('\r');
     if (cr != std::string_view::npos && cr + 1 < first_line.size()) {
         throw InputError(fmt::format("{}:1: the line ends are bare carriage returns (CR, old Mac style), so the whole file reads as one line: "
                                      "save it with LF or CRLF line ends",
                                      source));
     }
+}
+
+std::string decimal_comma_hint(std::string_view cell) {
+    if (cell.find(',') == std::string_view::npos || cell.find('.') != std::string_view::npos) return {};
+    std::string dotted(cell);
+    std::replace(dotted.begin(), dotted.end(), ',', '.');
+    double value = 0.0;
+    const auto r = fast_float::from_chars(dotted.data(), dotted.data() + dotted.size(), value);
+    return r.ec == std::errc() && r.ptr == dotted.data() + dotted.size() ? " (a decimal comma? numbers are read with a '.')" : std::string();
 }
 
 }  // namespace jacobid::io

@@ -22,9 +22,13 @@ std::string_view without_utf8_bom(std::string_view text);
 // counts, the one seen first); 0 for a text without a line.
 std::size_t most_common_cell_count(std::string_view text, char delimiter);
 
-// InputError("source: ...") for a text a log reader would misread: UTF-16 (a byte order mark FF FE / FE FF,
-// or NUL bytes in its first line) and bare-CR line ends (a '\r' not followed by '\n' inside the first line).
-// `first_line` is the text's first line (up to its '\n').
+// InputError("source:1: ...") for a text a log reader would misread: compressed (gzip, zip, xz, bzip2),
+// UTF-16 (a byte order mark FF FE / FE FF, or NUL in every other byte), other NUL bytes (binary), and bare-CR
+// line ends (a '\r' not followed by '\n' inside the first line). `first_line`: the text up to its first '\n'.
 void require_readable_log_text(std::string_view first_line, const std::string& source);
+
+// " (a decimal comma? ...)" for a cell that is a number once its ',' is a '.' ("0,5"), else "": the locale of
+// a spreadsheet export, which "expected a number, got '0,5'" left to guess.
+std::string decimal_comma_hint(std::string_view cell);
 
 }  // namespace jacobid::io

@@ -141,6 +141,14 @@ TEST(CliBadLogsRoundThree, HeaderInAnotherDelimiterAndBareCarriageReturnsAreName
     for (char& c : cr) c = c == '\n' ? '\r' : c;
     const std::string old_mac = write("cr.csv", cr);
     expect_refused(jacobid("identify --robot " + planar_robot() + " --in " + old_mac), {old_mac + ":1: the line ends are bare carriage returns"});
+    // A gzip-compressed log and a header of other names were "internal error: ... told to keep none of its 1
+    // columns", exit 3.
+    const auto gz = run_command("gzip -c " + planar_log() + " > " + (dir() / "planar.csv.gz").string());
+    ASSERT_EQ(gz.exit_code, 0) << gz.err;
+    expect_refused(jacobid("identify --robot " + planar_robot() + " --in " + (dir() / "planar.csv.gz").string()),
+                   {"planar.csv.gz:1: the file is compressed (gzip, zip, xz or bzip2): unpack it and give the CSV"});
+    const std::string foreign = write("foreign.csv", "a,b,c\n1,2,3\n2,3,4\n");
+    expect_refused(jacobid("identify --robot " + planar_robot() + " --in " + foreign), {foreign + ":1: none of the header's columns (a,b,c) is one this command reads"});
 }
 
 }  // namespace

@@ -254,6 +254,28 @@ TEST(RoundThreeLogs, BareCarriageReturnsUtf16AndByteOrderMarks) {
     const std::string utf16("\xFF\xFEt\0,\0q\0\n\0", 10);
     EXPECT_EQ(error_of([&] { parse_csv(utf16, "u16.csv"); }),
               "u16.csv:1: the file is encoded as UTF-16 (NUL bytes between the characters): save it as UTF-8 or ASCII text");
+    // Compressed and binary files are named as such, not as odd columns or UTF-16.
+    EXPECT_EQ(error_of([] { parse_csv(std::string("\x1F\x8B\x08\x00junk", 8), "p.csv.gz"); }),
+              "p.csv.gz:1: the file is compressed (gzip, zip, xz or bzip2): unpack it and give the CSV");
+    EXPECT_EQ(error_of([] { parse_csv(std::string("t,q\0\x01\x02\x03" "abcdefgh\n", 16), "bin.csv"); }),
+              "bin.csv:1: the file holds control characters (NUL, ...): a binary file, not a text log");
+    EXPECT_EQ(error_of([] { parse_csv(std::string("t,q\x01\x7f\rab\n", 9), "bin.csv"); }),
+              "bin.csv:1: the file holds control characters (NUL, ...): a binary file, not a text log");  // not "bare CR"
+    // A header where there is none, and none where there is one.
+    const LogFormat named = fmt_of("time: {column: t}\npositions: [q1, q2]\ntorques: [tau1, tau2]\n");
+    EXPECT_EQ(error_of([&] { parse_formatted_log(rows(3, 0.001), "nh.csv", named, LogColumnNames::numbered(2), {}, report); }),
+              "nh.csv:1: time.column: no column 't' in the header (columns: 0,0,-0,1,2); that line is all numbers: has the log no header? (header: "
+              "false in f.yaml)");
+    EXPECT_EQ(error_of([&] { parse_formatted_log("t,q1,q2,tau1,tau2\n" + rows(3, 0.001), "h.csv", kTwoJoints, LogColumnNames::numbered(2), {}, report); }),
+              "h.csv:1: column 1 (time): expected a number, got 't' (is line 1 a header? header: true or skip_rows in two.yaml) (--skip-bad-rows "
+              "skips such rows and reports them)");
+    EXPECT_EQ(error_of([] { parse_csv(std::string("t\0,\0q\0\n\0", 9), "u16le.csv"); }),
+              "u16le.csv:1: the file is encoded as UTF-16 (NUL bytes between the characters): save it as UTF-8 or ASCII text");
+    // A decimal comma (a ';' export of a comma locale) is named as one.
+    const LogFormat semicolons = parse_log_format("header: false\ndelimiter: ';'\ntime: {column: 1}\npositions: [2]\ntorques: [3]\n", "sc.yaml");
+    EXPECT_EQ(error_of([&] { parse_formatted_log("0;0,5;1\n", "dc.csv", semicolons, LogColumnNames::numbered(1), {}, report); }),
+              "dc.csv:1: column 2 (positions[0]): expected a number, got '0,5' (a decimal comma? numbers are read with a '.') (--skip-bad-rows skips "
+              "such rows and reports them)");
     // A UTF-8 byte order mark before the first data row of a raw log is not part of its time cell.
     const CsvTable t = parse_formatted_log("\xEF\xBB\xBF" + rows(5, 0.01), "bom.csv", kTwoJoints, LogColumnNames::numbered(2), {}, report);
     EXPECT_EQ(t.rows(), 5u);
