@@ -29,7 +29,7 @@ bool parses_as_number(const std::string& s, double& value) {
 }
 
 // One column reference: a 1-based index, a header name, or (where allowed) null. The rule (docs/log-format.md,
-// "Columns"): a plain YAML number is a column number, a quoted scalar is always a name, so `'3'` is the
+// "Keys"): a plain YAML number is a column number, a quoted scalar is always a name, so `'3'` is the
 // column named 3 (it was read as the third column: joints swapped without a word).
 ColumnRef column_ref(const Section& s, const YAML::Node& n, const std::string& key, bool nullable, bool header) {
     if (!n.IsDefined() || n.IsNull()) {
@@ -112,7 +112,8 @@ void keep_increasing_times(RawLog& raw, const std::string& source, std::size_t t
             previous = i;
             continue;
         }
-        // Not kept: at or before the previous kept row's time, or else at or after the next kept row's.
+        // Not kept: at or before the previous kept row's time, or else at or after the next kept row's (a
+        // longest run leaves no row that fits between its neighbours, so that next kept row exists).
         if (previous < t.size() && !(t[i] > t[previous])) {
             skipped.push_back({raw.lines[i], fmt::format("{}:{}: column {} (time): time {:.10g} s is not after {:.10g} s of line {} (time must increase)",
                                                          source, raw.lines[i], time_column, t[i], t[previous], raw.lines[previous])});
@@ -376,12 +377,14 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         if (width == 0) {
             // Strictly, the first data row sets the width. With --skip-bad-rows the most common one does: a
             // misaligned first record made every good row "bad" after it.
-            const std::size_t most = most_common_cell_count(std::string_view(text).substr(static_cast<std::size_t>(row.data() - text.data())),
-                                                            format.delimiter);
-            width = settings.skip_bad_rows ? most : cells.size();
+            const auto most_common_width = [&] {
+                return most_common_cell_count(std::string_view(text).substr(static_cast<std::size_t>(row.data() - text.data())), format.delimiter);
+            };
+            width = settings.skip_bad_rows ? most_common_width() : cells.size();
             for (const Use& u : uses) {
                 if (u.column >= width) {
                     const std::string delimiter = delimiter_hint(width, cells.front(), format.delimiter, format.source);
+                    const std::size_t most = most_common_width();
                     const std::string misaligned =
                         most != width ? fmt::format(" (most rows have {}: is this one misaligned? --skip-bad-rows skips it)", most) : std::string();
                     throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the {} has {} columns{}{}", source, line, u.key, u.column + 1,
