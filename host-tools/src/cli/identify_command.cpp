@@ -450,6 +450,10 @@ void run(IdentifyOptions o) {
     for (const auto& j : robot.joints) ctx.joint_names.push_back(j.name);
     ctx.truth = truth;
     if (periodic) ctx.warnings.insert(ctx.warnings.end(), periodic->warnings.begin(), periodic->warnings.end());
+    for (const std::string& in : o.validate.empty() ? std::vector<std::string>{} : o.inputs) {  // a validation that validates nothing
+        const std::string why = io::same_log(in, o.validate);
+        if (!why.empty()) ctx.warnings.push_back(fmt::format("--validate {} is the --in log ({}): its validation figures are in-sample", o.validate, why));
+    }
 
     std::vector<identify::MethodResult> results;
     for (const identify::Method m : methods_of(o.method)) {

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
@@ -31,25 +30,21 @@ bool same_bytes(const std::string& a, const std::string& b) {
 
 }  // namespace
 
+std::string same_log(const std::string& a, const std::string& b) {
+    if (same_file(a, b)) return a == b ? "the same path" : fmt::format("{} and {} are one file (a link or another path to it)", a, b);
+    std::error_code error_a, error_b;
+    const auto size_a = std::filesystem::file_size(a, error_a), size_b = std::filesystem::file_size(b, error_b);
+    if (!error_a && !error_b && size_a == size_b && same_bytes(a, b)) return fmt::format("{} is a byte-identical copy of {}", b, a);
+    return {};
+}
+
 void require_distinct_inputs(const std::string& option, const std::vector<std::string>& paths) {
-    std::vector<std::uintmax_t> sizes(paths.size(), static_cast<std::uintmax_t>(-1));
-    for (std::size_t k = 0; k < paths.size(); ++k) {
-        std::error_code error;
-        const auto size = std::filesystem::file_size(paths[k], error);
-        if (!error) sizes[k] = size;
-    }
     for (std::size_t k = 0; k < paths.size(); ++k) {
         for (std::size_t l = k + 1; l < paths.size(); ++l) {
-            std::string why;
-            if (same_file(paths[k], paths[l])) {
-                if (paths[k] != paths[l]) why = fmt::format(", as {} and {} are one file (a link or another path to it)", paths[k], paths[l]);
-            } else if (sizes[k] == sizes[l] && sizes[k] != static_cast<std::uintmax_t>(-1) && same_bytes(paths[k], paths[l])) {
-                why = fmt::format(", as {} is a byte-identical copy of {}", paths[l], paths[k]);
-            } else {
-                continue;
-            }
+            const std::string why = same_log(paths[k], paths[l]);
+            if (why.empty()) continue;
             throw InputError(fmt::format("{} {}: given twice ({} number {} and {}){}; give each log once (its equations would count twice)", option,
-                                         paths[l], option, k + 1, l + 1, why));
+                                         paths[l], option, k + 1, l + 1, why == "the same path" ? std::string() : ", as " + why));
         }
     }
 }

@@ -9,8 +9,13 @@
 
 namespace jacobid::io {
 
-// InputError "--in b.csv: given twice (--in number 1 and 2) ..." naming both paths, for the first such pair.
-// Files that cannot be read are left to the reader, which names them.
+// Why `b` is the log `a` ("a.csv and b.csv are one file (a link or another path to it)", "b.csv is a
+// byte-identical copy of a.csv", "the same path"), or "" when they are different logs. Files that cannot be
+// read are different here: the reader names them.
+std::string same_log(const std::string& a, const std::string& b);
+
+// InputError "--in b.csv: given twice (--in number 1 and 2), as b.csv is a byte-identical copy of a.csv; ..."
+// for the first such pair.
 void require_distinct_inputs(const std::string& option, const std::vector<std::string>& paths);
 
 }  // namespace jacobid::io

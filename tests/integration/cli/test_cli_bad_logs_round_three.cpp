@@ -89,6 +89,13 @@ TEST(CliBadLogsRoundThree, OneLogGivenTwiceIsRefusedNamingBothPaths) {
     expect_refused(jacobid("identify --robot " + robot + " --in " + hard.string() + " --in " + a), {"are one file"});
     // diagnose takes several logs through the same check.
     expect_refused(jacobid("diagnose --robot " + robot + " --in " + a + " --in " + copy), {"is a byte-identical copy of " + a});
+    // --validate on the --in log (or its copy) validates nothing: a warning naming both.
+    const auto in_sample = jacobid("identify --robot " + robot + " --in " + a + " --validate " + copy);
+    EXPECT_EQ(in_sample.exit_code, 0) << in_sample.err;
+    EXPECT_NE(in_sample.err.find("jacobid identify: warning: --validate " + copy + " is the --in log (" + copy + " is a byte-identical copy of " + a +
+                                 "): its validation figures are in-sample"),
+              std::string::npos)
+        << in_sample.err;
     // Two different logs stay accepted (the check does not refuse by size alone).
     const std::string other = edited_log("other.csv", [](std::vector<std::string>& c) { c[3] = c[3] + "1"; });
     const auto ok = jacobid("identify --quiet --robot " + robot + " --in " + a + " --in " + other);
