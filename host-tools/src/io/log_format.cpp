@@ -428,12 +428,12 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             }
         }
         if (!ok) continue;
-        // A zero-filled record (every position and effort exactly 0, whatever its time) is what a logger
+        // A zero-filled record (every value read exactly 0, whatever its time) is what a logger
         // writes for a sample it lost; a real robot never measures every joint at exactly 0 rad and 0 N.m (a
         // synthetic log might, at rest at the origin), so only --skip-bad-rows judges it (strictly, its time
         // breaks the order or leaves a gap, named by line).
         if (settings.skip_bad_rows && std::all_of(values.begin() + 1, values.end(), [](double v) { return v == 0.0; })) {
-            bad_row("every position and effort is 0 (a zero-filled record, not a sample)");
+            bad_row("every value but the time is 0 (a zero-filled record, not a sample)");
             continue;
         }
         // With --skip-bad-rows the time order is judged over the whole log once it is read (keep_increasing_times).

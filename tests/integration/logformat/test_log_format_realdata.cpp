@@ -186,7 +186,7 @@ TEST(RealData, CorruptBlockAtTheStartOfAUr10eLogIsSkippedAndItsLinesListed) {
     EXPECT_NE(lenient.err.find(bad.string() + ":1: expected 31 columns, found 16 (skipped)"), std::string::npos) << lenient.err;
     EXPECT_NE(lenient.err.find(bad.string() + ":2: column 1 (time): value 1e+154 is beyond +-1e30"), std::string::npos) << lenient.err;
     EXPECT_NE(lenient.err.find(bad.string() + ":4: column 2 (positions[0]): "), std::string::npos) << lenient.err;
-    EXPECT_NE(lenient.err.find(bad.string() + ":9: every position and effort is 0 (a zero-filled record, not a sample) (skipped)"), std::string::npos)
+    EXPECT_NE(lenient.err.find(bad.string() + ":9: every value but the time is 0 (a zero-filled record, not a sample) (skipped)"), std::string::npos)
         << lenient.err;
     EXPECT_NE(lenient.err.find(bad.string() + ": 2506 rows read, 9 bad rows skipped (lines 1-9; first: "), std::string::npos) << lenient.err;
     EXPECT_NE(lenient.err.find("median step 10 ms"), std::string::npos) << lenient.err;

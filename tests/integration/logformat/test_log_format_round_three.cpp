@@ -198,8 +198,8 @@ TEST(RoundThreeLogs, SkipBadRowsSkipsACorruptBlockAndListsItsLines) {
               "c.csv:2: column 1 (time): value 1e+154 is beyond +-1e30, which no measurement is (an outlier? its square would overflow the identification)");
     EXPECT_EQ(report.skipped[3],
               "c.csv:4: column 1 (time): time 5e+29 s is not before 388 s of line 10, where the increasing times go on (time must increase)");
-    EXPECT_EQ(report.skipped[5], "c.csv:6: every position and effort is 0 (a zero-filled record, not a sample)");
-    EXPECT_EQ(report.skipped[8], "c.csv:9: every position and effort is 0 (a zero-filled record, not a sample)");
+    EXPECT_EQ(report.skipped[5], "c.csv:6: every value but the time is 0 (a zero-filled record, not a sample)");
+    EXPECT_EQ(report.skipped[8], "c.csv:9: every value but the time is 0 (a zero-filled record, not a sample)");
     EXPECT_NE(report.summary().find("50 rows read, 9 bad rows skipped (lines 1-9; first: c.csv:1: expected 5 columns, found 3)"), std::string::npos)
         << report.summary();
     // Without --skip-bad-rows the first line is named: the first data row sets the width.
@@ -220,7 +220,7 @@ TEST(RoundThreeLogs, ZeroRowsAreOnlySkippedWithSkipBadRows) {
     LogReadReport lenient;
     parse_formatted_log(text, "z.csv", kTwoJoints, LogColumnNames::numbered(2), settings, lenient);
     EXPECT_EQ(lenient.rows, 10u);
-    EXPECT_EQ(lenient.skipped, (std::vector<std::string>{"z.csv:1: every position and effort is 0 (a zero-filled record, not a sample)"}));
+    EXPECT_EQ(lenient.skipped, (std::vector<std::string>{"z.csv:1: every value but the time is 0 (a zero-filled record, not a sample)"}));
 }
 
 TEST(RoundThreeLogs, OneColumnHeaderNamesTheDelimiter) {
