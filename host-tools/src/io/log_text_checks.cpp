@@ -64,7 +64,7 @@ void require_readable_log_text(std::string_view first_line, const std::string& s
     for (std::size_t i = 0; i < probe; ++i) {
         if (first_line[i] == '\0') ++(i % 2 ? nul_odd : nul_even);
     }
-    const bool utf16 = starts("\xFF\xFE") || starts("\xFE\xFF") || (probe >= 4 && std::max(nul_even, nul_odd) * 2 + 1 >= probe);
+    const bool utf16 = starts("\xFF\xFE") || starts("\xFE\xFF") || (probe >= 4 && std::min(nul_even, nul_odd) == 0 && std::max(nul_even, nul_odd) * 2 + 1 >= probe);
     if (utf16) {
         throw InputError(fmt::format("{}:1: the file is encoded as UTF-16 (NUL bytes between the characters): save it as UTF-8 or ASCII text", source));
     }

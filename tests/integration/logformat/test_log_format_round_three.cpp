@@ -269,6 +269,8 @@ TEST(RoundThreeLogs, BareCarriageReturnsUtf16AndByteOrderMarks) {
     EXPECT_EQ(error_of([&] { parse_formatted_log("t,q1,q2,tau1,tau2\n" + rows(3, 0.001), "h.csv", kTwoJoints, LogColumnNames::numbered(2), {}, report); }),
               "h.csv:1: column 1 (time): expected a number, got 't' (is line 1 a header? header: true or skip_rows in two.yaml) (--skip-bad-rows "
               "skips such rows and reports them)");
+    EXPECT_EQ(error_of([] { parse_csv(std::string(64, '\0'), "zeros.bin"); }),
+              "zeros.bin:1: the file holds control characters (NUL, ...): a binary file, not a text log");  // NUL everywhere: not UTF-16
     EXPECT_EQ(error_of([] { parse_csv(std::string("t\0,\0q\0\n\0", 9), "u16le.csv"); }),
               "u16le.csv:1: the file is encoded as UTF-16 (NUL bytes between the characters): save it as UTF-8 or ASCII text");
     // A decimal comma (a ';' export of a comma locale) is named as one.
