@@ -21,6 +21,7 @@
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_report.hpp"
 #include "io/csv_table.hpp"
+#include "io/distinct_inputs.hpp"
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"
 
@@ -48,6 +49,7 @@ void run(DiagnoseOptions o) {
     check_output_directory({"--report", o.report});  // written after the work: checked before it
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
+    io::require_distinct_inputs("--in", o.inputs);  // one log twice (a link, a copy) would count its equations twice
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     // Several logs (--in a --in b) are diagnosed together, on one sample period (the first log's).

@@ -43,6 +43,7 @@
 #include "identify/validation.hpp"
 #include "io/candump_joints.hpp"
 #include "io/csv_table.hpp"
+#include "io/distinct_inputs.hpp"
 #include "io/time_axis.hpp"
 #include "robot/base_parameter_report.hpp"
 #include "robot/robot_description.hpp"
@@ -252,15 +253,7 @@ bool streamable(const IdentifyOptions& o) {
 }
 
 InputLogs read_inputs(const robot::RobotDescription& robot, const IdentifyOptions& o) {
-    // One log given twice would count its equations twice: a std too small by sqrt(2), data invented.
-    for (std::size_t k = 0; k < o.inputs.size(); ++k) {
-        for (std::size_t l = k + 1; l < o.inputs.size(); ++l) {
-            if (same_file(o.inputs[k], o.inputs[l])) {
-                throw InputError(fmt::format("--in {}: given twice (--in number {} and {}); give each log once (its equations would count twice)",
-                                             o.inputs[l], k + 1, l + 1));
-            }
-        }
-    }
+    io::require_distinct_inputs("--in", o.inputs);  // one log twice (a link, a copy) would count its equations twice
     InputLogs in;
     in.read.resize(o.inputs.size());
     if (streamable(o)) {
@@ -457,6 +450,10 @@ void run(IdentifyOptions o) {
     for (const auto& j : robot.joints) ctx.joint_names.push_back(j.name);
     ctx.truth = truth;
     if (periodic) ctx.warnings.insert(ctx.warnings.end(), periodic->warnings.begin(), periodic->warnings.end());
+    for (const std::string& in : o.validate.empty() ? std::vector<std::string>{} : o.inputs) {  // a validation that validates nothing
+        const std::string why = io::same_log(in, o.validate);
+        if (!why.empty()) ctx.warnings.push_back(fmt::format("--validate {} is the --in log ({}): its validation figures are in-sample", o.validate, why));
+    }
 
     std::vector<identify::MethodResult> results;
     for (const identify::Method m : methods_of(o.method)) {

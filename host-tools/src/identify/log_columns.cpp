@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <array>
 
 #include "core/errors.hpp"
@@ -20,6 +21,24 @@ std::optional<io::PositionBounds> position_bounds(const robot::RobotDescription&
 std::array<std::string, 2> reference_column_names(std::size_t j) {
     return {"q_ref" + std::to_string(j + 1), "qd_ref" + std::to_string(j + 1)};
 }
+
+namespace {
+
+// Every torque exactly 0 in every row (a log whose efforts were all null, written as 0) leaves nothing to
+// identify from: the fit gave every parameter exactly 0 with std 0, without a word. One passive joint (the
+// pendubot's second) is fine; every joint without effort is not.
+void require_some_effort(const io::CsvTable& table, const LogColumns& log) {
+    if (table.rows() < 2) return;  // too short for anything: said elsewhere
+    const auto all_zero = [](const std::vector<double>* c) { return std::all_of(c->begin(), c->end(), [](double v) { return v == 0.0; }); };
+    if (!std::all_of(log.tau.begin(), log.tau.end(), all_zero)) return;
+    std::string columns;
+    for (const std::string& name : log.tau_names) columns += (columns.empty() ? "'" : ", '") + io::printable_cell(name) + "'";
+    throw InputError(fmt::format("{}: every torque column ({}) is 0 in every one of its {} rows: no joint's effort was logged, so there is nothing "
+                                 "to identify from (were the efforts null or not recorded?)",
+                                 table.source(), columns, table.rows()));
+}
+
+}  // namespace
 
 LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column,
                        double time_tolerance, double grid_period) {
@@ -52,6 +71,7 @@ LogColumns log_columns(const io::CsvTable& table, const robot::RobotDescription&
         log.tau.push_back(&table.column(j.torque_column));
         log.tau_names.push_back(j.torque_column);
     }
+    require_some_effort(table, log);
     for (std::size_t j = 1; j <= robot.joints.size(); ++j) {
         const std::string name = "qd" + std::to_string(j);  // as io::LogColumnNames and simulate --states name them
         log.qd.push_back(table.has_column(name) ? &table.column(name) : nullptr);

@@ -102,7 +102,15 @@ CsvPieceReader::CsvPieceReader(const std::string& path, const CsvChunking& chunk
     }
     const std::size_t header_end = std::min(newline, buffer_.size());
     columns_ = CsvTable(path, parse_csv_header(std::string_view(buffer_).substr(0, header_end), path));
-    if (keep) columns_.keep_only(keep);
+    if (keep) {
+        // A header with none of the wanted names (a binary or foreign file read as one odd column) was a
+        // logic_error inside keep_only: "internal error ... told to keep none of its 1 columns", exit 3.
+        const std::vector<std::string>& names = columns_.header();
+        if (std::none_of(names.begin(), names.end(), keep)) {
+            throw InputError(fmt::format("{}:1: none of the header's columns ({}) is one this command reads", path, describe_columns(names)));
+        }
+        columns_.keep_only(keep);
+    }
     const std::size_t data_start = std::min(header_end + 1, buffer_.size());
     data_bytes_ = size_ - std::min<std::uint64_t>(size_, data_start);
     if (from != nullptr) {

@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "core/parallel_for.hpp"
 #include "io/csv_rows.hpp"
+#include "io/log_text_checks.hpp"
 #include "io/printable_text.hpp"
 #include "jacobid/yaml/input_file.hpp"
 
@@ -200,10 +201,11 @@ void parse_csv_rows(const std::string& text, std::size_t begin, std::size_t end,
 // The header row's names (InputError for an empty file or a bad name).
 std::vector<std::string> parse_csv_header(std::string_view row, const std::string& source) {
     if (trim_cell(row).empty()) throw InputError(fmt::format("{}:1: empty file, expected a header row", source));
+    require_readable_log_text(row, source);
     // A UTF-8 byte order mark (spreadsheet exports) is an encoding marker, not part of the first name: kept,
     // it made the first column 'BOM+t', and "no column 't'" listed a 't' that looked the same.
     constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
-    if (row.substr(0, kUtf8Bom.size()) == kUtf8Bom) row.remove_prefix(kUtf8Bom.size());
+    row = without_utf8_bom(row);
     std::vector<std::string> header;
     for (std::size_t start = 0;;) {
         const std::size_t comma = row.find(',', start);
@@ -223,6 +225,10 @@ std::vector<std::string> parse_csv_header(std::string_view row, const std::strin
         if (comma == std::string_view::npos) break;
         start = comma + 1;
     }
+    // A log has a time and at least one joint: a header of one name holding ';' is the wrong delimiter,
+    // which was reported later as "no column 'q1' (columns: t;q1;tau1)", as if those were the columns.
+    const std::string hint = delimiter_hint(header.size(), header.front(), ',', "");
+    if (!hint.empty()) throw InputError(fmt::format("{}:1: the header '{}' is one column: {}", source, printable_cell(header.front()), hint));
     return header;
 }
 

@@ -103,7 +103,8 @@ using CsvColumnFilter = std::function<bool(const std::string& name)>;
 
 // Reads `path`. Accepts ',' separators, optional spaces around cells, '\n' or '\r\n' line ends, a final
 // line with or without '\n'; rejects empty files, empty or duplicate header names, rows with too few or
-// too many cells, non-numeric cells and NaN/Inf.
+// too many cells, non-numeric cells and NaN/Inf; a header with none of the names `keep` keeps ("none of the
+// header's columns ... is one this command reads": another robot's log, a compressed file).
 CsvTable read_csv(const std::string& path, const CsvChunking& chunking = {}, const CsvColumnFilter& keep = {});
 // Same, from text already in memory (`source` names it in messages).
 CsvTable parse_csv(const std::string& text, const std::string& source, const CsvChunking& chunking = {});

@@ -10,6 +10,8 @@
 #include <unordered_map>
 
 #include "core/errors.hpp"
+#include "io/increasing_rows.hpp"
+#include "io/log_text_checks.hpp"
 #include "io/resample.hpp"
 #include "io/time_axis.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
@@ -26,7 +28,9 @@ bool parses_as_number(const std::string& s, double& value) {
     return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
-// One column reference: a 1-based index, a header name, or (where allowed) null.
+// One column reference: a 1-based index, a header name, or (where allowed) null. The rule (docs/log-format.md,
+// "Keys"): a plain YAML number is a column number, a quoted scalar is always a name, so `'3'` is the
+// column named 3 (it was read as the third column: joints swapped without a word).
 ColumnRef column_ref(const Section& s, const YAML::Node& n, const std::string& key, bool nullable, bool header) {
     if (!n.IsDefined() || n.IsNull()) {
         if (!nullable) s.fail(n, key, "null is not allowed here (only for velocities, torques and currents)");
@@ -34,16 +38,27 @@ ColumnRef column_ref(const Section& s, const YAML::Node& n, const std::string& k
     }
     if (!n.IsScalar()) s.fail(n, key, "expected a 1-based column index or a header name");
     const std::string v = n.Scalar();
+    const bool quoted = n.Tag() == "!";  // yaml-cpp: "!" for a quoted scalar, "?" for a plain one
     double number = 0.0;
-    if (parses_as_number(v, number)) {
+    if (!quoted && parses_as_number(v, number)) {
         if (!(number >= 1.0) || number != std::floor(number) || number > 1e6) {
             s.fail(n, key, fmt::format("column index '{}' must be an integer >= 1 (columns are counted from 1)", v));
         }
         return {static_cast<std::size_t>(number), ""};
     }
-    if (!header) s.fail(n, key, fmt::format("'{}' is a header name, but header: false (give a 1-based column index)", v));
+    if (!header) {
+        s.fail(n, key, quoted && parses_as_number(v, number)
+                           ? fmt::format("'{}' is quoted, so a header name, but header: false (write {} without quotes for a column number)", v, v)
+                           : fmt::format("'{}' is a header name, but header: false (give a 1-based column index)", v));
+    }
     if (v.empty()) s.fail(n, key, "empty column name");
     return {0, v};
+}
+
+// A required key written as `null` is there, not missing: say so (it was reported as "missing").
+void refuse_null(const Section& s, const std::string& key, const std::string& expected) {
+    const YAML::Node n = s.node()[key];
+    if (n.IsDefined() && n.IsNull()) s.fail(n, key, fmt::format("null, but {} is required", expected));
 }
 
 std::vector<ColumnRef> column_list(Section& s, const std::string& key, bool nullable, bool header, std::size_t size,
@@ -66,6 +81,65 @@ void split(std::string_view line, char delimiter, std::vector<std::string_view>&
 
 std::string ms(double seconds) { return fmt::format("{:.4g} ms", 1e3 * seconds); }
 
+// Lines 1,2,3,7 as "1-3, 7"; after 10 ranges, "... (N ranges)".
+std::string line_ranges(const std::vector<std::size_t>& lines) {
+    constexpr std::size_t kListed = 10;
+    std::string out;
+    std::size_t ranges = 0;
+    for (std::size_t i = 0; i < lines.size();) {
+        std::size_t j = i;
+        while (j + 1 < lines.size() && lines[j + 1] == lines[j] + 1) ++j;
+        if (ranges++ < kListed) out += (out.empty() ? "" : ", ") + (j > i ? fmt::format("{}-{}", lines[i], lines[j]) : std::to_string(lines[i]));
+        i = j + 1;
+    }
+    if (ranges > kListed) out += fmt::format(", ... ({} ranges)", ranges);
+    return out;
+}
+
+struct SkippedRow {
+    std::size_t line;
+    std::string message;
+};
+
+// --skip-bad-rows: the rows whose times do not fit the longest increasing run (io/increasing_rows.hpp) are
+// skipped, each named with the kept row it collides with; `time_column` is 1-based, for the messages.
+void keep_increasing_times(RawLog& raw, const std::string& source, std::size_t time_column, std::vector<SkippedRow>& skipped) {
+    const std::vector<double> t = raw.table.column(0);
+    const std::vector<bool> keep = longest_increasing_times(t);
+    std::size_t previous = t.size();  // the last kept row before i (none yet)
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        if (keep[i]) {
+            previous = i;
+            continue;
+        }
+        // Not kept: at or before the previous kept row's time, or else at or after the next kept row's (a
+        // longest run leaves no row that fits between its neighbours, so that next kept row exists).
+        if (previous < t.size() && !(t[i] > t[previous])) {
+            skipped.push_back({raw.lines[i], fmt::format("{}:{}: column {} (time): time {:.10g} s is not after {:.10g} s of line {} (time must increase)",
+                                                         source, raw.lines[i], time_column, t[i], t[previous], raw.lines[previous])});
+            continue;
+        }
+        std::size_t next = i + 1;
+        while (next < t.size() && !keep[next]) ++next;
+        skipped.push_back({raw.lines[i], fmt::format("{}:{}: column {} (time): time {:.10g} s is not before {:.10g} s of line {}, where the "
+                                                     "increasing times go on (time must increase)",
+                                                     source, raw.lines[i], time_column, t[i], t[next], raw.lines[next])});
+    }
+    for (std::size_t c = 0; c < raw.table.columns(); ++c) {
+        std::vector<double>& column = raw.table.mutable_column(c);
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < column.size(); ++i) {
+            if (keep[i]) column[kept++] = column[i];
+        }
+        column.resize(kept);
+    }
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < raw.lines.size(); ++i) {
+        if (keep[i]) raw.lines[kept++] = raw.lines[i];
+    }
+    raw.lines.resize(kept);
+}
+
 }  // namespace
 
 LogFormat parse_log_format(const std::string& yaml_text, const std::string& source) {
@@ -81,13 +155,16 @@ LogFormat parse_log_format(const std::string& yaml_text, const std::string& sour
     }
     f.delimiter = delimiter[0];
     f.skip_rows = static_cast<std::size_t>(s.integer("skip_rows", 0, 0, 1'000'000));
+    refuse_null(s, "time", "a mapping {column: C, scale: S}");
     {
         Section time = s.child("time");
+        refuse_null(time, "column", "the time column (a 1-based index or a header name)");
         if (!time.has("column")) time.fail(time.node(), "column", "missing (required)");
         f.time = column_ref(time, time.get("column"), "column", false, f.header);
         f.time_scale = time.positive("scale", 1.0, "seconds per unit of the time column");
         time.reject_unknown();
     }
+    refuse_null(s, "positions", "a list of the joints' position columns");
     if (!s.has("positions")) s.fail(root, "positions", "missing (required): the joints' position columns");
     f.positions = column_list(s, "positions", false, f.header, 0);
     const std::size_t joints = f.positions.size();
@@ -102,11 +179,19 @@ LogFormat parse_log_format(const std::string& yaml_text, const std::string& sour
     } else {
         s.mark_used("references");
     }
+    // `torques: null` alone was "missing"; beside the other key, null is merely not given.
+    if (!s.has("currents")) refuse_null(s, "torques", "a list of columns, one per joint (null inside it: a joint without actuator)");
+    if (!s.has("torques")) refuse_null(s, "currents", "a list of columns, one per joint (null inside it: a joint without actuator)");
     const bool torques = s.has("torques"), currents = s.has("currents");
     if (torques && currents) s.fail("currents", "give either torques or currents (with gains), not both");
     if (!torques && !currents) s.fail(root, "torques", "missing: give torques, or currents with gains");
     f.currents = currents;
     f.efforts = column_list(s, currents ? "currents" : "torques", true, f.header, joints);
+    // Every joint null: every torque 0, and identify gave every parameter exactly 0 with std 0.
+    if (std::none_of(f.efforts.begin(), f.efforts.end(), [](const ColumnRef& c) { return c.present(); })) {
+        s.fail(currents ? "currents" : "torques", "every joint is null (no actuator), so no effort is read and there is nothing to identify from: "
+                                                  "give the column of at least one joint");
+    }
     s.mark_used(currents ? "torques" : "currents");
     if (currents) {
         if (!s.has("gains")) s.fail(root, "gains", "missing: currents need gains (N.m/A, tau = gain * current; null for a joint without actuator)");
@@ -153,11 +238,13 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         throw InputError(fmt::format("{}: the log format {} has {} joints, the column names {}", source, format.source, joints, names.q.size()));
     }
     report.source = source;
+    require_readable_log_text(std::string_view(text).substr(0, text.find('\n')), source);
     TextLines lines(text);
     std::size_t line = 0;
     auto next_line = [&](std::string_view& out) {
         const bool more = lines.next(out);
         line = lines.line();
+        if (line == 1) out = without_utf8_bom(out);  // a spreadsheet's encoding marker, not part of the first cell
         return more;
     };
     std::string_view row;
@@ -179,7 +266,18 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
     const std::size_t header_line = line;
     // Resolves a reference to a 0-based column; the width check waits for the first data row without a header.
     auto resolve = [&](const ColumnRef& ref, const std::string& key) -> std::size_t {
-        if (ref.index > 0) return ref.index - 1;
+        if (ref.index > 0) {
+            // `3` is column 3; a header that names another column '3' makes the intent unclear: refuse.
+            const std::string digits = std::to_string(ref.index);
+            for (std::size_t c = 0; c < header.size(); ++c) {
+                if (header[c] == digits && c + 1 != ref.index) {
+                    throw InputError(fmt::format("{}:{}: {}: {} (unquoted) is column number {}, but the header names column {} '{}': quote it ('{}') "
+                                                 "for the column of that name, or rename the header",
+                                                 source, header_line, key, digits, digits, c + 1, digits, digits));
+                }
+            }
+            return ref.index - 1;
+        }
         std::size_t found = header.size();
         for (std::size_t c = 0; c < header.size(); ++c) {
             if (header[c] != ref.name) continue;
@@ -190,8 +288,24 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             found = c;
         }
         if (found == header.size()) {
-            throw InputError(fmt::format("{}:{}: {}: no column '{}' in the header (columns: {})", source, header_line, key, printable_cell(ref.name),
-                                         describe_columns(header)));
+            double number = 0.0;
+            const std::string number_hint = parses_as_number(ref.name, number)
+                                                ? fmt::format(" ('{}' is quoted, so a name; write {} without quotes for a column number)", ref.name, ref.name)
+                                                : std::string();
+            const std::string delimiter = delimiter_hint(header.size(), header.front(), format.delimiter, format.source);
+            if (!delimiter.empty()) {
+                throw InputError(fmt::format("{}:{}: {}: no column '{}': the header is one column '{}': {}", source, header_line, key,
+                                             printable_cell(ref.name), printable_cell(header.front()), delimiter));
+            }
+            // A header of numbers is the first data row of a log without one.
+            const bool all_numbers = std::all_of(header.begin(), header.end(), [](const std::string& c) {
+                double v = 0.0;
+                return parses_as_number(c, v);
+            });
+            throw InputError(fmt::format("{}:{}: {}: no column '{}' in the header{} (columns: {}){}", source, header_line, key, printable_cell(ref.name),
+                                         number_hint, describe_columns(header),
+                                         all_numbers ? fmt::format("; that line is all numbers: has the log no header? (header: false in {})", format.source)
+                                                     : std::string()));
         }
         return found;
     };
@@ -238,17 +352,20 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
     }
     for (const Use& u : uses) {
         if (format.header && u.column >= width) {
-            throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the header has {} columns", source, header_line, u.key, u.column + 1, width));
+            const std::string delimiter = delimiter_hint(width, header.front(), format.delimiter, format.source);
+            throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the header has {} columns{}", source, header_line, u.key, u.column + 1,
+                                         width, delimiter.empty() ? "" : ": " + delimiter));
         }
     }
     RawLog raw{CsvTable(source, table_names), {}};  // refuses two columns of one name
     std::vector<double> values(uses.size());
     double last_time = 0.0;
     std::size_t last_line = 0;
+    std::vector<SkippedRow> skipped;
     auto bad_row = [&](const std::string& reason) {
         const std::string message = fmt::format("{}:{}: {}", source, line, reason);
         if (!settings.skip_bad_rows) throw InputError(message + " (--skip-bad-rows skips such rows and reports them)");
-        report.skipped.push_back(message);
+        skipped.push_back({line, message});
     };
     while (next_line(row)) {
         if (trim_cell(row).empty()) {
@@ -258,11 +375,21 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
         }
         split(row, format.delimiter, cells);
         if (width == 0) {
-            width = cells.size();
+            // Strictly, the first data row sets the width. With --skip-bad-rows the most common one does: a
+            // misaligned first record made every good row "bad" after it.
+            const auto most_common_width = [&] {
+                return most_common_cell_count(std::string_view(text).substr(static_cast<std::size_t>(row.data() - text.data())), format.delimiter);
+            };
+            width = settings.skip_bad_rows ? most_common_width() : cells.size();
             for (const Use& u : uses) {
                 if (u.column >= width) {
-                    throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the first data row has {} columns", source, line, u.key,
-                                                 u.column + 1, width));
+                    const std::string delimiter = delimiter_hint(width, cells.front(), format.delimiter, format.source);
+                    const std::size_t most = most_common_width();
+                    const std::string misaligned =
+                        most != width ? fmt::format(" (most rows have {}: is this one misaligned? --skip-bad-rows skips it)", most) : std::string();
+                    throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the {} has {} columns{}{}", source, line, u.key, u.column + 1,
+                                                 settings.skip_bad_rows ? "most common data row" : "first data row", width,
+                                                 delimiter.empty() ? "" : ": " + delimiter, misaligned));
                 }
             }
         }
@@ -276,7 +403,12 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             double v = 0.0;
             const auto r = fast_float::from_chars(cell.data(), cell.data() + cell.size(), v);
             if (r.ec != std::errc() || r.ptr != cell.data() + cell.size() || cell.empty()) {
-                bad_row(fmt::format("column {} ({}): expected a number, got '{}'", uses[k].column + 1, uses[k].key, printable_cell(cell)));
+                // Text in the first data row of a log read without a header is most likely its header.
+                const std::string decimal_comma = decimal_comma_hint(cell);
+                const bool header_row = !format.header && raw.lines.empty() && skipped.empty() && decimal_comma.empty();
+                bad_row(fmt::format("column {} ({}): expected a number, got '{}'{}{}", uses[k].column + 1, uses[k].key, printable_cell(cell),
+                                    decimal_comma,
+                                    header_row ? fmt::format(" (is line {} a header? header: true or skip_rows in {})", line, format.source) : std::string()));
                 ok = false;
             } else if (!std::isfinite(v)) {
                 bad_row(fmt::format("column {} ({}): value '{}' is not finite (NaN or Inf)", uses[k].column + 1, uses[k].key, printable_cell(cell)));
@@ -287,7 +419,7 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
                 bad_row(fmt::format("column {} ({}): {} times the gain or scale {} is not finite", uses[k].column + 1, uses[k].key, printable_cell(cell),
                                     uses[k].gain));
                 ok = false;
-            } else if (ok && k > 0 && beyond_log_range(values[k])) {  // the time has checks of its own (span, steps)
+            } else if (ok && beyond_log_range(values[k])) {  // the time too: a corrupt stamp of 1e154 s is no time
                 bad_row(fmt::format("column {} ({}): value {} {}", uses[k].column + 1, uses[k].key, values[k], kBeyondLogRange));
                 ok = false;
             } else if (ok && k >= 1 && k <= joints && k <= names.q_bounds.size() && names.q_bounds[k - 1] && !names.q_bounds[k - 1]->holds(values[k])) {
@@ -296,7 +428,16 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             }
         }
         if (!ok) continue;
-        if (!raw.lines.empty() && !(values[0] > last_time)) {
+        // A zero-filled record (every value read exactly 0, whatever its time) is what a logger
+        // writes for a sample it lost; a real robot never measures every joint at exactly 0 rad and 0 N.m (a
+        // synthetic log might, at rest at the origin), so only --skip-bad-rows judges it (strictly, its time
+        // breaks the order or leaves a gap, named by line).
+        if (settings.skip_bad_rows && std::all_of(values.begin() + 1, values.end(), [](double v) { return v == 0.0; })) {
+            bad_row("every value but the time is 0 (a zero-filled record, not a sample)");
+            continue;
+        }
+        // With --skip-bad-rows the time order is judged over the whole log once it is read (keep_increasing_times).
+        if (!settings.skip_bad_rows && !raw.lines.empty() && !(values[0] > last_time)) {
             bad_row(fmt::format("column {} (time): time {:.10g} s is not after {:.10g} s of line {} (time must increase)", uses[0].column + 1,
                                 values[0], last_time, last_line));
             continue;
@@ -309,6 +450,12 @@ RawLog parse_raw_log(const std::string& text, const std::string& source, const L
             raw.table.mutable_column(c).push_back(zero ? 0.0 : values[k++]);
         }
         raw.lines.push_back(line);
+    }
+    if (settings.skip_bad_rows) keep_increasing_times(raw, source, uses[0].column + 1, skipped);
+    std::stable_sort(skipped.begin(), skipped.end(), [](const SkippedRow& a, const SkippedRow& b) { return a.line < b.line; });
+    for (SkippedRow& r : skipped) {
+        report.skipped_lines.push_back(r.line);
+        report.skipped.push_back(std::move(r.message));
     }
     report.lines = line;
     report.rows = raw.lines.size();
@@ -325,8 +472,14 @@ std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, cons
     report.median_step = median_step(t);
     if (!std::isfinite(t.back() - t.front())) throw InputError(fmt::format("{}: the time span {} s to {} s is not finite", source, t.front(), t.back()));
     const std::string time_column = format.time.index > 0 ? std::to_string(format.time.index) : "'" + printable_cell(format.time.name) + "'";
-    require_plausible_sample_period(report.median_step, fmt::format("{}: time column {} (time.column of {}, scale {:g} s per unit)", source,
-                                                                    time_column, format.source, format.time_scale));
+    require_plausible_sample_period(report.median_step, fmt::format("{}: time column {}", source, time_column), format.time_scale, format.source);
+    if (settings.max_gap > kMaxGapMedianSteps * report.median_step * (1.0 + 1e-6)) {  // 1e-6: steps read from decimal text
+        throw InputError(fmt::format("{}: --max-gap {:g} s is {:.3g} median steps of {}, more than the {:g} median steps ({}) a single step may span: "
+                                     "a longer step is always a gap (--on-gap interpolate bridges one of up to --interpolate-max samples and names it, "
+                                     "--on-gap split cuts the log there)",
+                                     source, settings.max_gap, settings.max_gap / report.median_step, ms(report.median_step), kMaxGapMedianSteps,
+                                     ms(kMaxGapMedianSteps * report.median_step)));
+    }
     const double max_gap = settings.max_gap > 0.0 ? settings.max_gap : 3.0 * report.median_step;
     const UniformGrid grid = uniform_grid(t, max_gap, settings.period);
     // A grid far denser than the log (an imposed period, or steps of 1e-300 s) would exhaust memory. With
@@ -432,7 +585,7 @@ std::string LogSegment::describe() const { return fmt::format("lines {}-{}: {:.4
 
 std::string LogReadReport::summary() const {
     std::string s = fmt::format("{}: {} rows read", source, rows);
-    if (!skipped.empty()) s += fmt::format(", {} bad rows skipped (first: {})", skipped.size(), skipped.front());
+    if (!skipped.empty()) s += fmt::format(", {} bad rows skipped (lines {}; first: {})", skipped.size(), line_ranges(skipped_lines), skipped.front());
     s += fmt::format("; median step {}; ", ms(median_step));
     if (irregular_lines.empty()) {
         s += "no irregular steps";

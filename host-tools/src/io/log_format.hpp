@@ -50,10 +50,15 @@ LogFormat load_log_format(const std::string& path);
 // Split: each run of rows between gaps is a segment of its own (parse_formatted_log_segments), all on one grid period.
 enum class GapPolicy { Error, Interpolate, Split };
 
+// The longest step --max-gap may let pass as a step, in median steps: beyond, the spline would bridge a hole
+// without a word (--max-gap 1e6 regridded a 10 s hole of a 10 ms log). Longer holes are gaps, which
+// --on-gap interpolate bridges only up to --interpolate-max samples, naming each.
+constexpr double kMaxGapMedianSteps = 10.0;
+
 struct LogReadSettings {
     bool skip_bad_rows = false;
     GapPolicy on_gap = GapPolicy::Error;
-    double max_gap = 0.0;              // s; a longer step is a gap. 0: 3 median steps
+    double max_gap = 0.0;              // s; a longer step is a gap. 0: 3 median steps; at most kMaxGapMedianSteps
     std::size_t interpolate_max = 10;  // grid samples a gap may span with --on-gap interpolate
     double period = 0.0;               // s, of the uniform grid; 0: the mean step (gaps excluded)
 };
@@ -72,7 +77,8 @@ struct LogReadReport {
     std::string source;
     std::size_t lines = 0;             // lines in the file
     std::size_t rows = 0;              // data rows kept
-    std::vector<std::string> skipped;  // "file:line: reason", one per skipped row
+    std::vector<std::string> skipped;  // "file:line: reason", one per skipped row, in line order
+    std::vector<std::size_t> skipped_lines;  // their lines
     double median_step = 0.0;          // s
     // Steps farther than half a median step from the median (e.g. the UR10e's 2 ms steps), each reported.
     std::vector<std::size_t> irregular_lines;  // line of the row that ends the step
@@ -84,7 +90,7 @@ struct LogReadReport {
     double grid_period = 0.0;  // s, of the uniform grid
     double grid_start = 0.0;   // s
     std::size_t samples = 0;   // on the uniform grid
-    // One paragraph: rows, skipped rows, irregular steps (first at line L: 2.0 ms), gaps, segments, the grid.
+    // One paragraph: rows, skipped rows (their lines as ranges) (first at line L: 2.0 ms), gaps, segments, the grid.
     std::string summary() const;
 };
 

@@ -11,11 +11,40 @@
 
 namespace jacobid::io {
 
-void require_plausible_sample_period(double median_step, const std::string& where) {
-    if (median_step <= kMaxSamplePeriod) return;
-    throw InputError(fmt::format("{}: the median time step is {:.6g} s, expected a sample period of at most {:g} s (is the time column in "
-                                 "seconds? a log format's time.scale gives seconds per unit)",
-                                 where, median_step, kMaxSamplePeriod));
+namespace {
+
+// 0.001 -> "1 ms", for the messages about sample periods.
+std::string period_text(double seconds) {
+    seconds *= 1.0 + 1e-9;  // a period of 1e-12 / 1e-9 is 1 ms, not 999.99... us
+    if (seconds >= 1.0) return fmt::format("{:.4g} s", seconds);
+    if (seconds >= 1e-3) return fmt::format("{:.4g} ms", 1e3 * seconds);
+    if (seconds >= 1e-6) return fmt::format("{:.4g} us", 1e6 * seconds);
+    return fmt::format("{:.4g} s", seconds);
+}
+
+}  // namespace
+
+void require_plausible_sample_period(double median_step, const std::string& where, double scale, const std::string& format) {
+    if (median_step >= kMinSamplePeriod && median_step <= kMaxSamplePeriod) return;
+    // The units the column's raw numbers could be in that give a plausible period, each with the scale that reads it.
+    const double raw = median_step / scale;
+    struct Unit {
+        const char* name;
+        double seconds;
+    };
+    std::string likely;
+    for (const Unit u : {Unit{"s", 1.0}, Unit{"ms", 1e-3}, Unit{"us", 1e-6}, Unit{"ns", 1e-9}}) {
+        const double step = raw * u.seconds;
+        if (!(step >= kMinSamplePeriod && step <= kMaxSamplePeriod) || u.seconds == scale) continue;
+        likely += fmt::format("{}in {} ({} per sample: time.scale {:g})", likely.empty() ? "is the time column " : " or ", u.name, period_text(step),
+                              u.seconds);
+    }
+    likely = likely.empty() ? std::string("is the time column in seconds?") : likely + "?";
+    const std::string how = format.empty() ? std::string("a --log-format file's time: {column: ..., scale: ...} reads other units")
+                                           : fmt::format("{} reads it with time.scale {:g} s per unit", format, scale);
+    throw InputError(fmt::format("{}: the median time step is {:.6g} s, outside the plausible sample periods {} .. {} per sample (100 kHz .. 10 Hz): "
+                                 "{} ({})",
+                                 where, median_step, period_text(kMinSamplePeriod), period_text(kMaxSamplePeriod), likely, how));
 }
 
 TimeAxis check_uniform_time(const CsvTable& table, const std::string& column_name, double tolerance) {

@@ -181,8 +181,11 @@ TEST(SeveralLogs, ALogTooShortIsReportedAndTheOthersIdentify) {
     EXPECT_TRUE(pieces[2]["used"].get<bool>());
     EXPECT_NE(pieces[1]["why"].get<std::string>().find("too short"), std::string::npos) << pieces[1]["why"];
     EXPECT_NE(r.err.find(fmt::format("jacobid identify [jacobi]: {} not used: ", path("short.csv"))), std::string::npos) << r.err;
-    // Only logs too short: an error naming them.
-    std::filesystem::copy_file(path("short.csv"), path("short2.csv"), std::filesystem::copy_options::overwrite_existing);
+    // Only logs too short: an error naming them (two different ones: a byte-identical copy is refused as given twice).
+    {
+        const std::string text = io::read_text_file(path("short.csv"), "log");
+        std::ofstream(path("short2.csv")) << text.substr(0, text.rfind('\n', text.size() - 2) + 1);
+    }
     const auto none = jacobid_cli(logs.identify("--in " + path("short.csv") + " --in " + path("short2.csv")));
     EXPECT_EQ(none.exit_code, 2);
     EXPECT_NE(none.err.find("--in: no log is usable; the longest of the 2: "), std::string::npos) << none.err;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "input_error_of.hpp"
 #include "identify/log_columns.hpp"
 #include "io/log_format.hpp"
 #include "robot/robot_description.hpp"
@@ -18,14 +19,7 @@ namespace {
 using jacobid::InputError;
 using namespace jacobid::io;
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+const auto error_of = jacobid::test::input_error_of;
 
 LogFormat fmt_of(const std::string& yaml) { return parse_log_format(yaml, "f.yaml"); }
 
@@ -168,7 +162,7 @@ TEST(LogFormat, SkipBadRowsReportsEachOne) {
     EXPECT_EQ(report.rows, 6u);
     EXPECT_EQ(t.rows(), 6u);
     EXPECT_EQ(report.summary(),
-              "s.csv: 6 rows read, 4 bad rows skipped (first: s.csv:5: column 3 (positions[1]): expected a number, got 'x'); median step 5 ms; "
+              "s.csv: 6 rows read, 4 bad rows skipped (lines 5-8; first: s.csv:5: column 3 (positions[1]): expected a number, got 'x'); median step 5 ms; "
               "no irregular steps; resampled (cubic spline) onto 6 samples every 5 ms");
 }
 
@@ -299,8 +293,10 @@ TEST(LogFormat, ValuesThatOverflowOnceScaledAreBadRows) {
     LogReadReport report;
     EXPECT_EQ(error_of([&] { parse_formatted_log("1,0,1\n2,0,1e308\n3,0,1\n", "o.csv", f, LogColumnNames::numbered(1), {}, report); }),
               "o.csv:2: column 3 (currents[0]): 1e308 times the gain or scale 10 is not finite (--skip-bad-rows skips such rows and reports them)");
+    // Times are bounded like every other value (issue 36: a corrupt stamp of 1e154 s is no time), so the span is always finite.
     EXPECT_EQ(error_of([&] { parse_formatted_log("-1e308,0,1\n1e308,0,1\n", "o.csv", f, LogColumnNames::numbered(1), {}, report); }),
-              "o.csv: the time span -1e+308 s to 1e+308 s is not finite");
+              "o.csv:1: column 1 (time): value -1e+308 is beyond +-1e30, which no measurement is (an outlier? its square would overflow the "
+              "identification) (--skip-bad-rows skips such rows and reports them)");
 }
 
 }  // namespace

@@ -151,6 +151,47 @@ fs::path ur10e_robot(const std::string& name) {
     return robot;
 }
 
+// Issue 36: a real UR10e recording (not shared) starts with nine corrupt rows: a misaligned record, times of
+// 1e154, positions of 253 rad, then rows of zeros, before the clean rows. The same block is written here into
+// a scratch copy of a shared log (never into the repository). --skip-bad-rows refused it with "the median time
+// step is 2.68e+154 s" (every clean row was skipped as "not after" 1e154 s); now it skips the block and lists
+// the lines, and the log identifies as the clean one does.
+TEST(RealData, CorruptBlockAtTheStartOfAUr10eLogIsSkippedAndItsLinesListed) {
+    REQUIRE_REALDATA();
+    const fs::path src = kRealdata / "ur10e" / "identification" / "ur-20_02_05-20sec_8harm.csv";
+    std::ifstream in(src);
+    std::string clean((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string first = clean.substr(0, clean.find('\n'));
+    const std::string after_time = first.substr(first.find(','));
+    std::string block = first.substr(0, first.size() / 2) + "\n";  // line 1: misaligned (half a record)
+    block += "1e154" + after_time + "\n" + "2.68e154" + after_time + "\n";  // lines 2-3: times of 1e154
+    std::string joints_at_253 = after_time;
+    joints_at_253.replace(1, joints_at_253.find(',', 1) - 1, "253");
+    block += "1e10" + joints_at_253 + "\n" + "2e10" + joints_at_253 + "\n";  // lines 4-5: positions of 253 rad
+    std::string zeros = "0";
+    for (int c = 1; c < 31; ++c) zeros += ",0";
+    for (int k = 0; k < 4; ++k) block += zeros + "\n";  // lines 6-9: zero-filled records
+    const fs::path bad = jacobid::test::scratch_directory() / "ur10e_corrupt_block.csv";
+    std::ofstream(bad) << block << clean;
+    const fs::path robot = ur10e_robot("ur10e_block.yaml");
+    const std::string command = "identify --robot " + robot.string() + " --log-format " + (kFormats / "ur10e.yaml").string() + " --in " + bad.string();
+    const auto strict = jacobid_cli(command);
+    EXPECT_EQ(strict.exit_code, 2) << strict.err;
+    EXPECT_NE(strict.err.find(bad.string() + ":1: "), std::string::npos) << strict.err;
+    EXPECT_NE(strict.err.find("the first data row has 16 columns (most rows have 31: is this one misaligned? --skip-bad-rows skips it)"),
+              std::string::npos)
+        << strict.err;
+    const auto lenient = jacobid_cli(command + " --skip-bad-rows --format json");
+    ASSERT_EQ(lenient.exit_code, 0) << lenient.err;
+    EXPECT_NE(lenient.err.find(bad.string() + ":1: expected 31 columns, found 16 (skipped)"), std::string::npos) << lenient.err;
+    EXPECT_NE(lenient.err.find(bad.string() + ":2: column 1 (time): value 1e+154 is beyond +-1e30"), std::string::npos) << lenient.err;
+    EXPECT_NE(lenient.err.find(bad.string() + ":4: column 2 (positions[0]): "), std::string::npos) << lenient.err;
+    EXPECT_NE(lenient.err.find(bad.string() + ":9: every value but the time is 0 (a zero-filled record, not a sample) (skipped)"), std::string::npos)
+        << lenient.err;
+    EXPECT_NE(lenient.err.find(bad.string() + ": 2506 rows read, 9 bad rows skipped (lines 1-9; first: "), std::string::npos) << lenient.err;
+    EXPECT_NE(lenient.err.find("median step 10 ms"), std::string::npos) << lenient.err;
+}
+
 TEST(RealData, IdentifyAndValidateARawUr10eLog) {
     REQUIRE_REALDATA();
     const fs::path robot = ur10e_robot("ur10e.yaml");
