@@ -17,6 +17,7 @@
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/log_columns.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "diagnose/diagnose_log.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_report.hpp"
@@ -42,13 +43,14 @@ struct DiagnoseOptions {
 
 void run(DiagnoseOptions o) {
     map_large_blocks();  // whole-log buffers returned when freed (core/free_memory.hpp)
-    std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--validate", o.validate}, {"--log-format", o.log_format.file}};
+    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    std::vector<NamedPath> read_files = robot_files("--robot", o.robot, robot);
+    read_files.insert(read_files.end(), {{"--validate", o.validate}, {"--log-format", o.log_format.file}});
     for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
     check_outputs({{"--output", o.output}}, read_files);
     check_output_directory({"--report", o.report});  // written after the work: checked before it
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
-    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     // Several logs (--in a --in b) are diagnosed together, on one sample period (the first log's).
     std::vector<io::CsvTable> tables;

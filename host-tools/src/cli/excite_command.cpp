@@ -21,6 +21,7 @@
 #include "cli/log_format_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "core/per_joint.hpp"
 #include "excite/excitation_design.hpp"
 #include "excite/frequency_rule.hpp"
@@ -272,8 +273,10 @@ void resolve_frequencies(ExciteOptions& o, const std::vector<excite::JointLimits
 excite::SampledMotion motion_of(const Sampled& s) { return {s.q, s.qd, s.qdd, 0, 0}; }
 
 void run(ExciteOptions o) {
-    check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, {{"--robot", o.robot}, {"--prior", o.prior}, {"--compare", o.compare}});
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
+    inputs.insert(inputs.end(), {{"--prior", o.prior}, {"--compare", o.compare}, {"--log-format", o.compare_format.file}});
+    check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, inputs);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
     const ExcitePrior prior = resolve_prior(robot, *model, o.prior, o.torque_noise);

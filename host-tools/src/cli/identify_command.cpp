@@ -24,8 +24,10 @@
 #include "cli/log_format_options.hpp"
 #include "cli/model_export_options.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "cli/streamed_log.hpp"
 #include "core/parallel_for.hpp"
+#include "core/same_file.hpp"
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
@@ -387,12 +389,13 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
 
 void run(IdentifyOptions o) {
     map_large_blocks();  // whole-log buffers returned when freed (core/free_memory.hpp)
-    std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--truth", o.truth}, {"--validate", o.validate},
-                                                                   {"--can-config", o.can_config}, {"--log-format", o.log_format.file}};
-    for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
-    check_outputs({{"--output", o.output}}, read_files);
-    using Clock = std::chrono::steady_clock;
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    std::vector<NamedPath> read_files = robot_files("--robot", o.robot, robot);
+    read_files.insert(read_files.end(), {{"--truth", o.truth}, {"--validate", o.validate}, {"--can-config", o.can_config},
+                                         {"--log-format", o.log_format.file}, {"--loaded", o.drive_gains.loaded}});
+    for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
+    check_outputs({{"--output", o.output}, {"--export-urdf", o.model_export.urdf}, {"--export-robot", o.model_export.robot}}, read_files);
+    using Clock = std::chrono::steady_clock;
     const auto model = robot::make_robot_model(robot);
     if (o.print_base) {
         // The model alone: base parameters, regrouping relations and true values; no log needed.

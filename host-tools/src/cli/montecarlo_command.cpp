@@ -13,6 +13,7 @@
 #include "cli/fit_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "cli/simulation_options.hpp"
 #include "montecarlo/study.hpp"
 #include "montecarlo/study_report.hpp"
@@ -72,10 +73,10 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
 }
 
 void run(const MonteCarloOptions& o) {
-    check_outputs({{"--output", o.output}}, {{"--robot", o.robot}});
-    check_output_directory({"--report", o.report});  // written after the work: checked before it
     montecarlo::StudySettings s;
     s.robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
+    check_outputs({{"--output", o.output}}, robot_files("--robot", o.robot, s.robot));
+    check_output_directory({"--report", o.report});  // written after the work: checked before it
     SimulationOptions simulation = o;  // the description's controller, if any
     apply_controller(s.robot, simulation);
     s.simulation = simulation_settings(simulation);

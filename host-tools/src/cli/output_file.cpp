@@ -11,18 +11,20 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "core/same_file.hpp"
 
 namespace jacobid::cli {
 
 namespace fs = std::filesystem;
 
-bool same_file(const std::string& a, const std::string& b) {
-    std::error_code ec;
-    if (fs::equivalent(a, b, ec)) return true;  // both exist: compares inodes (links, "./x" vs "x")
-    return fs::absolute(a, ec).lexically_normal() == fs::absolute(b, ec).lexically_normal();
-}
-
 namespace {
+
+bool given(const NamedPath& p) { return !p.path.empty() && p.path != "-"; }
+
+// "F" when both options named F, else "F (the file X)": a link or another spelling of X.
+std::string naming(const NamedPath& out, const NamedPath& in) {
+    return out.path == in.path ? out.path : fmt::format("{} (the file {})", out.path, in.path);
+}
 
 void check_writable(const NamedPath& out) {
     std::error_code ec;
@@ -45,15 +47,15 @@ void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_li
 
 void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<NamedPath>& inputs) {
     for (auto out = outputs.begin(); out != outputs.end(); ++out) {
-        if (out->path.empty() || out->path == "-") continue;
+        if (!given(*out)) continue;
         for (const NamedPath& in : inputs) {
-            if (!in.path.empty() && same_file(out->path, in.path)) {
-                throw InputError(fmt::format("{} {}: is the input given to {}; write the result to another file", out->option, out->path, in.option));
+            if (given(in) && same_file(out->path, in.path)) {
+                throw InputError(fmt::format("{} {}: is the input given to {}; write the result to another file", out->option, naming(*out, in), in.option));
             }
         }
         for (auto other = outputs.begin(); other != out; ++other) {
-            if (!other->path.empty() && other->path != "-" && same_file(out->path, other->path)) {
-                throw InputError(fmt::format("{} {}: is also the output of {}; give two different files", out->option, out->path, other->option));
+            if (given(*other) && same_file(out->path, other->path)) {
+                throw InputError(fmt::format("{} {}: is also the output of {}; give two different files", out->option, naming(*out, *other), other->option));
             }
         }
         check_writable(*out);

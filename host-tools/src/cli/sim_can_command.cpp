@@ -18,6 +18,7 @@
 #include "cli/option_checks.hpp"
 #include "cli/simulation_options.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/simulated_parameters.hpp"
 #include "io/candump_writer.hpp"
@@ -85,8 +86,10 @@ void wait_for_sync(hal::SocketCanTransport& can, const SimCanOptions& o, double 
 }
 
 void run(SimCanOptions o) {
-    check_outputs({{"--candump", o.candump}}, {{"--robot", o.robot}, {"--config", o.config}});
     const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
+    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
+    inputs.push_back({"--config", o.config});
+    check_outputs({{"--candump", o.candump}}, inputs);
     const auto model = robot::make_robot_model(robot);
     const auto n = static_cast<std::size_t>(model->joint_count());
 

@@ -13,6 +13,7 @@
 #include "cli/command.hpp"
 #include "cli/log_format_options.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "cli/simulation_options.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/simulated_parameters.hpp"
@@ -87,9 +88,10 @@ std::string stem(const std::string& path) {
 }
 
 void run(SimulateOptions o) {
-    check_outputs({{"--out", o.out}, {"--truth", o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth}, {"--states", o.states}},
-                  {{"--robot", o.robot}, {"--effects", o.effects_file}, {"--trajectory", o.trajectory}});
     const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
+    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
+    inputs.insert(inputs.end(), {{"--effects", o.effects_file}, {"--trajectory", o.trajectory}});
+    check_outputs({{"--out", o.out}, {"--truth", o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth}, {"--states", o.states}}, inputs);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
     // Truth: the model's reference values (Table II for planar2r) unless the description lists parameters.
