@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "cli_refusal.hpp"
@@ -114,6 +115,58 @@ TEST(CliOutputGuard, DriveGainsOutputOntoTheLoadedLogIsRefused) {
     expect_refused(jacobid("identify --robot " + urdf_robot().yaml + " --drive-gains --payload-mass 1 --in " + unloaded + " --loaded " + loaded + " -o " + loaded),
                    {"--output " + loaded + ": is the input given to --loaded"});
     EXPECT_EQ(read_text(loaded), "t,q1\n0,1\n");
+}
+
+// --- 2. Wrong numbers with exit 0 ------------------------------------------------------------------------------
+
+const std::string kUr5 = kSource + "/../examples/robots/ur5_like.yaml";
+
+// A short simulated log of the UR5-like arm, made once.
+const std::string& ur5_log() {
+    static const std::string path = [] {
+        const std::string p = scratch("ur5.csv").string();
+        const auto r = jacobid("simulate --quiet --robot " + kUr5 + " --duration 10 --seed 3 --torque-noise 0.3 -o " + p);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return p;
+    }();
+    return path;
+}
+
+std::string drive_gains(const std::string& in, const std::string& loaded, const std::string& more = " --payload-mass 2") {
+    return "identify --quiet --robot " + kUr5 + " --drive-gains --in " + in + " --loaded " + loaded + more;
+}
+
+// Before: gains of ~1e-13 with a std of 3.4, TLS nan and a `gains:` line, exit 0.
+TEST(CliDriveGains, OneLogAsBothRunsIsRefusedByFileAndByContent) {
+    const std::string link = scratch("ur5-link.csv").string(), copy = scratch("ur5-copy.csv").string();
+    fs::create_symlink(ur5_log(), link);
+    fs::copy_file(ur5_log(), copy);
+    for (const std::string& loaded : {ur5_log(), link}) {
+        const auto r = jacobid(drive_gains(ur5_log(), loaded));
+        expect_refused(r, {"--loaded " + loaded + ": is the file given to --in (" + ur5_log() + ")", "give the run with the payload"});
+        EXPECT_EQ(r.out.find("gains: ["), std::string::npos) << r.out;
+    }
+    const auto r = jacobid(drive_gains(ur5_log(), copy));
+    expect_refused(r, {"--loaded " + copy + ": holds exactly the positions and efforts of --in " + ur5_log()});
+    EXPECT_EQ(r.out.find("gains: ["), std::string::npos) << r.out;
+}
+
+// A loaded run that differs from the unloaded one by one cell (no payload torque) is not a fit to print.
+TEST(CliDriveGains, AGainTheLogsDoNotDetermineIsRefusedNotPrinted) {
+    std::ifstream in(ur5_log());
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t cell_end = text.find('\n') + 1;  // the first data row's tau1 (column 8): one more digit
+    for (int c = 0; c < 8; ++c) cell_end = text.find(',', cell_end) + 1;
+    text.insert(cell_end - 1, "1");
+    const std::string nearly = write("ur5-nearly.csv", text);
+    const auto r = jacobid(drive_gains(ur5_log(), nearly));
+    expect_refused(r, {"--drive-gains: the gain of joint 1 (", "do not determine it (a gain must be positive and known to better than 100 %)"});
+    EXPECT_EQ(r.out.find("gains: ["), std::string::npos) << r.out;
+}
+
+// Before: "--payload-mass 0: expected the payload's mass in kg, > 0" for an option never given.
+TEST(CliDriveGains, AMissingPayloadMassIsNamedAsMissing) {
+    expect_refused(jacobid(drive_gains(ur5_log(), ur5_log(), "")), {"--drive-gains needs --payload-mass KG"});
 }
 
 }  // namespace
