@@ -169,4 +169,21 @@ TEST(CliDriveGains, AMissingPayloadMassIsNamedAsMissing) {
     expect_refused(jacobid(drive_gains(ur5_log(), ur5_log(), "")), {"--drive-gains needs --payload-mass KG"});
 }
 
+// --- 3. URDF limits ----------------------------------------------------------------------------------------
+
+// Before: joint 2's <limit lower="1" upper="1"> became [-pi, pi] and excite designed a motion over it.
+TEST(CliUrdfLimits, ARevoluteJointWithoutARangeIsRefusedByEveryCommand) {
+    std::string urdf = read_text(kSource + "/data/export_arm.urdf");
+    const std::size_t joint = urdf.find("type=\"revolute\"", urdf.find("type=\"revolute\"") + 1);  // the second revolute joint
+    const std::size_t lower = urdf.find("lower=", joint), upper_end = urdf.find('"', urdf.find("upper=\"", joint) + 7);
+    ASSERT_LT(lower, upper_end);
+    urdf.replace(lower, upper_end + 1 - lower, "lower=\"1\" upper=\"1\"");
+    const std::string file = write("flat.urdf", urdf);
+    const std::string robot = write("flat.yaml", "model: urdf\nurdf: flat.urdf\n");
+    const std::string why = "<limit lower='1' upper='1'>: a revolute joint needs <limit lower upper> with lower < upper (rad)";
+    expect_refused(jacobid("simulate --robot " + robot + " -o " + scratch("flat.csv").string()), {file + ": element <joint name='shoulder_lift'>: " + why});
+    expect_refused(jacobid("identify --print-base --robot " + robot), {file, why});
+    if (excite_built()) expect_refused(jacobid("excite --robot " + robot + " -o " + scratch("flat-excite.csv").string()), {file, why});
+}
+
 }  // namespace

@@ -243,4 +243,30 @@ TEST(UrdfChain, MalformedUrdfNamesTheElement) {
     EXPECT_EQ(urdf_error_of("not xml").rfind("arm.urdf: invalid URDF", 0), 0u);
 }
 
+// Issue 36: a revolute joint whose <limit> is not a range (lower >= upper, or no lower/upper, which urdfdom
+// reads as 0, 0) was given [-pi, pi] silently, and excite designed motions over it. A continuous joint keeps
+// [-pi, pi] (kArm's j2).
+TEST(UrdfChain, LimitsThatAreNotARangeAreRefusedNamingTheJoint) {
+    const std::string limit = "<limit lower=\"-2\" upper=\"2\" effort=\"10\" velocity=\"1\"/>";
+    const auto with_limit = [&](const std::string& replacement) {
+        std::string xml = kArm;
+        return xml.replace(xml.find(limit), limit.size(), replacement);
+    };
+    const std::string continuous = "; a joint that turns without limits is type='continuous' (its range is then taken as [-pi, pi])";
+    EXPECT_EQ(urdf_error_of(with_limit("<limit lower=\"1\" upper=\"1\" effort=\"10\" velocity=\"1\"/>")),
+              "arm.urdf: element <joint name='j1'>: <limit lower='1' upper='1'>: a revolute joint needs <limit lower upper> with lower < upper (rad)" +
+                  continuous);
+    EXPECT_EQ(urdf_error_of(with_limit("<limit lower=\"2\" upper=\"-2\" effort=\"10\" velocity=\"1\"/>")),
+              "arm.urdf: element <joint name='j1'>: <limit lower='2' upper='-2'>: a revolute joint needs <limit lower upper> with lower < upper (rad)" +
+                  continuous);
+    EXPECT_EQ(urdf_error_of(with_limit("<limit effort=\"10\" velocity=\"1\"/>")),
+              "arm.urdf: element <joint name='j1'>: <limit lower='0' upper='0'>: a revolute joint needs <limit lower upper> with lower < upper (rad)" +
+                  continuous);
+    const robot::UrdfChain fine = robot::parse_urdf_chain(kArm, "arm.urdf");
+    EXPECT_EQ(fine.limits[0], std::make_pair(-2.0, 2.0));
+    EXPECT_TRUE(fine.limits_given[0]);
+    EXPECT_EQ(fine.limits[1], std::make_pair(-M_PI, M_PI));  // continuous
+    EXPECT_FALSE(fine.limits_given[1]);
+}
+
 }  // namespace
