@@ -22,6 +22,7 @@
 #include "sim/simulator.hpp"
 #include "sim/tabulated_trajectory.hpp"
 #include "io/partial_output.hpp"
+#include "identify/log_columns.hpp"
 #include "io/csv_table.hpp"
 
 namespace jacobid::cli {
@@ -105,10 +106,19 @@ void run(SimulateOptions o) {
         for (const auto& [limit, option] : {std::pair{&o.settings.moves.velocity_limit, "--velocity-limit"}, {&o.settings.moves.acceleration_limit, "--acceleration-limit"}}) {
             if (!limit->empty()) throw InputError(fmt::format("{} shapes the random moves: it cannot be given with --trajectory {}", option, o.trajectory));
         }
-        reference = std::make_shared<const sim::TabulatedTrajectory>(io::read_csv(o.trajectory), n);
+        std::vector<std::optional<io::PositionBounds>> limits;
+        for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) limits.push_back(identify::position_bounds(robot, j));
+        reference = std::make_shared<const sim::TabulatedTrajectory>(io::read_csv(o.trajectory), n, limits);
         if (!o.duration_given) o.settings.duration = reference->length();
     }
     o.settings = simulation_settings(o);
+    // A log of one row is no log (a 1 ns table used to give one, exit 0).
+    if (o.settings.duration * o.settings.output_rate < 1.0) {
+        const std::string duration = o.duration_given || o.trajectory.empty() ? fmt::format("--duration {:g} s", o.settings.duration)
+                                                                              : fmt::format("--trajectory {} lasts {:g} s (its last t) and", o.trajectory, o.settings.duration);
+        throw InputError(fmt::format("{} at --rate {:g} Hz gives a log of one sample; a log needs at least 2 (a duration of at least {:g} s)", duration,
+                                     o.settings.output_rate, 1.0 / o.settings.output_rate));
+    }
     // A row: the time, then position, torque and two reference columns per joint (10-17 digits each).
     refuse_oversized_simulation(o.settings, 12.0 + 60.0 * n);
     if (reference) {

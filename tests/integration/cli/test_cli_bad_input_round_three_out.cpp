@@ -6,6 +6,8 @@
 // with exit status 2; docs/reliability.md, "Round three (issue 36)", "Outputs and command options".
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -167,6 +169,69 @@ TEST(CliDriveGains, AGainTheLogsDoNotDetermineIsRefusedNotPrinted) {
 // Before: "--payload-mass 0: expected the payload's mass in kg, > 0" for an option never given.
 TEST(CliDriveGains, AMissingPayloadMassIsNamedAsMissing) {
     expect_refused(jacobid(drive_gains(ur5_log(), ur5_log(), "")), {"--drive-gains needs --payload-mass KG"});
+}
+
+// A reference for the planar 2R: one period of q = a sin(w t) on both joints (q2 = -q1), `rows` rows of `step`
+// s, the velocity and acceleration columns multiplied by `qd_factor` and `qdd_factor` (1: consistent), and
+// a third joint's columns when `third_joint`.
+std::string sine_table(const std::string& name, double step, int rows, double amplitude, double qd_factor = 1.0, double qdd_factor = 1.0,
+                       bool third_joint = false) {
+    std::string text = std::string("t,q1,q2,qd1,qd2,qdd1,qdd2") + (third_joint ? ",q3,qd3,qdd3" : "") + "\n";
+    const double w = 2.0 * M_PI / (step * (rows - 1));
+    for (int i = 0; i < rows; ++i) {
+        const double t = step * i, q = amplitude * std::sin(w * t), qd = amplitude * w * std::cos(w * t) * qd_factor,
+                     qdd = -amplitude * w * w * std::sin(w * t) * qdd_factor;
+        char row[400];
+        std::snprintf(row, sizeof row, "%.9g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g%s\n", t, q, -q, qd, -qd, qdd, -qdd, third_joint ? ",0,0,0" : "");
+        text += row;
+    }
+    return write(name, text);
+}
+
+const std::string kLimitedPlanar = "model: planar2r\nL1: 0.5\njoints:\n  - {name: j1, position: q1, torque: tau1, limits: [-2.5, 2.5]}\n"
+                                   "  - {name: j2, position: q2, torque: tau2, limits: [-2.5, 2.5]}\n";
+
+jacobid::test::CommandResult simulate_table(const std::string& table) {
+    return jacobid("simulate --quiet --robot " + write("limited.yaml", kLimitedPlanar) + " --trajectory " + table + " -o " + scratch("traj-log.csv").string());
+}
+
+TEST(CliSimulateTrajectory, AConsistentTableWithinTheLimitsIsFollowed) {
+    const auto r = simulate_table(sine_table("fine.csv", 0.01, 201, 1.0));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+// Before: a 2-row table of 1 ns steps gave a log of one row, exit 0.
+TEST(CliSimulateTrajectory, AStepOutsideTheStatedRangeOrALogOfOneSampleIsRefused) {
+    const std::string ns = write("ns.csv", "t,q1,q2,qd1,qd2,qdd1,qdd2\n0,0,0,0,0,0,0\n1e-9,0,0,0,0,0,0\n");
+    expect_refused(simulate_table(ns), {ns + ": line 3, column t: time step 1e-09 s, expected 1e-06 .. 1000 s (is t in seconds?)"});
+    const std::string short_table = write("short.csv", "t,q1,q2,qd1,qd2,qdd1,qdd2\n0,0,0,0,0,0,0\n1e-5,0,0,0,0,0,0\n");
+    expect_refused(simulate_table(short_table), {"--trajectory " + short_table + " lasts 1e-05 s (its last t) and at --rate 1000 Hz gives a log of one sample"});
+    expect_refused(jacobid("simulate --duration 1e-4 -o " + scratch("one.csv").string()), {"--duration 0.0001 s at --rate 1000 Hz gives a log of one sample"});
+}
+
+// Before: exit 0, the interpolated reference oscillating between the rows.
+TEST(CliSimulateTrajectory, DerivativeColumnsThatAreNotTheDerivativesAreRefusedWithTheirLine) {
+    const std::string zero_qd = sine_table("zero-qd.csv", 0.01, 201, 1.0, 0.0, 0.0);
+    expect_refused(simulate_table(zero_qd), {zero_qd + ": line 3, columns q1, qd1, qdd1: q1 moves by", "qd1 and qdd1 must be q1's derivatives"});
+    const std::string degrees = sine_table("degrees.csv", 0.01, 201, 1.0, 180.0 / M_PI, 180.0 / M_PI);
+    expect_refused(simulate_table(degrees), {degrees + ": line 3, columns q1, qd1, qdd1"});
+    const std::string zero_qdd = sine_table("zero-qdd.csv", 0.01, 201, 1.0, 1.0, 0.0);
+    expect_refused(simulate_table(zero_qdd), {zero_qdd + ": line 3, columns qd1, qdd1: qd1 changes by", "qdd1 must be qd1's derivative"});
+}
+
+// Before: exit 0, the robot commanded 3 rad where its description allows 2.5.
+TEST(CliSimulateTrajectory, AReferenceBeyondTheJointLimitsIsRefused) {
+    const std::string far = sine_table("far.csv", 0.01, 201, 3.0);
+    expect_refused(simulate_table(far), {far + ": line ", ", column q1: position ", "is outside joint 1 (j1)'s limits [-2.5, 2.5] of the robot description"});
+}
+
+// Before: a table with a third joint's columns was followed by the 2R, the columns dropped, exit 0.
+TEST(CliSimulateTrajectory, ATableForAnotherRobotIsRefusedNamingTheColumn) {
+    const std::string three = sine_table("three.csv", 0.01, 201, 1.0, 1.0, 1.0, true);
+    expect_refused(simulate_table(three), {three + ":1: column 8 'q3' is not read by the simulator (the robot has 2 joints: expected the columns t, "
+                                                   "q1..q2, qd1..qd2, qdd1..qdd2; a table for another robot?)"});
+    const std::string one = write("one-joint.csv", "t,q1,qd1,qdd1\n0,0,0,0\n0.01,0,0,0\n");
+    expect_refused(simulate_table(one), {one + ":1: no column 'q2' (the robot has 2 joints"});
 }
 
 // --- 3. URDF limits ----------------------------------------------------------------------------------------
