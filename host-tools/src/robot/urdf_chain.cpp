@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "robot/urdf_chain.hpp"
 
+#include <console_bridge/console.h>
 #include <fmt/core.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -205,18 +207,54 @@ void require_finite_inertials(const std::string& xml, const std::string& source)
     }
 }
 
+// While it lives, urdfdom's errors (console_bridge) are caught instead of printed: the first is the cause of
+// a refused URDF ("Failed to build tree: child link [lx] of joint [j2] not found"), which our message then
+// names instead of a list of possible causes (issue 36); warnings and the rest pass on to the handler it replaced.
+class UrdfdomErrors : public console_bridge::OutputHandler {
+public:
+    UrdfdomErrors() : lock_(mutex()), previous_(console_bridge::getOutputHandler()) { console_bridge::useOutputHandler(this); }
+    ~UrdfdomErrors() override { console_bridge::useOutputHandler(previous_); }
+    UrdfdomErrors(const UrdfdomErrors&) = delete;
+    UrdfdomErrors& operator=(const UrdfdomErrors&) = delete;
+
+    void log(const std::string& text, console_bridge::LogLevel level, const char* filename, int line) override {
+        if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+            if (first_.empty()) first_ = text;  // the later ones follow from it; the URDF is refused
+        } else if (previous_) {
+            previous_->log(text, level, filename, line);
+        }
+    }
+    const std::string& first() const { return first_; }
+
+private:
+    // console_bridge's handler is process-wide: one parse at a time swaps it.
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::lock_guard<std::mutex> lock_;
+    console_bridge::OutputHandler* previous_;
+    std::string first_;
+};
+
 }  // namespace
 
 UrdfChain parse_urdf_chain(const std::string& xml, const std::string& source) {
     require_finite_inertials(xml, source);
     urdf::ModelInterfaceSharedPtr model;
+    std::string urdfdom_error;
     try {
+        UrdfdomErrors errors;
         model = urdf::parseURDF(xml);
+        urdfdom_error = errors.first();
     } catch (const std::exception& e) {
         throw InputError(fmt::format("{}: invalid URDF: {}", source, e.what()));
     }
+    // Also when urdfdom returned a model: it logs an error where it skipped what it could not read (an
+    // <inertial> it dropped), and the robot would then not be the one the file describes.
+    if (!urdfdom_error.empty()) throw InputError(fmt::format("{}: invalid URDF: {} (urdfdom)", source, urdfdom_error));
     if (!model) {
-        throw InputError(fmt::format("{}: invalid URDF (urdfdom rejected it: malformed XML, a missing <robot>, a joint without "
+        throw InputError(fmt::format("{}: invalid URDF (urdfdom rejected it without saying why: malformed XML, a missing <robot>, a joint without "
                                      "parent/child, a link named twice or a number that does not parse)",
                                      source));
     }

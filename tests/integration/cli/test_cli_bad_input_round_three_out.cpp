@@ -251,4 +251,41 @@ TEST(CliUrdfLimits, ARevoluteJointWithoutARangeIsRefusedByEveryCommand) {
     if (excite_built()) expect_refused(jacobid("excite --robot " + robot + " -o " + scratch("flat-excite.csv").string()), {file, why});
 }
 
+// --- 4. Messages that blame the right thing -----------------------------------------------------------------
+
+// Before: 'dir/package:/arm_description/urdf/arm.urdf' is not a readable file.
+TEST(CliUrdfMessages, APackageUriIsResolvedTheRosWayOrSaysHowToFixIt) {
+    const std::string yaml = write("pkg.yaml", "model: urdf\nurdf: package://arm_description/urdf/arm.urdf\n");
+    const std::string unset = "env -u ROS_PACKAGE_PATH -u AMENT_PREFIX_PATH ";
+    expect_refused(run_command(unset + JACOBID_EXECUTABLE + " identify --print-base --robot " + yaml),
+                   {yaml + ":2:7: urdf: 'package://arm_description/urdf/arm.urdf': no ROS package 'arm_description' holding 'urdf/arm.urdf' "
+                           "(ROS_PACKAGE_PATH unset, AMENT_PREFIX_PATH unset",
+                    "give the URDF's path (relative to this file or absolute)"});
+    const fs::path package = scratch("ws") / "src" / "arm_description";
+    fs::create_directories(package / "urdf");
+    std::ofstream(package / "package.xml") << "<package><name>arm_description</name></package>\n";
+    fs::copy_file(kSource + "/data/export_arm.urdf", package / "urdf" / "arm.urdf", fs::copy_options::overwrite_existing);
+    const auto ros1 = run_command(unset + "ROS_PACKAGE_PATH=" + (scratch("ws") / "src").string() + " " + JACOBID_EXECUTABLE +
+                                  " identify --print-base --robot " + yaml);
+    EXPECT_EQ(ros1.exit_code, 0) << ros1.err;
+    EXPECT_NE(ros1.out.find("model urdf (" + yaml + "): 4 joints"), std::string::npos) << ros1.out;
+    const fs::path prefix = scratch("install");
+    fs::create_directories(prefix / "share");
+    fs::copy(package, prefix / "share" / "arm_description", fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+    const auto ros2 = run_command(unset + "AMENT_PREFIX_PATH=/nonexistent:" + prefix.string() + " " + JACOBID_EXECUTABLE + " identify --print-base --robot " + yaml);
+    EXPECT_EQ(ros2.exit_code, 0) << ros2.err;
+}
+
+// Before: "invalid URDF (urdfdom rejected it: malformed XML, a missing <robot>, ...)" and urdfdom's own
+// "Error:" line printed apart.
+TEST(CliUrdfMessages, UrdfdomsOwnReasonIsTheMessage) {
+    std::string urdf = read_text(kSource + "/data/export_arm.urdf");
+    const std::size_t child = urdf.find("<child link=\"", urdf.find("name=\"shoulder_lift\""));
+    urdf.insert(urdf.find('"', child + 13), "_missing");
+    const std::string file = write("missing-child.urdf", urdf);
+    const auto r = jacobid("identify --print-base --robot " + write("missing-child.yaml", "model: urdf\nurdf: missing-child.urdf\n"));
+    expect_refused(r, {file + ": invalid URDF: Failed to build tree: child link [", "_missing] of joint [shoulder_lift] not found (urdfdom)"});
+    EXPECT_EQ(r.err.find("Error:"), std::string::npos) << r.err;
+}
+
 }  // namespace
