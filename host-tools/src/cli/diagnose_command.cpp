@@ -100,17 +100,17 @@ void add_diagnose_command(CLI::App& app) {
         "find where the identified model and the measured data disagree, name the missing physical effect (coulomb_offset, "
         "coulomb_asymmetry, stribeck, viscous_nonlinear, gravity, cogging, rotor_inertia, torque_delay), add it and show the gap "
         "shrink on held-out data");
-    cmd->add_option("--robot", o->robot, "robot description (YAML, as for identify)")->required();
+    cmd->add_option("--robot", o->robot, "robot description (YAML, as for identify)")->required()->check(file_path());
     cmd->add_option("--in", o->inputs,
                     "log (CSV: time column, the joints' position and torque columns); repeat it (--in a.csv --in b.csv) to diagnose several "
                     "logs together: each keeps its own edges, their equations are stacked as identify stacks them")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-        ->required();
-    cmd->add_option("--validate", o->validate, "held-out log for the selection and the before/after figures (default: blocked cross-validation)");
+        ->required()->check(file_path());
+    cmd->add_option("--validate", o->validate, "held-out log for the selection and the before/after figures (default: blocked cross-validation)")->check(file_path());
     cmd->add_option("--format", o->format, "table (text) or json")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
-    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
-    cmd->add_option("--report", o->report, "also write DIR/report.md with PNG plots of the residual vs velocity and position, before and after");
+    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--report", o->report, "also write DIR/report.md with PNG plots of the residual vs velocity and position, before and after")->check(file_path());
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
     add_time_tolerance_option(cmd, o->time_tolerance);
     add_log_format_options(cmd, o->log_format);

@@ -21,7 +21,7 @@ void add_drive_gain_options(CLI::App* cmd, DriveGainOptions& o) {
                   "identify the drive gains (current to torque) with the dynamic parameters from --in (no payload) and --loaded (the same "
                   "robot with a payload of known --payload-mass on the last link): least squares with std, total least squares and the "
                   "physically constrained estimate, and the `gains:` line of a log-format file");
-    cmd->add_option("--loaded", o.loaded, "with --drive-gains: the log with the payload (same format and robot as --in)");
+    cmd->add_option("--loaded", o.loaded, "with --drive-gains: the log with the payload (same format and robot as --in)")->check(file_path());
     o.payload_mass_option = cmd->add_option("--payload-mass", o.payload_mass, "with --drive-gains: the payload's mass (kg, > 0); it fixes the gains' scale")
                                 ->check(positive_number());
     cmd->add_option("--payload-com", o.payload_com,

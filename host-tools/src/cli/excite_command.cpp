@@ -482,7 +482,7 @@ void add_excite_command(CLI::App& app) {
                                        "design an excitation trajectory: finite Fourier series per joint, at rest at a pose at both ends of every period, "
                                        "optimized for the information of the base parameters within the joints' limits; predicts every base "
                                        "parameter's std, beside that of --compare");
-    cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters (the prior without --prior)")->required();
+    cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters (the prior without --prior)")->required()->check(file_path());
     cmd->add_option("--duration", o->duration, "s: a whole number of periods (period = 1 / --base-frequency), played back to back")
         ->check(positive_number())
         ->capture_default_str();
@@ -501,17 +501,17 @@ void add_excite_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--prior", o->prior,
                     "an earlier identification (jacobid identify --format json): its parameters are the prior (torque limits, relative std) and "
-                    "its per-joint residuals the noise");
+                    "its per-joint residuals the noise")->check(file_path());
     cmd->add_option("--torque-noise", o->torque_noise, "N.m: std of the torque noise, one value or one per joint (overrides --prior's; default 1)")
         ->delimiter(',');
     cmd->add_option("--compare", o->compare,
                     "a trajectory (t, q1.., qd1.., qdd1..) or a recorded log (the description's columns, or --log-format): its predicted std "
-                    "beside the design's");
+                    "beside the design's")->check(file_path());
     cmd->add_option("--position-limit", o->position_limit, "rad: LOWER:UPPER, one range or one per joint (default: the description's limits)")
         ->delimiter(',');
-    cmd->add_option("--output,-o", o->output, "trajectory CSV at --rate: t, q1.., qd1.., qdd1.. ('-': standard output)")->capture_default_str();
-    cmd->add_option("--json", o->json, "JSON: coefficients, criterion, cond, peak position/velocity/acceleration/torque and limit use per joint");
-    cmd->add_option("--plot", o->plot, "PNG: positions, velocities and the model's torques over the whole duration");
+    cmd->add_option("--output,-o", o->output, "trajectory CSV at --rate: t, q1.., qd1.., qdd1.. ('-': standard output)")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--json", o->json, "JSON: coefficients, criterion, cond, peak position/velocity/acceleration/torque and limit use per joint")->check(file_path(true));
+    cmd->add_option("--plot", o->plot, "PNG: positions, velocities and the model's torques over the whole duration")->check(file_path());
     cmd->add_option("--pose", o->pose, "rad: the rest pose at both ends of each period, one value or one per joint (default: the middle of each joint's limits)")
         ->delimiter(',')
         ->check(finite_number());

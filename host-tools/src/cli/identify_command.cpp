@@ -566,12 +566,12 @@ void add_identify_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("identify",
                                        "identify base dynamic parameters from a log (t, positions, torques) by least squares on the "
                                        "decimated inverse dynamic model; prints the paper's Table II");
-    cmd->add_option("--robot", o->robot, "robot description (YAML, e.g. 'model: planar2r')")->required();
+    cmd->add_option("--robot", o->robot, "robot description (YAML, e.g. 'model: planar2r')")->required()->check(file_path());
     cmd->add_option("--in", o->inputs,
                     "log (CSV with a header: time column, the joints' position and torque columns); repeat it (--in a.csv --in b.csv) to "
                     "identify several logs together: each log keeps its own edges, their equations are stacked")
         ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(file_path());
     cmd->add_option("--piece-rows", o->piece_rows,
                     "rows of a long CSV log held at once (default 0: as many as fit in 400 MB of its kept columns, an hour of 1 kHz "
                     "6-axis data): a longer log is identified piece by piece, like the segments of --on-gap split, so memory does "
@@ -589,15 +589,15 @@ void add_identify_command(CLI::App& app) {
         ->check(CLI::IsMember({"jacobi", "butterworth", "both"}))
         ->capture_default_str();
     cmd->add_option("--format", o->format, "table (Table II text) or json")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
-    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
-    cmd->add_option("--report", o->report, "also write DIR/report.md and PNG plots (torque measured vs model)");
-    cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table");
-    cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors; a log that holds a pose gets the static (gravity) check per joint");
+    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--report", o->report, "also write DIR/report.md and PNG plots (torque measured vs model)")->check(file_path());
+    cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table")->check(file_path());
+    cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors; a log that holds a pose gets the static (gravity) check per joint")->check(file_path());
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
     add_time_tolerance_option(cmd, o->time_tolerance);
     cmd->add_option("--can-config", o->can_config,
                     "jacobid-fw config (YAML) whose joints' CAN profiles, ids, gear ratios and torque constants decode --in and "
-                    "--validate as candump -L captures instead of CSV");
+                    "--validate as candump -L captures instead of CSV")->check(file_path());
     add_log_format_options(cmd, o->log_format);
     add_fit_options(cmd, *o);
     cmd->add_option("--velocity", o->velocity,

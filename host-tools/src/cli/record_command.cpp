@@ -128,8 +128,8 @@ void add_record_command(CLI::App& app) {
     auto o = std::make_shared<RecordOptions>();
     CLI::App* cmd = app.add_subcommand("record", "record the controller's UDP estimate stream into a CSV log for `jacobid identify`");
     cmd->add_option("--udp", o->udp, "HOST:PORT to listen on, e.g. 0.0.0.0:5005 (port 0 = any free port, printed on stderr)")->required();
-    cmd->add_option("--out,-o", o->output, "CSV log: t,q1..qn,tau1..taun[,estimates],seq,stream_flags,flags1..n")->required();
-    cmd->add_option("--summary", o->summary, "also write the summary (counts, lost/late/unmeasured sequence numbers, files) as JSON");
+    cmd->add_option("--out,-o", o->output, "CSV log: t,q1..qn,tau1..taun[,estimates],seq,stream_flags,flags1..n")->required()->check(file_path());
+    cmd->add_option("--summary", o->summary, "also write the summary (counts, lost/late/unmeasured sequence numbers, files) as JSON")->check(file_path());
     cmd->add_option("--count", o->count, "stop after this many datagrams (any, malformed included); 0 = no limit")
         ->check(whole_number_from(0))
         ->capture_default_str();

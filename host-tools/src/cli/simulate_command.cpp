@@ -12,6 +12,7 @@
 
 #include "cli/command.hpp"
 #include "cli/log_format_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "cli/robot_files.hpp"
 #include "cli/simulation_options.hpp"
@@ -259,10 +260,10 @@ void add_simulate_command(CLI::App& app) {
         "simulate a PD-controlled robot on random quintic point-to-point moves; write the measured log (CSV t,q..,tau.., then the "
         "reference q_ref..,qd_ref..) "
         "and the truth (JSON parameters, optional CSV of noise-free states)");
-    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (a description whose alpha is auto, the default, is simulated with 100 s/rad)");
-    cmd->add_option("--out,-o", o->out, "output log (CSV)")->required();
-    cmd->add_option("--truth", o->truth, "truth file (JSON: parameters, settings); default <out without extension>.truth.json");
-    cmd->add_option("--states", o->states, "also write the noise-free states t,q,qd,qdd,tau to this CSV");
+    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (a description whose alpha is auto, the default, is simulated with 100 s/rad)")->check(file_path());
+    cmd->add_option("--out,-o", o->out, "output log (CSV)")->required()->check(file_path());
+    cmd->add_option("--truth", o->truth, "truth file (JSON: parameters, settings); default <out without extension>.truth.json")->check(file_path());
+    cmd->add_option("--states", o->states, "also write the noise-free states t,q,qd,qdd,tau to this CSV")->check(file_path());
     add_simulation_options(cmd, *o);
     cmd->add_option("--effect", o->effects,
                     "inject an effect the nominal model lacks (repeatable): NAME:key=value,... e.g. "
@@ -272,10 +273,10 @@ void add_simulate_command(CLI::App& app) {
                     "rotor_inertia:joint=2,value=0.1 | torque_delay:value=0.003 (joints 1-based, SI units, "
                     "angles in degrees; see docs/diagnose.md)")
         ->take_all();
-    cmd->add_option("--effects", o->effects_file, "YAML file of effects to inject: effects: [{name: cogging, joint: 2, amplitude: 0.2, order: 6}, ...]");
+    cmd->add_option("--effects", o->effects_file, "YAML file of effects to inject: effects: [{name: cogging, joint: 2, amplitude: 0.2, order: 6}, ...]")->check(file_path());
     cmd->add_option("--trajectory", o->trajectory,
                     "follow this reference instead of random moves: CSV t,q1..,qd1..,qdd1.. (e.g. from jacobid excite), repeated after its "
-                    "last row; --duration defaults to its length");
+                    "last row; --duration defaults to its length")->check(file_path());
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o, cmd] {
         o->duration_given = cmd->count("--duration") > 0;

@@ -119,6 +119,23 @@ TEST(CliOutputGuard, DriveGainsOutputOntoTheLoadedLogIsRefused) {
     EXPECT_EQ(read_text(loaded), "t,q1\n0,1\n");
 }
 
+// Found by the audit (5): an empty path was "not given" (--robot '' simulated the default robot, exit 0; -o ''
+// said ": cannot open for writing"), and '-' where an option has no standard output was a file named '-'.
+TEST(CliPathOptions, AnEmptyPathOrADashWhereNoStandardStreamIsMeantIsRefusedNamingTheOption) {
+    expect_refused(jacobid("simulate --duration 1 --robot '' -o " + scratch("e.csv").string()), {"--robot: expected a file path, got ''"});
+    expect_refused(jacobid("simulate --duration 1 -o ''"), {"--out: expected a file path, got ''"});
+    const auto dash = jacobid("simulate --duration 1 -o -");
+    expect_refused(dash, {"--out: expected a file path, got '-' (this option does not read or write standard input/output)"});
+    EXPECT_FALSE(fs::exists("-"));
+    expect_refused(jacobid("identify --robot r.yaml --in x.csv --report ''"), {"--report: expected a file path, got ''"});
+    expect_refused(jacobid("identify --robot r.yaml --in ''"), {"--in: expected a file path, got ''"});
+    expect_refused(jacobid("record --udp 127.0.0.1:0 -o ''"), {"--out: expected a file path, got ''"});
+    expect_refused(jacobid("differentiate --in '' -c q1"), {"--in: expected a file path, got ''"});
+    // Where '-' is standard output it stays accepted.
+    const auto to_stdout = jacobid("kernel --order 1 --ts 0.001 --window 0.02 -o -");
+    EXPECT_EQ(to_stdout.exit_code, 0) << to_stdout.err;
+}
+
 // --- 2. Wrong numbers with exit 0 ------------------------------------------------------------------------------
 
 const std::string kUr5 = kSource + "/../examples/robots/ur5_like.yaml";

@@ -203,7 +203,7 @@ TEST(ModelExportCli, BadInputIsRefusedWithTheOptionNamed) {
             "--export-robot: model planar2r has no standard (per-link) parameters");
     refused("--robot " + mdh + " --export-urdf " + (dir / "a.urdf").string(), "--export-urdf " + (dir / "a.urdf").string() + ": model mdh has no URDF");
     refused("--robot " + mdh + " --export-robot " + (dir / "missing" / "a.yaml").string(), "does not exist");
-    refused("--robot " + mdh + " --export-robot -", "--export-robot -: expected a file path");
+    refused("--robot " + mdh + " --export-robot -", "--export-robot: expected a file path, got '-'");
     // A directory is not a writable file: found by the output guard before the work, named by the option.
     refused("--robot " + mdh + " --export-robot " + dir.string(), "--export-robot " + dir.string() + ": is a directory, expected a file name");
 }
