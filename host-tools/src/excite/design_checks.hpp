@@ -12,12 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "core/measurable_motion.hpp"
 #include "excite/excitation_design.hpp"
 #include "excite/excitation_problem.hpp"
 
 namespace jacobid::excite {
 
-inline constexpr double kMinExcitationAmplitude = 1e-3;
+inline constexpr double kMinExcitationAmplitude = kMinMeasurableMotion;
 inline constexpr double kMaxDesignCond = 1e8;
 
 // `position_source`: where the position limits came from ("the robot description", "--position-limit").

@@ -251,6 +251,18 @@ TEST(CliSimulateTrajectory, ATableForAnotherRobotIsRefusedNamingTheColumn) {
     expect_refused(simulate_table(one), {one + ":1: no column 'q2' (the robot has 2 joints"});
 }
 
+// Found by the audit (5): --velocity-limit 1e-308 logged a robot standing still, exit 0 (identify then refused
+// the log as "standing still", blaming the log).
+TEST(CliSimulateMoves, LimitsThatAllowNoMeasurableMotionAreRefused) {
+    expect_refused(jacobid("simulate --duration 10 --velocity-limit 1e-4 -o " + scratch("v.csv").string()),
+                   {"--velocity-limit 0.0001 rad/s: a move within --duration 10 s reaches at most v T / 1.875 = 0.000533 rad, less than the 0.001 rad"});
+    expect_refused(jacobid("simulate --duration 10 --acceleration-limit 1e-308 -o " + scratch("a.csv").string()),
+                   {"--acceleration-limit 1e-308 rad/s^2: a move within --duration 10 s reaches at most a T^2 / 5.77"});
+    expect_refused(jacobid("montecarlo --runs 2 --velocity-limit 1e-308 -o " + scratch("m.json").string()), {"--velocity-limit 1e-308 rad/s"});
+    const auto slow = jacobid("simulate --quiet --duration 2 --velocity-limit 0.01 -o " + scratch("slow.csv").string());
+    EXPECT_EQ(slow.exit_code, 0) << slow.err;
+}
+
 // --- 3. URDF limits ----------------------------------------------------------------------------------------
 
 // Before: joint 2's <limit lower="1" upper="1"> became [-pi, pi] and excite designed a motion over it.
