@@ -48,7 +48,8 @@ void run(DiagnoseOptions o) {
     read_files.insert(read_files.end(), {{"--validate", o.validate}, {"--log-format", o.log_format.file}});
     for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
     check_outputs({{"--output", o.output}}, read_files);
-    check_output_directory({"--report", o.report});  // written after the work: checked before it
+    read_files.push_back({"--output", o.output});
+    check_output_directory({"--report", o.report}, read_files);  // written after the work: checked before it
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
     const auto model = robot::make_robot_model(robot);

@@ -422,7 +422,8 @@ void run(IdentifyOptions o) {
                                                {o.in, o.format, o.time_column, o.time_tolerance, o.quiet, &o.log_format, given}));
         return;
     }
-    check_output_directory({"--report", o.report});  // written after the work: checked before it
+    read_files.push_back({"--output", o.output});
+    check_output_directory({"--report", o.report}, read_files);  // written after the work: checked before it
     const std::map<std::string, double> truth = o.truth.empty() ? std::map<std::string, double>{} : read_truth(o.truth);
     if (!o.truth.empty()) require_truth_of_the_model(truth, model->parameter_names(), o);
     // Refused before the (long) identification; exporting needs standard parameters: --physical unless --semi-physical.

@@ -75,8 +75,10 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
 void run(const MonteCarloOptions& o) {
     montecarlo::StudySettings s;
     s.robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
-    check_outputs({{"--output", o.output}}, robot_files("--robot", o.robot, s.robot));
-    check_output_directory({"--report", o.report});  // written after the work: checked before it
+    std::vector<NamedPath> files = robot_files("--robot", o.robot, s.robot);
+    check_outputs({{"--output", o.output}}, files);
+    files.push_back({"--output", o.output});
+    check_output_directory({"--report", o.report}, files);  // written after the work: checked before it
     SimulationOptions simulation = o;  // the description's controller, if any
     apply_controller(s.robot, simulation);
     s.simulation = simulation_settings(simulation);

@@ -62,8 +62,17 @@ void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<N
     }
 }
 
-void check_output_directory(const NamedPath& directory) {
+void check_output_directory(const NamedPath& directory, const std::vector<NamedPath>& files) {
     if (directory.path.empty()) return;
+    for (const NamedPath& f : files) {
+        if (!given(f)) continue;
+        const fs::path p(f.path);
+        const bool written_by_report = p.filename() == "report.md" || p.extension() == ".png";
+        if (written_by_report && same_file(p.parent_path().empty() ? fs::path(".") : p.parent_path(), directory.path)) {
+            throw InputError(fmt::format("{} {}: the report writes report.md and PNG plots in it, and {} is the file given to {}; give another folder",
+                                         directory.option, directory.path, f.path, f.option));
+        }
+    }
     std::error_code ec;
     if (fs::exists(directory.path, ec) && !fs::is_directory(directory.path, ec)) {
         throw InputError(fmt::format("{} {}: exists and is not a directory", directory.option, directory.path));

@@ -26,8 +26,9 @@ void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<N
 
 // Checks, before any work is done, that an output folder (--report DIR) can be written: it is a directory
 // or can be created, and a file can be created in it. What the check created is removed again (the
-// folder is made when the report is written). InputError naming the option and the path otherwise.
-void check_output_directory(const NamedPath& directory);
+// folder is made when the report is written). `files`: the others the command reads or writes; none may be
+// one the report writes in the folder (its report.md or a PNG plot). InputError naming the option and the path otherwise.
+void check_output_directory(const NamedPath& directory, const std::vector<NamedPath>& files = {});
 
 // Checks an output folder (paper-sines --out-dir): it exists as a directory or is created now.
 void prepare_output_directory(const NamedPath& directory);

@@ -111,6 +111,21 @@ TEST(CliOutputGuard, TwoOutputsNamingOneFileThroughALinkAreRefused) {
                    {"--export-robot " + link, "is also the output of --output"});
 }
 
+// --report DIR writes report.md and PNG plots in DIR: none may be a file the command reads or writes.
+TEST(CliOutputGuard, AReportFolderHoldingAnInputOrOutputOfTheReportsNamesIsRefused) {
+    const fs::path dir = scratch("report-dir");
+    fs::create_directories(dir);
+    const std::string robot = (dir / "report.md").string();
+    fs::copy_file(kSource + "/../examples/robots/planar2r.yaml", robot, fs::copy_options::overwrite_existing);
+    const std::string text = read_text(robot);
+    expect_refused(jacobid("montecarlo --runs 2 --robot " + robot + " --report " + dir.string()),
+                   {"--report " + dir.string() + ": the report writes report.md and PNG plots in it, and " + robot + " is the file given to --robot"});
+    const std::string log = write("in-report.csv", "t,q1\n0,0\n");
+    expect_refused(jacobid("identify --robot " + urdf_robot().yaml + " --in " + log + " -o " + (dir / "torque_jacobi.png").string() + " --report " + dir.string()),
+                   {"is the file given to --output"});
+    EXPECT_EQ(read_text(robot), text);
+}
+
 TEST(CliOutputGuard, DriveGainsOutputOntoTheLoadedLogIsRefused) {
     const std::string unloaded = write("unloaded.csv", "t,q1\n0,0\n");
     const std::string loaded = write("loaded.csv", "t,q1\n0,1\n");
