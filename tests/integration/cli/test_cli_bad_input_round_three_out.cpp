@@ -126,6 +126,13 @@ TEST(CliOutputGuard, AReportFolderHoldingAnInputOrOutputOfTheReportsNamesIsRefus
     EXPECT_EQ(read_text(robot), text);
 }
 
+// record --on-gap split writes OUT's stem.N.ext segments: a summary named like one would collide.
+TEST(CliOutputGuard, ARecordSummaryNamedLikeASplitSegmentIsRefused) {
+    const std::string out = scratch("rec.csv").string(), summary = scratch("rec.2.csv").string();
+    expect_refused(jacobid("record --udp 127.0.0.1:0 --on-gap split -o " + out + " --summary " + summary),
+                   {"--summary " + summary + ": --on-gap split may write this file as a segment of --out " + out + " (rec.N.csv)"});
+}
+
 TEST(CliOutputGuard, DriveGainsOutputOntoTheLoadedLogIsRefused) {
     const std::string unloaded = write("unloaded.csv", "t,q1\n0,0\n");
     const std::string loaded = write("loaded.csv", "t,q1\n0,1\n");
