@@ -66,17 +66,25 @@ void refuse_same_content(const identify::LogColumns& unloaded, const identify::L
 
 // A fit the logs do not determine (a loaded run without the payload's effect, a payload that barely loads
 // the joints) is refused, never printed as gains: each least-squares gain must be finite and positive and
-// known to better than 100 % (its std below its value), so that the `gains:` line is a measurement.
+// known to better than 100 % (its std below its value), so that the `gains:` line is a measurement. A gain
+// known to be negative is named as a sign (a gain is > 0, as the constrained estimate requires).
 void refuse_undetermined_gains(const identify::DriveGainResult& r, const robot::RobotDescription& robot) {
     const identify::DriveGainEstimate& e = r.least_squares;
     for (Eigen::Index j = 0; j < e.gains.size(); ++j) {
         const double g = e.gains[j], s = e.std_dev[j];
         if (std::isfinite(g) && g > 0.0 && !(s >= g)) continue;
+        const double prior = r.prior_gains[static_cast<std::size_t>(j)];
+        if (std::isfinite(g) && g < 0.0 && s < -g) {
+            throw InputError(fmt::format("--drive-gains: the gain of joint {} ({}) came out negative, {:.3g} (std {:.3g}): its effort column in --in {} "
+                                         "and --loaded {} has the opposite sign of its torque (the joint's direction, or the sign of its gain in "
+                                         "the log format)",
+                                         j + 1, robot.joints[static_cast<std::size_t>(j)].name, g * prior, s * std::abs(prior), r.unloaded_source,
+                                         r.loaded_source));
+        }
         throw InputError(fmt::format(
             "--drive-gains: the gain of joint {} ({}) came out {:.3g} (std {:.3g}): --in {} and --loaded {} do not determine it (a gain must be "
             "positive and known to better than 100 %); is --loaded the run with the payload, and does its motion load joint {}?",
-            j + 1, robot.joints[static_cast<std::size_t>(j)].name, g * r.prior_gains[static_cast<std::size_t>(j)],
-            s * r.prior_gains[static_cast<std::size_t>(j)], r.unloaded_source, r.loaded_source, j + 1));
+            j + 1, robot.joints[static_cast<std::size_t>(j)].name, g * prior, s * std::abs(prior), r.unloaded_source, r.loaded_source, j + 1));
     }
 }
 

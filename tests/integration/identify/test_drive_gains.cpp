@@ -140,6 +140,20 @@ TEST(DriveGains, SimulatedPairGivesTheGainsBack) {
     EXPECT_NEAR(payload["MZL"].get<double>() / kMass, 0.06, 0.01) << payload.dump();
 }
 
+// Issue 36: a gain the fit knows to be negative (a current logged with the opposite sign) is named as a sign,
+// not printed as a gain (nor called undetermined).
+TEST(DriveGains, ACurrentOfTheOppositeSignIsNamedAsASign) {
+    const Pair p = simulated_pair("drive_gains_sign");
+    scale_torques(p.unloaded, {1, -1, 1, 1, 1, 1});
+    scale_torques(p.loaded, {1, -1, 1, 1, 1, 1});
+    const auto r = run_command(kJacobid + " identify --quiet --robot " + kRobot + " --drive-gains --in " + p.unloaded + " --loaded " + p.loaded +
+                               " --payload-mass 2");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--drive-gains: the gain of joint 2 (shoulder_lift) came out negative"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("has the opposite sign of its torque"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("gains: ["), std::string::npos) << r.out;
+}
+
 TEST(DriveGains, BadInputIsRefusedWithOneLine) {
     const fs::path dir = jacobid::test::scratch_directory() / "drive_gains_bad";
     fs::create_directories(dir);
