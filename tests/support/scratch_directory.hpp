@@ -2,6 +2,7 @@
 #pragma once
 // A per-process scratch folder for tests that write files, removed when the test program exits.
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <system_error>
 #include <unistd.h>
@@ -21,6 +22,20 @@ inline const std::filesystem::path& scratch_directory() {
     };
     static const Folder folder;
     return folder.path;
+}
+
+// DIR/folder/name in the scratch directory, the folder created.
+inline std::filesystem::path scratch_file(const std::string& folder, const std::string& name) {
+    const std::filesystem::path dir = scratch_directory() / folder;
+    std::filesystem::create_directories(dir);
+    return dir / name;
+}
+
+// Writes `text` (bytes as given) to scratch_file(folder, name); returns its path.
+inline std::string write_scratch_file(const std::string& folder, const std::string& name, const std::string& text) {
+    const std::filesystem::path p = scratch_file(folder, name);
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
 }
 
 }  // namespace jacobid::test

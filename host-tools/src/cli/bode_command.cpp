@@ -150,8 +150,8 @@ void add_bode_command(CLI::App& app) {
                     "overlay a forward-backward Butterworth low-pass + central Euler difference of the same order, as ORDER:CUTOFF_HZ, e.g. 6:25 (repeatable)");
     cmd->add_option("--fmax", o->fmax, "highest frequency in Hz (default: Nyquist)")->check(positive_number());
     cmd->add_option("--points", o->points, "number of frequency points")->check(whole_number_from(2))->capture_default_str();
-    cmd->add_option("--csv", o->csv, "CSV output (f_hz, ideal_mag, then magnitude, phase and group delay per curve); '-' = stdout")->capture_default_str();
-    cmd->add_option("--png", o->png, "write a Bode plot (magnitude and phase) to this PNG file");
+    cmd->add_option("--csv", o->csv, "CSV output (f_hz, ideal_mag, then magnitude, phase and group delay per curve); '-' = stdout")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--png", o->png, "write a Bode plot (magnitude and phase) to this PNG file")->check(file_path());
     cmd->add_flag("--db", o->db, "magnitude in dB instead of a logarithmic axis");
     cmd->callback([o] { run(*o); });
 }

@@ -17,6 +17,7 @@
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/log_columns.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "diagnose/diagnose_log.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_report.hpp"
@@ -43,14 +44,16 @@ struct DiagnoseOptions {
 
 void run(DiagnoseOptions o) {
     map_large_blocks();  // whole-log buffers returned when freed (core/free_memory.hpp)
-    std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--validate", o.validate}, {"--log-format", o.log_format.file}};
+    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    std::vector<NamedPath> read_files = robot_files("--robot", o.robot, robot);
+    read_files.insert(read_files.end(), {{"--validate", o.validate}, {"--log-format", o.log_format.file}});
     for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
     check_outputs({{"--output", o.output}}, read_files);
-    check_output_directory({"--report", o.report});  // written after the work: checked before it
+    read_files.push_back({"--output", o.output});
+    check_output_directory({"--report", o.report}, read_files);  // written after the work: checked before it
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
     io::require_distinct_inputs("--in", o.inputs);  // one log twice (a link, a copy) would count its equations twice
-    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     const auto model = robot::make_robot_model(robot);
     // Several logs (--in a --in b) are diagnosed together, on one sample period (the first log's).
     std::vector<io::CsvTable> tables;
@@ -100,17 +103,17 @@ void add_diagnose_command(CLI::App& app) {
         "find where the identified model and the measured data disagree, name the missing physical effect (coulomb_offset, "
         "coulomb_asymmetry, stribeck, viscous_nonlinear, gravity, cogging, rotor_inertia, torque_delay), add it and show the gap "
         "shrink on held-out data");
-    cmd->add_option("--robot", o->robot, "robot description (YAML, as for identify)")->required();
+    cmd->add_option("--robot", o->robot, "robot description (YAML, as for identify)")->required()->check(file_path());
     cmd->add_option("--in", o->inputs,
                     "log (CSV: time column, the joints' position and torque columns); repeat it (--in a.csv --in b.csv) to diagnose several "
                     "logs together: each keeps its own edges, their equations are stacked as identify stacks them")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-        ->required();
-    cmd->add_option("--validate", o->validate, "held-out log for the selection and the before/after figures (default: blocked cross-validation)");
+        ->required()->check(file_path());
+    cmd->add_option("--validate", o->validate, "held-out log for the selection and the before/after figures (default: blocked cross-validation)")->check(file_path());
     cmd->add_option("--format", o->format, "table (text) or json")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
-    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
-    cmd->add_option("--report", o->report, "also write DIR/report.md with PNG plots of the residual vs velocity and position, before and after");
+    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--report", o->report, "also write DIR/report.md with PNG plots of the residual vs velocity and position, before and after")->check(file_path());
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
     add_time_tolerance_option(cmd, o->time_tolerance);
     add_log_format_options(cmd, o->log_format);

@@ -202,7 +202,7 @@ void run(const DifferentiateOptions& o) {
 void add_differentiate_command(CLI::App& app) {
     auto o = std::make_shared<DifferentiateOptions>();
     CLI::App* cmd = app.add_subcommand("differentiate", "estimate derivatives of columns of a CSV log (header row, first column time in seconds)");
-    cmd->add_option("--in,-i", o->input, "input CSV log")->required();
+    cmd->add_option("--in,-i", o->input, "input CSV log")->required()->check(file_path());
     cmd->add_option("--columns,-c", o->columns, "columns to differentiate, e.g. q1,q2")->required()->delimiter(',');
     cmd->add_option("--time-column", o->time_column, "name of the time column (seconds)")->capture_default_str();
     cmd->add_option("--method", o->method, "jacobi or butterworth (forward-backward Butterworth + central Euler differences)")
@@ -221,7 +221,7 @@ void add_differentiate_command(CLI::App& app) {
     add_time_tolerance_option(cmd, o->time_tolerance);
     add_log_format_options(cmd, o->log_format);
     cmd->add_option("--out,-o", o->output,
-                    "output CSV ('-' = stdout): time, then <column>_d<order> for each column and order (and segment, 1-based, with --on-gap split)")->capture_default_str();
+                    "output CSV ('-' = stdout): time, then <column>_d<order> for each column and order (and segment, 1-based, with --on-gap split)")->capture_default_str()->check(file_path(true));
     cmd->callback([o] { run(*o); });
 }
 

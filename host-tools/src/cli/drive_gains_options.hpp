@@ -13,6 +13,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }
 
 namespace jacobid::cli {
@@ -21,6 +22,7 @@ struct DriveGainOptions {
     bool enabled = false;  // --drive-gains
     std::string loaded;    // --loaded
     double payload_mass = 0.0;
+    const CLI::Option* payload_mass_option = nullptr;  // whether --payload-mass was given (its count)
     std::vector<double> payload_com;      // 3 values, m
     std::vector<double> payload_inertia;  // 6 values, kg.m^2
 };

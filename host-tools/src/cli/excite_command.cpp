@@ -21,7 +21,9 @@
 #include "cli/log_format_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "core/per_joint.hpp"
+#include "excite/design_checks.hpp"
 #include "excite/excitation_design.hpp"
 #include "excite/frequency_rule.hpp"
 #include "excite/identification_bandwidth.hpp"
@@ -117,12 +119,32 @@ std::vector<excite::JointLimits> joint_limits(const robot::RobotDescription& rob
     return limits;
 }
 
+// The samples a trajectory may have in memory (t, q, qd, qdd, tau per joint).
+constexpr double kMaxTrajectorySamples = 1e8;
+
 void check(const ExciteOptions& o) {
     if (!(o.base_frequency > 0.0) || !std::isfinite(o.base_frequency)) throw InputError(fmt::format("--base-frequency {}: expected > 0 Hz", o.base_frequency));
     if (o.harmonics < 1 || o.harmonics > 50) throw InputError(fmt::format("--harmonics {}: expected 1 .. 50", o.harmonics));
     const double period = 1.0 / o.base_frequency, periods = o.duration / period;
     if (!(o.duration > 0.0) || std::abs(periods - std::round(periods)) > 1e-9 * periods || std::round(periods) < 1.0) {
         throw InputError(fmt::format("--duration {}: expected a whole number of periods of 1 / --base-frequency = {} s", o.duration, period));
+    }
+    // The period's samples follow from the base frequency (given, or automatic from --duration): a bad one is
+    // named as such, not as a --rate without a whole number of samples per period (issue 36).
+    const double samples_per_period = period * o.rate;
+    const std::string base = o.base_frequency_text == "auto"
+                                 ? fmt::format("the automatic base frequency {:g} Hz (--duration {:g} s in {:g} periods)", o.base_frequency, o.duration, std::round(periods))
+                                 : fmt::format("--base-frequency {:g} Hz", o.base_frequency);
+    if (samples_per_period > kMaxTrajectorySamples) {
+        throw InputError(fmt::format("{}: a period of {:g} s is {:.3g} samples at --rate {:g} Hz, more than the {:g} a trajectory may have; raise "
+                                     "--base-frequency",
+                                     base, period, samples_per_period, o.rate, kMaxTrajectorySamples));
+    }
+    if (samples_per_period < 2 * o.harmonics + 1) {
+        throw InputError(fmt::format("{}: a period of {:g} s holds {:.3g} samples at --rate {:g} Hz, fewer than 2 x {} harmonics + 1 = {} (the highest "
+                                     "harmonic would alias); {} or raise --rate",
+                                     base, period, samples_per_period, o.rate, o.harmonics, 2 * o.harmonics + 1,
+                                     o.base_frequency_text == "auto" ? "lengthen --duration" : "lower --base-frequency"));
     }
     if (!(o.rate > 0.0) || std::abs(period * o.rate - std::round(period * o.rate)) > 1e-6) {
         throw InputError(fmt::format("--rate {}: expected a rate with a whole number of samples per period ({} s)", o.rate, period));
@@ -272,8 +294,10 @@ void resolve_frequencies(ExciteOptions& o, const std::vector<excite::JointLimits
 excite::SampledMotion motion_of(const Sampled& s) { return {s.q, s.qd, s.qdd, 0, 0}; }
 
 void run(ExciteOptions o) {
-    check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, {{"--robot", o.robot}, {"--prior", o.prior}, {"--compare", o.compare}});
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
+    inputs.insert(inputs.end(), {{"--prior", o.prior}, {"--compare", o.compare}, {"--log-format", o.compare_format.file}});
+    check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, inputs);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
     const ExcitePrior prior = resolve_prior(robot, *model, o.prior, o.torque_noise);
@@ -288,8 +312,9 @@ void run(ExciteOptions o) {
     const std::vector<excite::JointLimits> limits = joint_limits(robot, pose, o);
     resolve_frequencies(o, limits);
     check(o);
+    excite::require_room_to_move(limits, pose, o.base_frequency, o.position_limit.empty() ? "the robot description" : "--position-limit");
     // The trajectory is sampled in memory (t and q, qd, qdd, tau per joint) and written as CSV (t, q, qd, qdd).
-    refuse_oversized(fmt::format("--duration {:g} s at --rate {:g} Hz", o.duration, o.rate), std::floor(o.duration * o.rate) + 1.0, 1e8,
+    refuse_oversized(fmt::format("--duration {:g} s at --rate {:g} Hz", o.duration, o.rate), std::floor(o.duration * o.rate) + 1.0, kMaxTrajectorySamples,
                      "trajectory samples", 8.0 * (1 + 4 * n) + 18.0 * (1 + 3 * n), "lower --duration or --rate");
     const std::optional<excite::Workspace> box = workspace(robot, pose, o);
     excite::ProblemSettings ps;
@@ -316,6 +341,7 @@ void run(ExciteOptions o) {
     ds.control_rate = o.rate;
     if (!o.quiet) ds.progress = [](const std::string& line) { fmt::print(stderr, "excite: {}\n", line); };
     const excite::Design d = excite::design_excitation(problem, *model, x, limits, ds);
+    excite::require_separable_design(d);
     const excite::FourierTrajectory trajectory = problem.trajectory(d.coefficients);
     const Sampled s = sample(trajectory, *model, x, o.duration, o.rate, box);
     // The prediction from every control sample (not the optimizer's), the same way as --compare's.
@@ -456,7 +482,7 @@ void add_excite_command(CLI::App& app) {
                                        "design an excitation trajectory: finite Fourier series per joint, at rest at a pose at both ends of every period, "
                                        "optimized for the information of the base parameters within the joints' limits; predicts every base "
                                        "parameter's std, beside that of --compare");
-    cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters (the prior without --prior)")->required();
+    cmd->add_option("--robot", o->robot, "robot description (YAML): model, joint position limits, parameters (the prior without --prior)")->required()->check(file_path());
     cmd->add_option("--duration", o->duration, "s: a whole number of periods (period = 1 / --base-frequency), played back to back")
         ->check(positive_number())
         ->capture_default_str();
@@ -475,17 +501,17 @@ void add_excite_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--prior", o->prior,
                     "an earlier identification (jacobid identify --format json): its parameters are the prior (torque limits, relative std) and "
-                    "its per-joint residuals the noise");
+                    "its per-joint residuals the noise")->check(file_path());
     cmd->add_option("--torque-noise", o->torque_noise, "N.m: std of the torque noise, one value or one per joint (overrides --prior's; default 1)")
         ->delimiter(',');
     cmd->add_option("--compare", o->compare,
                     "a trajectory (t, q1.., qd1.., qdd1..) or a recorded log (the description's columns, or --log-format): its predicted std "
-                    "beside the design's");
+                    "beside the design's")->check(file_path());
     cmd->add_option("--position-limit", o->position_limit, "rad: LOWER:UPPER, one range or one per joint (default: the description's limits)")
         ->delimiter(',');
-    cmd->add_option("--output,-o", o->output, "trajectory CSV at --rate: t, q1.., qd1.., qdd1.. ('-': standard output)")->capture_default_str();
-    cmd->add_option("--json", o->json, "JSON: coefficients, criterion, cond, peak position/velocity/acceleration/torque and limit use per joint");
-    cmd->add_option("--plot", o->plot, "PNG: positions, velocities and the model's torques over the whole duration");
+    cmd->add_option("--output,-o", o->output, "trajectory CSV at --rate: t, q1.., qd1.., qdd1.. ('-': standard output)")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--json", o->json, "JSON: coefficients, criterion, cond, peak position/velocity/acceleration/torque and limit use per joint")->check(file_path(true));
+    cmd->add_option("--plot", o->plot, "PNG: positions, velocities and the model's torques over the whole duration")->check(file_path());
     cmd->add_option("--pose", o->pose, "rad: the rest pose at both ends of each period, one value or one per joint (default: the middle of each joint's limits)")
         ->delimiter(',')
         ->check(finite_number());

@@ -24,8 +24,10 @@
 #include "cli/log_format_options.hpp"
 #include "cli/model_export_options.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "cli/streamed_log.hpp"
 #include "core/parallel_for.hpp"
+#include "core/same_file.hpp"
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
@@ -380,12 +382,13 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
 
 void run(IdentifyOptions o) {
     map_large_blocks();  // whole-log buffers returned when freed (core/free_memory.hpp)
-    std::vector<NamedPath> read_files = {{"--robot", o.robot}, {"--truth", o.truth}, {"--validate", o.validate},
-                                                                   {"--can-config", o.can_config}, {"--log-format", o.log_format.file}};
-    for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
-    check_outputs({{"--output", o.output}}, read_files);
-    using Clock = std::chrono::steady_clock;
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    std::vector<NamedPath> read_files = robot_files("--robot", o.robot, robot);
+    read_files.insert(read_files.end(), {{"--truth", o.truth}, {"--validate", o.validate}, {"--can-config", o.can_config},
+                                         {"--log-format", o.log_format.file}, {"--loaded", o.drive_gains.loaded}});
+    for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
+    check_outputs({{"--output", o.output}, {"--export-urdf", o.model_export.urdf}, {"--export-robot", o.model_export.robot}}, read_files);
+    using Clock = std::chrono::steady_clock;
     const auto model = robot::make_robot_model(robot);
     if (o.print_base) {
         // The model alone: base parameters, regrouping relations and true values; no log needed.
@@ -412,7 +415,8 @@ void run(IdentifyOptions o) {
                                                {o.in, o.format, o.time_column, o.time_tolerance, o.quiet, &o.log_format, given}));
         return;
     }
-    check_output_directory({"--report", o.report});  // written after the work: checked before it
+    read_files.push_back({"--output", o.output});
+    check_output_directory({"--report", o.report}, read_files);  // written after the work: checked before it
     const std::map<std::string, double> truth = o.truth.empty() ? std::map<std::string, double>{} : read_truth(o.truth);
     if (!o.truth.empty()) require_truth_of_the_model(truth, model->parameter_names(), o);
     // Refused before the (long) identification; exporting needs standard parameters: --physical unless --semi-physical.
@@ -560,12 +564,12 @@ void add_identify_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("identify",
                                        "identify base dynamic parameters from a log (t, positions, torques) by least squares on the "
                                        "decimated inverse dynamic model; prints the paper's Table II");
-    cmd->add_option("--robot", o->robot, "robot description (YAML, e.g. 'model: planar2r')")->required();
+    cmd->add_option("--robot", o->robot, "robot description (YAML, e.g. 'model: planar2r')")->required()->check(file_path());
     cmd->add_option("--in", o->inputs,
                     "log (CSV with a header: time column, the joints' position and torque columns); repeat it (--in a.csv --in b.csv) to "
                     "identify several logs together: each log keeps its own edges, their equations are stacked")
         ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(file_path());
     cmd->add_option("--piece-rows", o->piece_rows,
                     "rows of a long CSV log held at once (default 0: as many as fit in 400 MB of its kept columns, an hour of 1 kHz "
                     "6-axis data): a longer log is identified piece by piece, like the segments of --on-gap split, so memory does "
@@ -583,15 +587,15 @@ void add_identify_command(CLI::App& app) {
         ->check(CLI::IsMember({"jacobi", "butterworth", "both"}))
         ->capture_default_str();
     cmd->add_option("--format", o->format, "table (Table II text) or json")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
-    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
-    cmd->add_option("--report", o->report, "also write DIR/report.md and PNG plots (torque measured vs model)");
-    cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table");
-    cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors; a log that holds a pose gets the static (gravity) check per joint");
+    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--report", o->report, "also write DIR/report.md and PNG plots (torque measured vs model)")->check(file_path());
+    cmd->add_option("--truth", o->truth, "truth JSON (from jacobid simulate): adds the true values and errors to the table")->check(file_path());
+    cmd->add_option("--validate", o->validate, "second log: predict its torques with the identified parameters, report RMS errors; a log that holds a pose gets the static (gravity) check per joint")->check(file_path());
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
     add_time_tolerance_option(cmd, o->time_tolerance);
     cmd->add_option("--can-config", o->can_config,
                     "jacobid-fw config (YAML) whose joints' CAN profiles, ids, gear ratios and torque constants decode --in and "
-                    "--validate as candump -L captures instead of CSV");
+                    "--validate as candump -L captures instead of CSV")->check(file_path());
     add_log_format_options(cmd, o->log_format);
     add_fit_options(cmd, *o);
     cmd->add_option("--velocity", o->velocity,

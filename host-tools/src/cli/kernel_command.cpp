@@ -12,6 +12,7 @@
 #include "cli/command.hpp"
 #include "cli/kernel_description.hpp"
 #include "cli/kernel_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
 
@@ -98,7 +99,7 @@ void add_kernel_command(CLI::App& app) {
     cmd->add_option("--format", options->format, "csv (one weight per line), json (with parameters, delay, cutoff) or header (C++ table)")
         ->check(CLI::IsMember({"csv", "json", "header"}))
         ->capture_default_str();
-    cmd->add_option("--output,-o", options->output, "output file, '-' for standard output")->capture_default_str();
+    cmd->add_option("--output,-o", options->output, "output file, '-' for standard output")->capture_default_str()->check(file_path(true));
     cmd->add_option("--name", options->name, "identifier of the table with --format header (a C++ identifier, not a keyword)")
         ->check(cpp_identifier())
         ->capture_default_str();

@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
 
 namespace jacobid::cli {
@@ -30,13 +31,13 @@ void add_model_export_options(CLI::App* command, identify::ModelExportPaths& pat
                                     "links fixed to a moving link merged into it) and <dynamics damping=FV friction=FC>, everything else "
                                     "kept; rotor inertia, friction offset and Coulomb smoothing in a comment per joint.") +
                             implies)
-        ->type_name("FILE");
+        ->check(file_path());
     command->add_option("--export-robot", paths.robot,
                         std::string("write a robot description (YAML, model mdh or urdf) that loads as the identified model: standard "
                                     "values in parameters (with --export-urdf: that URDF and only what it cannot carry), each joint's "
                                     "Coulomb smoothing fixed.") +
                             implies)
-        ->type_name("FILE");
+        ->check(file_path());
 }
 
 nlohmann::json write_model_export(const identify::ModelExportPaths& paths, const robot::RobotDescription& description,

@@ -13,6 +13,7 @@
 #include "cli/fit_options.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "cli/simulation_options.hpp"
 #include "montecarlo/study.hpp"
 #include "montecarlo/study_report.hpp"
@@ -72,10 +73,12 @@ montecarlo::StudyContext context_of(const MonteCarloOptions& o, const montecarlo
 }
 
 void run(const MonteCarloOptions& o) {
-    check_outputs({{"--output", o.output}}, {{"--robot", o.robot}});
-    check_output_directory({"--report", o.report});  // written after the work: checked before it
     montecarlo::StudySettings s;
     s.robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
+    std::vector<NamedPath> files = robot_files("--robot", o.robot, s.robot);
+    check_outputs({{"--output", o.output}}, files);
+    files.push_back({"--output", o.output});
+    check_output_directory({"--report", o.report}, files);  // written after the work: checked before it
     SimulationOptions simulation = o;  // the description's controller, if any
     apply_controller(s.robot, simulation);
     s.simulation = simulation_settings(simulation);
@@ -103,15 +106,15 @@ void add_montecarlo_command(CLI::App& app) {
                                        "N simulated runs of a robot (different seeds), each identified as identify would; per method and "
                                        "parameter: mean error and its standard error, spread of the estimates vs the reported std, coverage "
                                        "of the truth by +-2 reported std (docs/montecarlo.md)");
-    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (auto in identification)");
+    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (auto in identification)")->check(file_path());
     cmd->add_option("--runs", o->runs, "number of simulated runs")->capture_default_str();  // >= 2: checked by the study (montecarlo/study.cpp)
     cmd->add_option("--threads", o->threads, "worker threads (0: one per core); the results do not depend on it")
         ->check(whole_number_from(0))
         ->capture_default_str();
     cmd->add_option("--method", o->method, "jacobi, butterworth, or both")->check(CLI::IsMember({"jacobi", "butterworth", "both"}))->capture_default_str();
     cmd->add_option("--format", o->format, "table (text) or json (with every run's estimates)")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
-    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str();
-    cmd->add_option("--report", o->report, "also write DIR/report.md and DIR/montecarlo_<method>.png (normalized errors with the +-2 band)");
+    cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--report", o->report, "also write DIR/report.md and DIR/montecarlo_<method>.png (normalized errors with the +-2 band)")->check(file_path());
     add_simulation_options(cmd, *o);
     cmd->get_option("--seed")->description("trajectory seed of the first run; run k (from 0) uses SEED + k");
     cmd->get_option("--noise-seed")->description("torque-noise seed of the first run; run k uses NOISE_SEED + k");

@@ -112,6 +112,17 @@ CLI::Validator whole_number_from(double low) {
     return number_validator(r);
 }
 
+CLI::Validator file_path(bool dash_is_standard_output) {
+    const std::string expected = dash_is_standard_output ? "a file path or '-' (standard output)" : "a file path";
+    return CLI::Validator(
+        [dash_is_standard_output, expected](std::string& text) -> std::string {
+            if (text.empty()) return fmt::format("expected {}, got ''", expected);
+            if (text == "-" && !dash_is_standard_output) return "expected a file path, got '-' (this option does not read or write standard input/output)";
+            return {};
+        },
+        dash_is_standard_output ? "FILE|-" : "FILE");
+}
+
 std::string describe_bytes(double bytes) {
     const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB", "EB"};
     int u = 0;

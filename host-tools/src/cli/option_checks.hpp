@@ -32,6 +32,11 @@ CLI::Validator whole_number_in(double low, double high);
 // A whole number >= low (up to 2^64 - 1, the largest seed).
 CLI::Validator whole_number_from(double low);
 
+// A file or folder path: not empty ('' used to mean "not given": --robot '' simulated the default robot) and,
+// unless `dash_is_standard_output` (the option writes '-' to standard output), not '-' (simulate -o - wrote a
+// file named '-').
+CLI::Validator file_path(bool dash_is_standard_output = false);
+
 // InputError unless `count` (of `unit`, e.g. "log samples") is at most `limit`; the message starts with
 // `request` (the options and values that give the count), states the count and about `bytes_per_unit` x
 // count bytes (left out when 0: a cost in time), and ends with `remedy` (which option to lower). Call it before allocating or running.

@@ -11,18 +11,20 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "core/same_file.hpp"
 
 namespace jacobid::cli {
 
 namespace fs = std::filesystem;
 
-bool same_file(const std::string& a, const std::string& b) {
-    std::error_code ec;
-    if (fs::equivalent(a, b, ec)) return true;  // both exist: compares inodes (links, "./x" vs "x")
-    return fs::absolute(a, ec).lexically_normal() == fs::absolute(b, ec).lexically_normal();
-}
-
 namespace {
+
+bool given(const NamedPath& p) { return !p.path.empty() && p.path != "-"; }
+
+// "F" when both options named F, else "F (the file X)": a link or another spelling of X.
+std::string naming(const NamedPath& out, const NamedPath& in) {
+    return out.path == in.path ? out.path : fmt::format("{} (the file {})", out.path, in.path);
+}
 
 void check_writable(const NamedPath& out) {
     std::error_code ec;
@@ -45,23 +47,32 @@ void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_li
 
 void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<NamedPath>& inputs) {
     for (auto out = outputs.begin(); out != outputs.end(); ++out) {
-        if (out->path.empty() || out->path == "-") continue;
+        if (!given(*out)) continue;
         for (const NamedPath& in : inputs) {
-            if (!in.path.empty() && same_file(out->path, in.path)) {
-                throw InputError(fmt::format("{} {}: is the input given to {}; write the result to another file", out->option, out->path, in.option));
+            if (given(in) && same_file(out->path, in.path)) {
+                throw InputError(fmt::format("{} {}: is the input given to {}; write the result to another file", out->option, naming(*out, in), in.option));
             }
         }
         for (auto other = outputs.begin(); other != out; ++other) {
-            if (!other->path.empty() && other->path != "-" && same_file(out->path, other->path)) {
-                throw InputError(fmt::format("{} {}: is also the output of {}; give two different files", out->option, out->path, other->option));
+            if (given(*other) && same_file(out->path, other->path)) {
+                throw InputError(fmt::format("{} {}: is also the output of {}; give two different files", out->option, naming(*out, *other), other->option));
             }
         }
         check_writable(*out);
     }
 }
 
-void check_output_directory(const NamedPath& directory) {
+void check_output_directory(const NamedPath& directory, const std::vector<NamedPath>& files) {
     if (directory.path.empty()) return;
+    for (const NamedPath& f : files) {
+        if (!given(f)) continue;
+        const fs::path p(f.path);
+        const bool written_by_report = p.filename() == "report.md" || p.extension() == ".png";
+        if (written_by_report && same_file(p.parent_path().empty() ? fs::path(".") : p.parent_path(), directory.path)) {
+            throw InputError(fmt::format("{} {}: the report writes report.md and PNG plots in it, and {} is the file given to {}; give another folder",
+                                         directory.option, directory.path, f.path, f.option));
+        }
+    }
     std::error_code ec;
     if (fs::exists(directory.path, ec) && !fs::is_directory(directory.path, ec)) {
         throw InputError(fmt::format("{} {}: exists and is not a directory", directory.option, directory.path));

@@ -184,7 +184,7 @@ void add_paper_sines_command(CLI::App& app) {
     cmd->add_option("--discretization", o->discretization, "trapezoidal or exact")->check(CLI::IsMember({"trapezoidal", "exact"}))->capture_default_str();
     cmd->add_option("--bw-order", o->bw_order, "Butterworth order")->check(whole_number_from(1))->capture_default_str();
     cmd->add_option("--bw-cutoff", o->bw_cutoff, "Butterworth cutoff in Hz")->check(positive_number())->capture_default_str();
-    cmd->add_option("--out-dir", o->out_dir, "folder for the PNG plots")->capture_default_str();
+    cmd->add_option("--out-dir", o->out_dir, "folder for the PNG plots")->capture_default_str()->check(file_path());
     cmd->add_option("--format", o->format, "text or json")->check(CLI::IsMember({"text", "json"}))->capture_default_str();
     cmd->callback([o] { run(*o); });
 }

@@ -6,11 +6,13 @@
 
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <memory>
 
 #include "cli/command.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
+#include "core/same_file.hpp"
 #include "stream/recorder.hpp"
 #include "stream/udp_receiver.hpp"
 
@@ -58,8 +60,24 @@ private:
     struct sigaction old_term_{};
 };
 
+// With --on-gap split the recorder also writes OUT's stem.N.ext beside it (stream/recorder.hpp): the summary
+// must not be one of them (it would be written over the segment, or the segment over it).
+void refuse_summary_among_segments(const RecordOptions& o) {
+    if (o.summary.empty() || o.on_gap != "split") return;
+    const std::filesystem::path out(o.output), summary(o.summary);
+    const std::string stem = out.stem().string() + ".", name = summary.stem().string();
+    const bool numbered = name.size() > stem.size() && name.compare(0, stem.size(), stem) == 0 &&
+                          name.find_first_not_of("0123456789", stem.size()) == std::string::npos;
+    const auto folder = [](const std::filesystem::path& p) { return p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path(); };
+    if (numbered && summary.extension() == out.extension() && same_file(folder(summary), folder(out))) {
+        throw InputError(fmt::format("--summary {}: --on-gap split may write this file as a segment of --out {} ({}N{}); give the summary another name",
+                                     o.summary, o.output, stem, out.extension().string()));
+    }
+}
+
 void run(const RecordOptions& o) {
     check_outputs({{"--out", o.output}, {"--summary", o.summary}});
+    refuse_summary_among_segments(o);
     const stream::GapPolicy policy = stream::parse_gap_policy(o.on_gap);
     if (o.duration < 0.0 || o.idle_timeout < 0.0) throw InputError("--duration / --idle-timeout: seconds must be >= 0 (0 = no limit)");
     const stream::Endpoint endpoint = stream::parse_endpoint(o.udp, "--udp");
@@ -128,8 +146,8 @@ void add_record_command(CLI::App& app) {
     auto o = std::make_shared<RecordOptions>();
     CLI::App* cmd = app.add_subcommand("record", "record the controller's UDP estimate stream into a CSV log for `jacobid identify`");
     cmd->add_option("--udp", o->udp, "HOST:PORT to listen on, e.g. 0.0.0.0:5005 (port 0 = any free port, printed on stderr)")->required();
-    cmd->add_option("--out,-o", o->output, "CSV log: t,q1..qn,tau1..taun[,estimates],seq,stream_flags,flags1..n")->required();
-    cmd->add_option("--summary", o->summary, "also write the summary (counts, lost/late/unmeasured sequence numbers, files) as JSON");
+    cmd->add_option("--out,-o", o->output, "CSV log: t,q1..qn,tau1..taun[,estimates],seq,stream_flags,flags1..n")->required()->check(file_path());
+    cmd->add_option("--summary", o->summary, "also write the summary (counts, lost/late/unmeasured sequence numbers, files) as JSON")->check(file_path());
     cmd->add_option("--count", o->count, "stop after this many datagrams (any, malformed included); 0 = no limit")
         ->check(whole_number_from(0))
         ->capture_default_str();

@@ -18,6 +18,7 @@
 #include "cli/option_checks.hpp"
 #include "cli/simulation_options.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/simulated_parameters.hpp"
 #include "io/candump_writer.hpp"
@@ -85,8 +86,10 @@ void wait_for_sync(hal::SocketCanTransport& can, const SimCanOptions& o, double 
 }
 
 void run(SimCanOptions o) {
-    check_outputs({{"--candump", o.candump}}, {{"--robot", o.robot}, {"--config", o.config}});
     const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
+    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
+    inputs.push_back({"--config", o.config});
+    check_outputs({{"--candump", o.candump}}, inputs);
     const auto model = robot::make_robot_model(robot);
     const auto n = static_cast<std::size_t>(model->joint_count());
 
@@ -212,14 +215,14 @@ std::vector<std::string> profile_names() {
 void add_sim_can_command(CLI::App& app) {
     auto o = std::make_shared<SimCanOptions>();
     CLI::App* cmd = app.add_subcommand("sim-can", "play the closed-loop robot simulator's motor drivers on a CAN interface (SocketCAN)");
-    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction");
+    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction")->check(file_path());
     cmd->add_option("--profile", o->profile, "device profile of every joint, with the firmware's defaults for it (docs/firmware.md)")
         ->check(CLI::IsMember(profile_names()))
         ->capture_default_str();
-    cmd->add_option("--config", o->config, "take the joints' profiles, ids, ranges and gear ratios from this jacobid-fw config (overrides --profile)");
+    cmd->add_option("--config", o->config, "take the joints' profiles, ids, ranges and gear ratios from this jacobid-fw config (overrides --profile)")->check(file_path());
     auto* iface = cmd->add_option("--iface", o->iface, "CAN interface, e.g. vcan0 or can0");
     auto* candump = cmd->add_option("--candump", o->candump,
-                                    "write the frames to this candump -L capture (simulated time stamps) instead of a CAN interface");
+                                    "write the frames to this candump -L capture (simulated time stamps) instead of a CAN interface")->check(file_path());
     iface->excludes(candump);
     cmd->callback([o, iface, candump] {
         if (iface->count() + candump->count() != 1) throw InputError("sim-can: give exactly one of --iface and --candump");

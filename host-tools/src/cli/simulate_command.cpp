@@ -12,7 +12,9 @@
 
 #include "cli/command.hpp"
 #include "cli/log_format_options.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/output_file.hpp"
+#include "cli/robot_files.hpp"
 #include "cli/simulation_options.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/simulated_parameters.hpp"
@@ -21,6 +23,7 @@
 #include "sim/simulator.hpp"
 #include "sim/tabulated_trajectory.hpp"
 #include "io/partial_output.hpp"
+#include "identify/log_columns.hpp"
 #include "io/csv_table.hpp"
 
 namespace jacobid::cli {
@@ -87,9 +90,10 @@ std::string stem(const std::string& path) {
 }
 
 void run(SimulateOptions o) {
-    check_outputs({{"--out", o.out}, {"--truth", o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth}, {"--states", o.states}},
-                  {{"--robot", o.robot}, {"--effects", o.effects_file}, {"--trajectory", o.trajectory}});
     const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
+    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
+    inputs.insert(inputs.end(), {{"--effects", o.effects_file}, {"--trajectory", o.trajectory}});
+    check_outputs({{"--out", o.out}, {"--truth", o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth}, {"--states", o.states}}, inputs);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();
     // Truth: the model's reference values (Table II for planar2r) unless the description lists parameters.
@@ -103,10 +107,19 @@ void run(SimulateOptions o) {
         for (const auto& [limit, option] : {std::pair{&o.settings.moves.velocity_limit, "--velocity-limit"}, {&o.settings.moves.acceleration_limit, "--acceleration-limit"}}) {
             if (!limit->empty()) throw InputError(fmt::format("{} shapes the random moves: it cannot be given with --trajectory {}", option, o.trajectory));
         }
-        reference = std::make_shared<const sim::TabulatedTrajectory>(io::read_csv(o.trajectory), n);
+        std::vector<std::optional<io::PositionBounds>> limits;
+        for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) limits.push_back(identify::position_bounds(robot, j));
+        reference = std::make_shared<const sim::TabulatedTrajectory>(io::read_csv(o.trajectory), n, limits);
         if (!o.duration_given) o.settings.duration = reference->length();
     }
     o.settings = simulation_settings(o);
+    // A log of one row is no log (a 1 ns table used to give one, exit 0).
+    if (o.settings.duration * o.settings.output_rate < 1.0) {
+        const std::string duration = o.duration_given || o.trajectory.empty() ? fmt::format("--duration {:g} s", o.settings.duration)
+                                                                              : fmt::format("--trajectory {} lasts {:g} s (its last t) and", o.trajectory, o.settings.duration);
+        throw InputError(fmt::format("{} at --rate {:g} Hz gives a log of one sample; a log needs at least 2 (a duration of at least {:g} s)", duration,
+                                     o.settings.output_rate, 1.0 / o.settings.output_rate));
+    }
     // A row: the time, then position, torque and two reference columns per joint (10-17 digits each).
     refuse_oversized_simulation(o.settings, 12.0 + 60.0 * n);
     if (reference) {
@@ -247,10 +260,10 @@ void add_simulate_command(CLI::App& app) {
         "simulate a PD-controlled robot on random quintic point-to-point moves; write the measured log (CSV t,q..,tau.., then the "
         "reference q_ref..,qd_ref..) "
         "and the truth (JSON parameters, optional CSV of noise-free states)");
-    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (a description whose alpha is auto, the default, is simulated with 100 s/rad)");
-    cmd->add_option("--out,-o", o->out, "output log (CSV)")->required();
-    cmd->add_option("--truth", o->truth, "truth file (JSON: parameters, settings); default <out without extension>.truth.json");
-    cmd->add_option("--states", o->states, "also write the noise-free states t,q,qd,qdd,tau to this CSV");
+    cmd->add_option("--robot", o->robot, "robot description (YAML); default: planar2r, L1 0.5 m, smoothed Coulomb friction alpha 100 (a description whose alpha is auto, the default, is simulated with 100 s/rad)")->check(file_path());
+    cmd->add_option("--out,-o", o->out, "output log (CSV)")->required()->check(file_path());
+    cmd->add_option("--truth", o->truth, "truth file (JSON: parameters, settings); default <out without extension>.truth.json")->check(file_path());
+    cmd->add_option("--states", o->states, "also write the noise-free states t,q,qd,qdd,tau to this CSV")->check(file_path());
     add_simulation_options(cmd, *o);
     cmd->add_option("--effect", o->effects,
                     "inject an effect the nominal model lacks (repeatable): NAME:key=value,... e.g. "
@@ -260,10 +273,10 @@ void add_simulate_command(CLI::App& app) {
                     "rotor_inertia:joint=2,value=0.1 | torque_delay:value=0.003 (joints 1-based, SI units, "
                     "angles in degrees; see docs/diagnose.md)")
         ->take_all();
-    cmd->add_option("--effects", o->effects_file, "YAML file of effects to inject: effects: [{name: cogging, joint: 2, amplitude: 0.2, order: 6}, ...]");
+    cmd->add_option("--effects", o->effects_file, "YAML file of effects to inject: effects: [{name: cogging, joint: 2, amplitude: 0.2, order: 6}, ...]")->check(file_path());
     cmd->add_option("--trajectory", o->trajectory,
                     "follow this reference instead of random moves: CSV t,q1..,qd1..,qdd1.. (e.g. from jacobid excite), repeated after its "
-                    "last row; --duration defaults to its length");
+                    "last row; --duration defaults to its length")->check(file_path());
     cmd->add_flag("--quiet", o->quiet, "no progress messages on stderr");
     cmd->callback([o, cmd] {
         o->duration_given = cmd->count("--duration") > 0;

@@ -13,6 +13,7 @@ add_library(jacobid_excite STATIC
   ${CMAKE_CURRENT_LIST_DIR}/identification_bandwidth.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_problem.cpp
   ${CMAKE_CURRENT_LIST_DIR}/excitation_design.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/design_checks.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frame_kinematics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/workspace_box.cpp
 )

@@ -22,6 +22,12 @@ nlohmann::json payload_json(const Eigen::Matrix<double, 10, 1>& payload) {
 
 std::vector<double> to_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
+// A gain in the text table: an estimator that gave none (TLS on a degenerate system, no constrained fit)
+// shows "-", never nan or inf.
+std::string gain_cell(double value, int width) {
+    return std::isfinite(value) ? fmt::format("{:>{}.5g}", value, width) : fmt::format("{:>{}}", "-", width);
+}
+
 }  // namespace
 
 Eigen::VectorXd absolute_gains(const DriveGainResult& result, const DriveGainEstimate& estimate) {
@@ -50,8 +56,8 @@ std::string drive_gains_text(const DriveGainResult& r, const ReportContext& cont
     for (int j = 0; j < r.joints; ++j) {
         const std::string name = j < static_cast<int>(context.joint_names.size()) ? context.joint_names[static_cast<std::size_t>(j)] : fmt::format("{}", j + 1);
         const double prior = r.prior_gains[static_cast<std::size_t>(j)];
-        t += fmt::format("{:<20} {:>10.5g} {:>10.3g} {:>10.5g} {:>12.5g} {:>10.5g} {:>12.3g}\n", name, ls[j], r.least_squares.std_dev[j] * prior, tls[j],
-                         con[j], prior, 100.0 * r.payload_share[static_cast<std::size_t>(j)]);
+        t += fmt::format("{:<20} {:>10.5g} {:>10.3g} {} {} {:>10.5g} {:>12.3g}\n", name, ls[j], r.least_squares.std_dev[j] * prior, gain_cell(tls[j], 10),
+                         gain_cell(con[j], 12), prior, 100.0 * r.payload_share[static_cast<std::size_t>(j)]);
     }
     if (r.constrained) t += fmt::format("constrained: {}\n", r.constrained->note);
     t += fmt::format("for a log-format file ({}): {}\n", r.least_squares.estimator, gains_line(ls));

@@ -36,17 +36,11 @@ std::string meaning(const std::string& kind) {
     return "see docs/identify.md";
 }
 
-bool same_file(const std::string& a, const std::string& b) {
-    return !a.empty() && !b.empty() && fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
-}
-
-// `source`: the file it must not overwrite (the description's own, which holds the prior).
-void check_path(const char* option, const std::string& path, const std::string& source) {
+// Whether it overwrites an input (the description's own files hold the prior) or the other export, and
+// whether its directory exists, is the output guard's (cli/output_file.hpp, check_outputs); here only what
+// is particular to an export.
+void check_path(const char* option, const std::string& path) {
     if (path == "-") throw InputError(fmt::format("{} -: expected a file path (standard output carries the report)", option));
-    if (same_file(path, source)) throw InputError(fmt::format("{} {}: is the description's own file (the prior); write the identified one beside it", option, path));
-    const fs::path parent = fs::absolute(path).parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(parent, ec)) throw InputError(fmt::format("{} {}: directory '{}' does not exist", option, path, parent.string()));
 }
 
 std::string read_text(const std::string& path) { return yaml::read_input_file<InputError>(path, "URDF"); }
@@ -93,11 +87,8 @@ void check_model_export(const ModelExportPaths& paths, const robot::RobotDescrip
                                      "use --export-robot, or describe the robot with model urdf",
                                      paths.urdf, description.model));
     }
-    if (!paths.urdf.empty()) check_path("--export-urdf", paths.urdf, description.urdf);
-    if (!paths.robot.empty()) check_path("--export-robot", paths.robot, description.source);
-    if (!paths.urdf.empty() && !paths.robot.empty() && same_file(paths.urdf, paths.robot)) {
-        throw InputError(fmt::format("--export-urdf and --export-robot: both name {}; give two files", paths.urdf));
-    }
+    if (!paths.urdf.empty()) check_path("--export-urdf", paths.urdf);
+    if (!paths.robot.empty()) check_path("--export-robot", paths.robot);
 }
 
 robot::RobotDescription identified_description(const robot::RobotDescription& description, const std::vector<std::string>& names,

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "robot/package_uri.hpp"
 #include "robot/planar2r_model.hpp"
 #include "robot/presliding_model.hpp"
 #include "robot/serial_robot_model.hpp"
@@ -117,8 +118,13 @@ std::string directory_of(const std::string& path) {
 
 void parse_urdf(Section& top, RobotDescription& d) {
     if (!top.has("urdf")) top.fail(top.node(), "urdf", "missing (required): model urdf needs 'urdf: <file.urdf>' (relative to this file)");
-    const std::string file = top.text("urdf", "");
+    std::string file = top.text("urdf", "");
     const std::string& source = top.source();
+    if (is_package_uri(file)) {
+        const ResolvedPackageUri resolved = resolve_package_uri(file);
+        if (resolved.path.empty()) top.fail("urdf", fmt::format("'{}': {}", file, resolved.why));
+        file = resolved.path;
+    }
     // Absolute, so that to_yaml() (stored in simulation truth files) still finds it from elsewhere.
     std::error_code absolute_error;
     d.urdf = (!file.empty() && file[0] == '/') ? file : directory_of(source) + file;

@@ -9,6 +9,7 @@ target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/base_parameters.cpp
   ${CMAKE_CURRENT_LIST_DIR}/serial_robot_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/urdf_chain.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/package_uri.cpp
   ${CMAKE_CURRENT_LIST_DIR}/urdf_export.cpp
   ${CMAKE_CURRENT_LIST_DIR}/base_parameter_report.cpp
   ${CMAKE_CURRENT_LIST_DIR}/load_friction_model.cpp

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "robot/urdf_chain.hpp"
 
+#include <console_bridge/console.h>
 #include <fmt/core.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
@@ -10,6 +11,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -56,6 +59,8 @@ public:
         const auto root = model.getRoot();
         if (!root) throw InputError(fmt::format("{}: the URDF has no root link", source_));
         visit(*root, -1, Transform{});
+        // After the walk, so that a cycle (which makes the walk itself wrong) is the error reported first.
+        if (bad_limit_) throw InputError(*bad_limit_);
         if (chain_.joints.empty()) throw InputError(fmt::format("{}: element <robot name='{}'>: no revolute, continuous or prismatic joint", source_, model.getName()));
         static const char* kNames[10] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
         for (std::size_t j = 0; j < inertials_.size(); ++j) {
@@ -70,6 +75,16 @@ public:
 
 private:
     std::string element(const urdf::Joint& joint) const { return fmt::format("{}: element <joint name='{}'>", source_, joint.name); }
+
+    // urdfdom reads a <limit> without lower/upper as 0, 0: such a joint, or one with lower >= upper, used to be
+    // given [-pi, pi] silently (issue 36), and excite designed motions over it.
+    std::string limit_error(const urdf::Joint& joint) const {
+        const bool prismatic = joint.type == urdf::Joint::PRISMATIC;
+        const std::string limit = joint.limits ? fmt::format("<limit lower='{:g}' upper='{:g}'>", joint.limits->lower, joint.limits->upper) : "no <limit>";
+        return fmt::format("{}: {}: a {} joint needs <limit lower upper> with lower < upper ({}){}", element(joint), limit,
+                           prismatic ? "prismatic" : "revolute", prismatic ? "m" : "rad",
+                           prismatic ? "" : "; a joint that turns without limits is type='continuous' (its range is then taken as [-pi, pi])");
+    }
 
     void add_inertial(int body, const urdf::Link& link, const Transform& body_to_link) {
         if (body < 0 || !link.inertial) return;  // the base (or a link fixed to it) does not move
@@ -115,14 +130,18 @@ private:
             }
             if (!(c.axis.norm() > 1e-9)) throw InputError(fmt::format("{}: <axis xyz> must not be zero", element(joint)));
             c.axis.normalize();
+            // A continuous joint has no limits: its range is taken as one turn, [-pi, pi] (what excite designs
+            // within; logged positions are not checked against it). Any other joint's <limit> is its range.
             double lower = -M_PI, upper = M_PI;
             bool given = false;
-            if (joint.type != urdf::Joint::CONTINUOUS && joint.limits && joint.limits->upper > joint.limits->lower) {
-                lower = joint.limits->lower;
-                upper = joint.limits->upper;
-                given = true;
-            } else if (joint.type == urdf::Joint::PRISMATIC) {
-                throw InputError(fmt::format("{}: a prismatic joint needs <limit lower upper> with lower < upper", element(joint)));
+            if (joint.type != urdf::Joint::CONTINUOUS) {
+                if (!joint.limits || !(joint.limits->upper > joint.limits->lower)) {
+                    if (!bad_limit_) bad_limit_ = limit_error(joint);
+                } else {
+                    lower = joint.limits->lower;
+                    upper = joint.limits->upper;
+                    given = true;
+                }
             }
             const int index = static_cast<int>(chain_.joints.size());
             chain_.joints.push_back(c);
@@ -155,6 +174,7 @@ private:
     std::vector<Inertial10> inertials_;
     std::vector<double> damping_, friction_;
     std::vector<bool> has_dynamics_;
+    std::optional<std::string> bad_limit_;  // the first joint whose limits are not a range
 };
 
 // Every number of a URDF <inertial> (mass, origin, inertia) read as a finite double: urdfdom stops at the
@@ -187,18 +207,54 @@ void require_finite_inertials(const std::string& xml, const std::string& source)
     }
 }
 
+// While it lives, urdfdom's errors (console_bridge) are caught instead of printed: the first is the cause of
+// a refused URDF ("Failed to build tree: child link [lx] of joint [j2] not found"), which our message then
+// names instead of a list of possible causes (issue 36); warnings and the rest pass on to the handler it replaced.
+class UrdfdomErrors : public console_bridge::OutputHandler {
+public:
+    UrdfdomErrors() : lock_(mutex()), previous_(console_bridge::getOutputHandler()) { console_bridge::useOutputHandler(this); }
+    ~UrdfdomErrors() override { console_bridge::useOutputHandler(previous_); }
+    UrdfdomErrors(const UrdfdomErrors&) = delete;
+    UrdfdomErrors& operator=(const UrdfdomErrors&) = delete;
+
+    void log(const std::string& text, console_bridge::LogLevel level, const char* filename, int line) override {
+        if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+            if (first_.empty()) first_ = text;  // the later ones follow from it; the URDF is refused
+        } else if (previous_) {
+            previous_->log(text, level, filename, line);
+        }
+    }
+    const std::string& first() const { return first_; }
+
+private:
+    // console_bridge's handler is process-wide: one parse at a time swaps it.
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::lock_guard<std::mutex> lock_;
+    console_bridge::OutputHandler* previous_;
+    std::string first_;
+};
+
 }  // namespace
 
 UrdfChain parse_urdf_chain(const std::string& xml, const std::string& source) {
     require_finite_inertials(xml, source);
     urdf::ModelInterfaceSharedPtr model;
+    std::string urdfdom_error;
     try {
+        UrdfdomErrors errors;
         model = urdf::parseURDF(xml);
+        urdfdom_error = errors.first();
     } catch (const std::exception& e) {
         throw InputError(fmt::format("{}: invalid URDF: {}", source, e.what()));
     }
+    // Also when urdfdom returned a model: it logs an error where it skipped what it could not read (an
+    // <inertial> it dropped), and the robot would then not be the one the file describes.
+    if (!urdfdom_error.empty()) throw InputError(fmt::format("{}: invalid URDF: {} (urdfdom)", source, urdfdom_error));
     if (!model) {
-        throw InputError(fmt::format("{}: invalid URDF (urdfdom rejected it: malformed XML, a missing <robot>, a joint without "
+        throw InputError(fmt::format("{}: invalid URDF (urdfdom rejected it without saying why: malformed XML, a missing <robot>, a joint without "
                                      "parent/child, a link named twice or a number that does not parse)",
                                      source));
     }

@@ -28,7 +28,7 @@ struct UrdfChain {
     std::vector<ChainJoint> joints;   // moving joints in topological order
     std::vector<std::string> names;   // URDF joint names
     std::vector<std::pair<double, double>> limits;  // [lower, upper]; continuous joints: [-pi, pi]
-    std::vector<bool> limits_given;                  // the URDF's <limit> (false: continuous or none, [-pi, pi])
+    std::vector<bool> limits_given;                  // the URDF's <limit> (false: continuous, [-pi, pi]; any other joint must have lower < upper)
     std::vector<std::pair<std::string, double>> standard_parameters;  // XX1 ... M_n, FVj, FCj from the file
     // Per moving joint: its child link (whose frame is the body frame of the standard parameters), and the
     // links fixed to that body whose <inertial> was merged into the body's standard parameters.

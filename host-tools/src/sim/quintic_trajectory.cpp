@@ -13,9 +13,6 @@
 namespace jacobid::sim {
 namespace {
 
-constexpr double kPeakVelocity = 1.875;                  // of a quintic step: 15/8 d / T
-constexpr double kPeakAcceleration = 5.773502691896258;  // 10 / sqrt(3) d / T^2
-
 // One limit per joint (infinity: none), each > 0.
 std::vector<double> joint_limits(const std::vector<double>& given, std::size_t joints, const char* option) {
     for (const double v : given) {
@@ -45,7 +42,7 @@ void QuinticTrajectory::next_move() {
     move_duration_ = settings_.min_duration + (settings_.max_duration - settings_.min_duration) * unit(rng_);
     for (std::size_t j = 0; j < to_.size(); ++j) {
         const double step = std::abs(to_[j] - from_[j]);
-        move_duration_ = std::max({move_duration_, kPeakVelocity * step / velocity_limit_[j], std::sqrt(kPeakAcceleration * step / acceleration_limit_[j])});
+        move_duration_ = std::max({move_duration_, kQuinticPeakVelocity * step / velocity_limit_[j], std::sqrt(kQuinticPeakAcceleration * step / acceleration_limit_[j])});
     }
     move_end_ = move_start_ + move_duration_ + settings_.max_dwell * unit(rng_);
 }

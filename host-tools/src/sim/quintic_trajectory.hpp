@@ -12,6 +12,10 @@
 
 namespace jacobid::sim {
 
+// A quintic step d over T peaks at kQuinticPeakVelocity d / T and kQuinticPeakAcceleration d / T^2.
+inline constexpr double kQuinticPeakVelocity = 1.875;                  // 15/8
+inline constexpr double kQuinticPeakAcceleration = 5.773502691896258;  // 10 / sqrt(3)
+
 struct MoveSettings {
     double min_duration = 0.6;  // s; fast moves as in docs/method.md, "Pitfalls" (0.6-1.6 s)
     double max_duration = 1.6;  // s

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/errors.hpp"
+#include "core/measurable_motion.hpp"
 #include "sim/closed_loop.hpp"
 #include "sim/dahl_friction.hpp"
 #include "sim/torque_delay_line.hpp"
@@ -40,6 +41,21 @@ void validate(const SimulationSettings& s) {
         throw InputError("--move-duration: need 0 < min <= max seconds");
     }
     if (s.moves.max_dwell < 0.0) throw InputError("--dwell must be >= 0 s");
+    // Limits under which no move can show a measurable motion within the run (core/measurable_motion.hpp).
+    for (const double v : s.moves.velocity_limit) {
+        const double reach = v * s.duration / kQuinticPeakVelocity;
+        if (reach >= kMinMeasurableMotion) continue;
+        throw InputError(fmt::format("--velocity-limit {:g} rad/s: a move within --duration {:g} s reaches at most v T / 1.875 = {:.3g} rad, less than "
+                                     "the {:g} rad (or m) a log needs to show motion; raise the limit or --duration",
+                                     v, s.duration, reach, kMinMeasurableMotion));
+    }
+    for (const double a : s.moves.acceleration_limit) {
+        const double reach = a * s.duration * s.duration / kQuinticPeakAcceleration;
+        if (reach >= kMinMeasurableMotion) continue;
+        throw InputError(fmt::format("--acceleration-limit {:g} rad/s^2: a move within --duration {:g} s reaches at most a T^2 / 5.77 = {:.3g} rad, "
+                                     "less than the {:g} rad (or m) a log needs to show motion; raise the limit or --duration",
+                                     a, s.duration, reach, kMinMeasurableMotion));
+    }
 }
 
 std::size_t simulated_sample_count(const SimulationSettings& s) {

@@ -3,6 +3,7 @@
 target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/quintic_trajectory.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tabulated_trajectory.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/reference_checks.cpp
   ${CMAKE_CURRENT_LIST_DIR}/measurement.cpp
   ${CMAKE_CURRENT_LIST_DIR}/closed_loop.cpp
   ${CMAKE_CURRENT_LIST_DIR}/simulator.cpp

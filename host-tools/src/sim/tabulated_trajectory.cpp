@@ -7,13 +7,16 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "sim/reference_checks.hpp"
 
 namespace jacobid::sim {
 
-TabulatedTrajectory::TabulatedTrajectory(const io::CsvTable& table, int joints) {
+TabulatedTrajectory::TabulatedTrajectory(const io::CsvTable& table, int joints, const std::vector<std::optional<io::PositionBounds>>& limits) {
+    require_reference_columns(table, joints);
     t_ = table.column("t");
     if (t_.size() < 2) throw InputError(fmt::format("{}: {} rows: a trajectory needs at least 2", table.source(), t_.size()));
     step_ = t_[1] - t_[0];
+    require_plausible_reference_step(table, step_);
     if (t_[0] != 0.0) throw InputError(fmt::format("{}: line {}, column t: {} s, expected the trajectory to start at 0", table.source(), table.line_of_row(0), t_[0]));
     for (std::size_t i = 1; i < t_.size(); ++i) {
         const double dt = t_[i] - t_[i - 1];
@@ -39,6 +42,8 @@ TabulatedTrajectory::TabulatedTrajectory(const io::CsvTable& table, int joints) 
             }
         }
     }
+    require_reference_within_limits(table, q_, limits);
+    require_consistent_derivatives(table, step_, q_, qd_, qdd_);
 }
 
 std::vector<double> TabulatedTrajectory::start() const {

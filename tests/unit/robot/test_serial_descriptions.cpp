@@ -222,7 +222,18 @@ TEST(UrdfChain, LinkThatIsItsOwnChildIsAnErrorNotAStackOverflow) {
 x a   <is xyz="0 1 0"/>></joint>
 </robot>
 )URDF";
-    EXPECT_EQ(urdf_error_of(cyclic), "arm.urdf: element <joint name='j2'>: child link 'l1' is already in the tree (the URDF has a cycle)");
+    // Since issue 36 an error urdfdom logs is the refusal, here before the walk: l1's <inertial> (no mass),
+    // which urdfdom dropped while accepting the file.
+    EXPECT_EQ(urdf_error_of(cyclic), "arm.urdf: invalid URDF: Inertial element must have a mass element (urdfdom)");
+    // The walk itself still stops at a cycle in a file urdfdom reads without an error.
+    const char* clean_cycle = R"URDF(<robot name="arm">
+  <link name="base"/>
+  <link name="l1"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="continuous"><parent link="l1"/><child link="l1"/><axis xyz="0 1 0"/></joint>
+</robot>
+)URDF";
+    EXPECT_EQ(urdf_error_of(clean_cycle), "arm.urdf: element <joint name='j2'>: child link 'l1' is already in the tree (the URDF has a cycle)");
 }
 
 TEST(UrdfChain, MalformedUrdfNamesTheElement) {
@@ -238,9 +249,37 @@ TEST(UrdfChain, MalformedUrdfNamesTheElement) {
     EXPECT_EQ(urdf_error_of(infinite).rfind("arm.urdf: ", 0), 0u);  // urdfdom itself rejects it, or our finiteness check
     std::string missing_child = kArm;
     missing_child.replace(missing_child.find("<child link=\"l2\"/>"), 18, "<child link=\"lx\"/>");
-    EXPECT_EQ(urdf_error_of(missing_child).rfind("arm.urdf: invalid URDF", 0), 0u);
+    // urdfdom's own reason (issue 36: was a list of possible causes, its "Error:" line printed apart).
+    EXPECT_EQ(urdf_error_of(missing_child), "arm.urdf: invalid URDF: Failed to build tree: child link [lx] of joint [j2] not found (urdfdom)");
+    EXPECT_EQ(urdf_error_of("<robot name='r'><link name='a'/><link name='a'/></robot>"), "arm.urdf: invalid URDF: link 'a' is not unique. (urdfdom)");
     EXPECT_EQ(urdf_error_of("<robot name='r'><link name='a'/></robot>"), "arm.urdf: element <robot name='r'>: no revolute, continuous or prismatic joint");
     EXPECT_EQ(urdf_error_of("not xml").rfind("arm.urdf: invalid URDF", 0), 0u);
+}
+
+// Issue 36: a revolute joint whose <limit> is not a range (lower >= upper, or no lower/upper, which urdfdom
+// reads as 0, 0) was given [-pi, pi] silently, and excite designed motions over it. A continuous joint keeps
+// [-pi, pi] (kArm's j2).
+TEST(UrdfChain, LimitsThatAreNotARangeAreRefusedNamingTheJoint) {
+    const std::string limit = "<limit lower=\"-2\" upper=\"2\" effort=\"10\" velocity=\"1\"/>";
+    const auto with_limit = [&](const std::string& replacement) {
+        std::string xml = kArm;
+        return xml.replace(xml.find(limit), limit.size(), replacement);
+    };
+    const std::string continuous = "; a joint that turns without limits is type='continuous' (its range is then taken as [-pi, pi])";
+    EXPECT_EQ(urdf_error_of(with_limit("<limit lower=\"1\" upper=\"1\" effort=\"10\" velocity=\"1\"/>")),
+              "arm.urdf: element <joint name='j1'>: <limit lower='1' upper='1'>: a revolute joint needs <limit lower upper> with lower < upper (rad)" +
+                  continuous);
+    EXPECT_EQ(urdf_error_of(with_limit("<limit lower=\"2\" upper=\"-2\" effort=\"10\" velocity=\"1\"/>")),
+              "arm.urdf: element <joint name='j1'>: <limit lower='2' upper='-2'>: a revolute joint needs <limit lower upper> with lower < upper (rad)" +
+                  continuous);
+    EXPECT_EQ(urdf_error_of(with_limit("<limit effort=\"10\" velocity=\"1\"/>")),
+              "arm.urdf: element <joint name='j1'>: <limit lower='0' upper='0'>: a revolute joint needs <limit lower upper> with lower < upper (rad)" +
+                  continuous);
+    const robot::UrdfChain fine = robot::parse_urdf_chain(kArm, "arm.urdf");
+    EXPECT_EQ(fine.limits[0], std::make_pair(-2.0, 2.0));
+    EXPECT_TRUE(fine.limits_given[0]);
+    EXPECT_EQ(fine.limits[1], std::make_pair(-M_PI, M_PI));  // continuous
+    EXPECT_FALSE(fine.limits_given[1]);
 }
 
 }  // namespace
