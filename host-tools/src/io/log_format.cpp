@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "io/increasing_rows.hpp"
@@ -22,6 +23,8 @@ namespace {
 using Section = yaml::YamlSection<InputError>;
 
 constexpr std::size_t kMaxJoints = 64;
+// |gain| bounds of a current-to-torque gain, N.m/A (see the gains: check).
+constexpr std::pair<double, double> kPlausibleGain{1e-6, 1e6};
 
 bool parses_as_number(const std::string& s, double& value) {
     const auto r = fast_float::from_chars(s.data(), s.data() + s.size(), value);
@@ -207,6 +210,13 @@ LogFormat parse_log_format(const std::string& yaml_text, const std::string& sour
             if (g.IsNull()) s.fail(g, key, "null gain for a logged current (give the current-to-torque gain in N.m/A)");
             const double v = s.number_element(g, key, "N.m/A");
             if (v == 0.0) s.fail(g, key, "a gain of 0 discards the current: use null in currents for a joint without actuator");
+            // A current-to-torque gain is a torque constant times a gear ratio: from ~1e-3 N.m/A (a small servo's
+            // bare motor) to a few 1e3 (a large gearmotor). A gain outside 1e-6 .. 1e6 is a typo or a unit slip,
+            // and blamed here, on the key, before it turns a current cell into a torque that is not finite.
+            if (std::fabs(v) < kPlausibleGain.first || std::fabs(v) > kPlausibleGain.second) {
+                s.fail(g, key, fmt::format("{:g} N.m/A is no current-to-torque gain (expected |gain| within {:g} .. {:g} N.m/A: the motor's torque "
+                                           "constant times the gear ratio)", v, kPlausibleGain.first, kPlausibleGain.second));
+            }
             f.gains.push_back(v);
         }
     } else {

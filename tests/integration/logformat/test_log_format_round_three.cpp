@@ -51,6 +51,18 @@ TEST(RoundThreeLogs, EffortsAllNullAreRefusedNamingTheKey) {
     EXPECT_NO_THROW(fmt_of("time: {column: 1}\npositions: [2, 3]\ntorques: [4, null]\n"));
 }
 
+TEST(RoundThreeLogs, AGainNoMotorHasIsBlamedOnItsKeyNotOnADataCell) {
+    // 1e308 N.m/A made the first current cell's torque infinite, and the message blamed that cell.
+    EXPECT_EQ(error_of([] { fmt_of("time: {column: 1}\npositions: [2, 3]\ncurrents: [4, 5]\ngains: [2.5, 1e308]\n"); }),
+              "f.yaml:4:14: gains[1]: 1e+308 N.m/A is no current-to-torque gain (expected |gain| within 1e-06 .. 1e+06 N.m/A: the motor's "
+              "torque constant times the gear ratio)");
+    EXPECT_EQ(error_of([] { fmt_of("time: {column: 1}\npositions: [2]\ncurrents: [4]\ngains: [-1e-9]\n"); }),
+              "f.yaml:4:9: gains[0]: -1e-09 N.m/A is no current-to-torque gain (expected |gain| within 1e-06 .. 1e+06 N.m/A: the motor's "
+              "torque constant times the gear ratio)");
+    // The shared UR10e format's gains (~10 N.m/A) and the pendubot's negative one stay fine.
+    EXPECT_NO_THROW(fmt_of("time: {column: 1}\npositions: [2, 3]\ncurrents: [4, 5]\ngains: [-0.123, 13.5]\n"));
+}
+
 TEST(RoundThreeLogs, QuotedDigitsAreHeaderNamesAndPlainNumbersColumnNumbers) {
     // The header names its columns 3 and 2 in the other order: quoted, they are names, so joint 1 reads the
     // column named '3' (the 2nd), not the 3rd column (joints were swapped without a word).
