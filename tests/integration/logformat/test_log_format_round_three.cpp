@@ -266,6 +266,19 @@ TEST(RoundThreeLogs, BareCarriageReturnsUtf16AndByteOrderMarks) {
     const std::string utf16("\xFF\xFEt\0,\0q\0\n\0", 10);
     EXPECT_EQ(error_of([&] { parse_csv(utf16, "u16.csv"); }),
               "u16.csv:1: the file is encoded as UTF-16 (NUL bytes between the characters): save it as UTF-8 or ASCII text");
+    // Bytes FE and FF, which UTF-8 never holds, anywhere in the first line (fuzz_csv_log: a name starting with
+    // FE FF after tabs was accepted, and the table printed again began with a UTF-16 byte order mark).
+    EXPECT_EQ(error_of([] { parse_csv("\t\t\xFE\xFF\xFF\xEBt,q\n0,1\n", "fe.csv"); }),
+              "fe.csv:1: byte 3 is 0xFE, which UTF-8 text never holds: another encoding (Latin-1?) or a binary file; save it as UTF-8 or ASCII text");
+    EXPECT_EQ(error_of([] { parse_csv("t,q\xFF\n0,1\n", "latin1.csv"); }),
+              "latin1.csv:1: byte 4 is 0xFF, which UTF-8 text never holds: another encoding (Latin-1?) or a binary file; save it as UTF-8 or ASCII text");
+    EXPECT_EQ(parse_csv("t,q\xC3\xBF\n0,1\n", "utf8.csv").header()[1], "q\xC3\xBF");  // the same letter in UTF-8 stays a name
+    // Magic numbers where the first name starts, after blanks (fuzz_csv_log: '\t\xFD7zXZ1,...' was accepted, its
+    // printed copy refused as xz); a first name that merely starts with "BZh" is a name.
+    EXPECT_EQ(error_of([] { parse_csv(std::string(" \t\x1F\x8B\x08\x00junk", 10), "gz.csv"); }),
+              "gz.csv:1: the file is compressed (gzip, zip, xz or bzip2): unpack it and give the CSV");
+    EXPECT_EQ(error_of([] { parse_csv("BZh91AY&SY\n", "bz.csv"); }), "bz.csv:1: the file is compressed (gzip, zip, xz or bzip2): unpack it and give the CSV");
+    EXPECT_EQ(parse_csv("BZhang,q\n0,1\n", "names.csv").header()[0], "BZhang");
     // Compressed and binary files are named as such, not as odd columns or UTF-16.
     EXPECT_EQ(error_of([] { parse_csv(std::string("\x1F\x8B\x08\x00junk", 8), "p.csv.gz"); }),
               "p.csv.gz:1: the file is compressed (gzip, zip, xz or bzip2): unpack it and give the CSV");
