@@ -231,6 +231,11 @@ void add_sim_can_command(CLI::App& app) {
     cmd->add_option("--duration", o->settings.duration, "simulated (and wall-clock) time in s")->check(positive_number())->capture_default_str();
     cmd->add_option("--rate", o->settings.output_rate, "frames per joint per second (Hz)")->check(positive_number())->capture_default_str();
     cmd->add_option("--seed", o->settings.seed, "seed of the random moves")->check(whole_number_from(0))->capture_default_str();
+    cmd->add_option("--substeps", o->settings.substeps,
+                    "RK4 steps of the simulated robot per control period (fewer: less CPU per frame, e.g. on a small board, for a coarser "
+                    "integration)")
+        ->check(whole_number_in(1, 1000))
+        ->capture_default_str();
     add_torque_noise_option(cmd, o->torque_noise);
     add_noise_seed_option(cmd, o->noise_seed);
     cmd->add_option("--sync-id", o->sync_id,

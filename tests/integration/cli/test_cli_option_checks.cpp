@@ -165,6 +165,7 @@ TEST(CliOptionValues, SimulationValuesAreRefused) {
         {simulate + "--substeps 0", "--substeps", "whole number >= 1"},
         {"sim-can --candump c.log --torque-noise nan", "--torque-noise", "'nan'"},
         {"sim-can --candump c.log --noise-seed -1", "--noise-seed", ">= 0"},
+        {"sim-can --candump c.log --substeps 0", "--substeps", "in [1, 1000]"},
         {"montecarlo --threads -1", "--threads", ">= 0"},
         {"record --udp 127.0.0.1:0 -o r.csv --duration -1", "--duration", ">= 0"},
     });
