@@ -58,7 +58,8 @@ void require_readable_log_text(std::string_view first_line, const std::string& s
     // that a table printed again from its names reads the same (fuzz_csv_log: a first name '\xFD7zXZ...' after a
     // tab was accepted, while its printed copy began with xz's magic number).
     const std::string_view start = first_line.substr(std::min(first_line.find_first_not_of(" \t"), first_line.size()));
-    const auto starts = [&](std::string_view magic) { return start.substr(0, magic.size()) == magic; };
+    const auto begins = [](std::string_view text, std::string_view magic) { return text.substr(0, magic.size()) == magic; };
+    const auto starts = [&](std::string_view magic) { return begins(start, magic); };
     const bool bzip2 = starts("BZh") && start.size() >= 10 && start[3] >= '1' && start[3] <= '9' && start.substr(4, 6) == "1AY&SY";
     if (starts("\x1F\x8B") || starts("PK\x03\x04") || starts("\xFD" "7zXZ") || bzip2) {
         throw InputError(fmt::format("{}:1: the file is compressed (gzip, zip, xz or bzip2): unpack it and give the CSV", source));
@@ -69,8 +70,8 @@ void require_readable_log_text(std::string_view first_line, const std::string& s
     for (std::size_t i = 0; i < probe; ++i) {
         if (first_line[i] == '\0') ++(i % 2 ? nul_odd : nul_even);
     }
-    const auto bom = [&](std::string_view mark) { return first_line.substr(0, mark.size()) == mark; };  // the file's very first bytes
-    const bool utf16 = bom("\xFF\xFE") || bom("\xFE\xFF") || (probe >= 4 && std::min(nul_even, nul_odd) == 0 && std::max(nul_even, nul_odd) * 2 + 1 >= probe);
+    // A byte order mark is the file's very first bytes (FE or FF after blanks is refused below as not UTF-8).
+    const bool utf16 = begins(first_line, "\xFF\xFE") || begins(first_line, "\xFE\xFF") || (probe >= 4 && std::min(nul_even, nul_odd) == 0 && std::max(nul_even, nul_odd) * 2 + 1 >= probe);
     if (utf16) {
         throw InputError(fmt::format("{}:1: the file is encoded as UTF-16 (NUL bytes between the characters): save it as UTF-8 or ASCII text", source));
     }
