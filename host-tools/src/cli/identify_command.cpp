@@ -27,7 +27,6 @@
 #include "cli/robot_files.hpp"
 #include "cli/streamed_log.hpp"
 #include "core/parallel_for.hpp"
-#include "core/same_file.hpp"
 #include "identify/coulomb_smoothing.hpp"
 #include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
