@@ -3,11 +3,41 @@
 
 #include "robot/presliding_model.hpp"
 
+#include <algorithm>
+#include <memory>
+#include <utility>
+
 namespace jacobid::sim {
 namespace {
 // Columns of the form f(q) s(qd_j), which the identification evaluates on the Coulomb velocity
 // (RobotModel::coulomb_column_indices).
 bool is_sign_column(EffectKind kind) { return kind == EffectKind::CoulombSmoothing || kind == EffectKind::CoulombLoad; }
+
+// Forward dynamics of the nominal model with the terms' torques moved to the torque side: none of them
+// depends on qdd (AugmentedModel::articulated_body checks), so qdd = ABA(q, qd, tau - sum_t C_t(q, qd) x_t).
+class AugmentedDynamics final : public robot::DirectForwardDynamics {
+public:
+    AugmentedDynamics(const AugmentedModel& model, std::unique_ptr<robot::DirectForwardDynamics> nominal, Eigen::VectorXd X)
+        : model_(model), nominal_(std::move(nominal)), X_(std::move(X)), zero_(static_cast<std::size_t>(model.joint_count()), 0.0),
+          tau_(zero_.size()) {
+        int widest = 0;
+        for (const auto& t : model.terms()) widest = std::max(widest, t.column_count());
+        columns_.resize(model.joint_count(), widest);
+    }
+    bool accelerations(const double* q, const double* qd, const double* tau, double* qdd) override {
+        std::fill(tau_.begin(), tau_.end(), 0.0);
+        model_.add_term_torques(q, qd, zero_.data(), X_, columns_, tau_.data());
+        for (std::size_t j = 0; j < tau_.size(); ++j) tau_[j] = tau[j] - tau_[j];
+        return nominal_->accelerations(q, qd, tau_.data(), qdd);
+    }
+
+private:
+    const AugmentedModel& model_;
+    std::unique_ptr<robot::DirectForwardDynamics> nominal_;
+    Eigen::VectorXd X_;
+    std::vector<double> zero_, tau_;
+    Eigen::MatrixXd columns_;
+};
 }  // namespace
 
 AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext context, std::vector<EffectTerm> terms)
@@ -75,6 +105,35 @@ void AugmentedModel::history_columns(const double* state, Eigen::Ref<Eigen::Matr
         const std::size_t t = history_terms_[h];
         D(terms_[t].joint, first_column_[t]) = state[static_cast<std::size_t>(nominal_width) + h];
     }
+}
+
+void AugmentedModel::add_term_torques(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X,
+                                      Eigen::MatrixXd& columns, double* tau) const {
+    const double* factors = load_factors(q);
+    for (std::size_t t = 0; t < terms_.size(); ++t) {
+        const int count = terms_[t].column_count();
+        if (columns.rows() != joint_count() || columns.cols() < count) columns.resize(joint_count(), count);
+        auto block = columns.leftCols(count);
+        term_columns(terms_[t], context_, q, qd, qdd, block, factors);
+        const auto values = X.segment(first_column_[t], count);
+        for (int j = 0; j < joint_count(); ++j) tau[j] += block.row(j).dot(values);
+    }
+}
+
+bool AugmentedModel::inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const {
+    if (!nominal_.inverse_dynamics(q, qd, qdd, X.head(nominal_.parameter_count()), tau)) return false;
+    thread_local Eigen::MatrixXd columns;  // inverse dynamics runs on several threads at once
+    add_term_torques(q, qd, qdd, X, columns, tau);
+    return true;
+}
+
+std::unique_ptr<robot::DirectForwardDynamics> AugmentedModel::articulated_body(const Eigen::VectorXd& X) const {
+    for (const auto& t : terms_) {
+        if (t.kind == EffectKind::RotorInertia) return nullptr;
+    }
+    std::unique_ptr<robot::DirectForwardDynamics> nominal = nominal_.articulated_body(X.head(nominal_.parameter_count()));
+    if (!nominal) return nullptr;
+    return std::make_unique<AugmentedDynamics>(*this, std::move(nominal), X);
 }
 
 void AugmentedModel::regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {

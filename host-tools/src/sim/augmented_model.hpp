@@ -31,6 +31,17 @@ public:
     int history_size() const override { return nominal_.history_size() + static_cast<int>(history_terms_.size()); }
     void integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const override;
     void history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const override;
+    // The nominal model's inverse dynamics plus the terms' columns times their values, when the nominal
+    // model has one: the simulator's n + 2 evaluations per step without the full regressor.
+    bool inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const override;
+    // The nominal model's articulated-body forward dynamics with the terms' torques moved to the torque side,
+    // when no term depends on qdd (rotor_inertia does: it changes the inertia matrix) and the nominal model
+    // has that route; nullptr otherwise, and ForwardDynamics builds the inertia matrix.
+    std::unique_ptr<robot::DirectForwardDynamics> articulated_body(const Eigen::VectorXd& X) const override;
+    // tau += sum over the terms of their columns at (q, qd, qdd) times their values (X's entries after the
+    // nominal parameters). `columns`: scratch (joints x the widest term), resized when too small.
+    void add_term_torques(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, Eigen::MatrixXd& columns,
+                          double* tau) const;
 
     const robot::RobotModel& nominal() const { return nominal_; }
     const std::vector<EffectTerm>& terms() const { return terms_; }
