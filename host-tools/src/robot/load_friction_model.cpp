@@ -77,16 +77,16 @@ const char* to_string(CoulombLoad law) {
 
 LoadFrictionModel::LoadFrictionModel(std::unique_ptr<RobotModel> nominal, CoulombLoad law, const Eigen::VectorXd& reference,
                                      std::vector<CoulombSign> signs)
-    : nominal_(std::move(nominal)), law_(law), signs_(std::move(signs)) {
-    const int joints = nominal_->joint_count();
-    const int p = nominal_->parameter_count();
+    : ModelExtension(std::move(nominal)), law_(law), signs_(std::move(signs)) {
+    const int joints = this->nominal().joint_count();
+    const int p = nominal_parameter_count();
     if (law_ == CoulombLoad::none) throw std::invalid_argument("load-dependent Coulomb friction: no law given (abs or square)");
     if (reference.size() != p) throw std::invalid_argument(fmt::format("load-dependent Coulomb friction: {} reference values for {} parameters", reference.size(), p));
     if (signs_.size() != static_cast<std::size_t>(joints)) {
         throw std::invalid_argument(fmt::format("load-dependent Coulomb friction: {} Coulomb sign functions for {} joints", signs_.size(), joints));
     }
     gravity_parameters_ = reference;
-    const auto& names = nominal_->parameter_names();
+    const auto& names = this->nominal().parameter_names();
     for (int c = 0; c < p; ++c) {
         if (is_friction_or_offset(names[static_cast<std::size_t>(c)])) gravity_parameters_[c] = 0.0;
     }
@@ -97,7 +97,7 @@ LoadFrictionModel::LoadFrictionModel(std::unique_ptr<RobotModel> nominal, Coulom
     constexpr int kPoses = 24;
     for (int pose = 0; pose < kPoses; ++pose) {
         for (int j = 0; j < joints; ++j) q[static_cast<std::size_t>(j)] = std::fmod(0.7 + 2.39996322972865332 * (pose + 1) * (j + 1), 6.283185307179586) - 3.141592653589793;
-        gravity_torques(*nominal_, gravity_parameters_, q.data(), scratch, tau.data());
+        gravity_torques(this->nominal(), gravity_parameters_, q.data(), scratch, tau.data());
         for (int j = 0; j < joints; ++j) peak[static_cast<std::size_t>(j)] = std::max(peak[static_cast<std::size_t>(j)], std::abs(tau[static_cast<std::size_t>(j)]));
     }
     const double largest = *std::max_element(peak.begin(), peak.end());
@@ -105,23 +105,22 @@ LoadFrictionModel::LoadFrictionModel(std::unique_ptr<RobotModel> nominal, Coulom
         throw std::invalid_argument("load-dependent Coulomb friction: the reference parameters give no joint any gravity torque (a robot moving "
                                     "in a horizontal plane, or no inertial parameters: give them under parameters: or in the URDF)");
     }
-    names_ = names;
     for (int j = 0; j < joints; ++j) {
         if (peak[static_cast<std::size_t>(j)] <= 1e-9 * largest) continue;
         loaded_.push_back(j);
-        names_.push_back(fmt::format("FCL{}", j + 1));
+        append_parameter(fmt::format("FCL{}", j + 1));
     }
 }
 
 void LoadFrictionModel::load_factors(const double* q, double* factors) const {
     // One scratch per thread: the pipeline evaluates regressors on several threads at once.
     thread_local GravityScratch scratch;
-    gravity_torques(*nominal_, gravity_parameters_, q, scratch, factors);
+    gravity_torques(nominal(), gravity_parameters_, q, scratch, factors);
     for (int j = 0; j < joint_count(); ++j) factors[j] = load_factor(law_, factors[j]);
 }
 
 void LoadFrictionModel::write_load_columns(const double* q, const double* qd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    const int p = nominal_->parameter_count();
+    const int p = nominal_parameter_count();
     D.rightCols(D.cols() - p).setZero();
     thread_local std::vector<double> factors;
     factors.resize(static_cast<std::size_t>(joint_count()));
@@ -133,18 +132,18 @@ void LoadFrictionModel::write_load_columns(const double* q, const double* qd, Ei
 }
 
 void LoadFrictionModel::regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    nominal_->regressor(q, qd, qdd, D.leftCols(nominal_->parameter_count()));
+    nominal().regressor(q, qd, qdd, D.leftCols(nominal_parameter_count()));
     write_load_columns(q, qd, D);
 }
 
 void LoadFrictionModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    nominal_->coulomb_columns(q, qd, qdd, D.leftCols(nominal_->parameter_count()));
+    nominal().coulomb_columns(q, qd, qdd, D.leftCols(nominal_parameter_count()));
     write_load_columns(q, qd, D);
 }
 
 bool LoadFrictionModel::inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const {
-    const int p = nominal_->parameter_count();
-    if (!nominal_->inverse_dynamics(q, qd, qdd, X.head(p), tau)) return false;
+    const int p = nominal_parameter_count();
+    if (!nominal().inverse_dynamics(q, qd, qdd, X.head(p), tau)) return false;
     thread_local std::vector<double> factors;
     factors.resize(static_cast<std::size_t>(joint_count()));
     load_factors(q, factors.data());
@@ -156,10 +155,10 @@ bool LoadFrictionModel::inverse_dynamics(const double* q, const double* qd, cons
 }
 
 std::unique_ptr<DirectForwardDynamics> LoadFrictionModel::articulated_body(const Eigen::VectorXd& X) const {
-    const int p = nominal_->parameter_count();
-    std::unique_ptr<DirectForwardDynamics> nominal = nominal_->articulated_body(X.head(p));
-    if (!nominal) return nullptr;
-    return std::make_unique<LoadFrictionDynamics>(*this, std::move(nominal), X.tail(X.size() - p));
+    const int p = nominal_parameter_count();
+    std::unique_ptr<DirectForwardDynamics> inner = nominal().articulated_body(X.head(p));
+    if (!inner) return nullptr;
+    return std::make_unique<LoadFrictionDynamics>(*this, std::move(inner), X.tail(X.size() - p));
 }
 
 }  // namespace jacobid::robot

@@ -16,31 +16,25 @@
 #include <vector>
 
 #include "jacobid/robot/coulomb_sign.hpp"
-#include "robot/robot_model.hpp"
+#include "robot/model_extension.hpp"
 
 namespace jacobid::robot {
 
 enum class CoulombLoad { none, abs, square };
 const char* to_string(CoulombLoad law);
 
-class LoadFrictionModel final : public RobotModel {
+class LoadFrictionModel final : public ModelExtension {
 public:
     // `reference`: nominal parameter vector whose gravity torques scale the friction (friction and offset
     // entries are ignored); `signs`: each joint's Coulomb sign function. Throws std::invalid_argument when
     // no joint carries any gravity torque under the reference (a planar robot, no inertial parameters).
     LoadFrictionModel(std::unique_ptr<RobotModel> nominal, CoulombLoad law, const Eigen::VectorXd& reference, std::vector<CoulombSign> signs);
 
-    std::string model_name() const override { return nominal_->model_name(); }
-    int joint_count() const override { return nominal_->joint_count(); }
-    int parameter_count() const override { return static_cast<int>(names_.size()); }
-    const std::vector<std::string>& parameter_names() const override { return names_; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
     void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
-    bool concurrent_regressor() const override { return nominal_->concurrent_regressor(); }
     bool inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const override;
     std::unique_ptr<DirectForwardDynamics> articulated_body(const Eigen::VectorXd& X) const override;
 
-    const RobotModel& nominal() const { return *nominal_; }
     // The joints (0-based) that have an FCLj column, in column order after the nominal's.
     const std::vector<int>& loaded_joints() const { return loaded_; }
     // Each joint's load factor at q (|g_j| or g_j^2 of the reference gravity torque), which its column multiplies s_j by.
@@ -52,12 +46,10 @@ private:
     // The FCLj columns at (q, qd) into D (the nominal's columns left as they are).
     void write_load_columns(const double* q, const double* qd, Eigen::Ref<Eigen::MatrixXd> D) const;
 
-    std::unique_ptr<RobotModel> nominal_;
     CoulombLoad law_;
     Eigen::VectorXd gravity_parameters_;  // the reference with its friction and offset entries zeroed
     std::vector<CoulombSign> signs_;
     std::vector<int> loaded_;
-    std::vector<std::string> names_;
 };
 
 }  // namespace jacobid::robot

@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <stdexcept>
+#include <utility>
 
 #include "jacobid/robot/presliding_friction.hpp"
 #include "robot/load_friction_model.hpp"
@@ -11,30 +12,33 @@
 namespace jacobid::robot {
 
 PreslidingModel::PreslidingModel(std::unique_ptr<RobotModel> nominal, PreslidingSettings settings)
-    : PreslidingModel(*nominal, std::move(settings)) {
-    owned_ = std::move(nominal);
+    : ModelExtension(std::move(nominal)), settings_(std::move(settings)) {
+    add_presliding_columns();
 }
 
-PreslidingModel::PreslidingModel(const RobotModel& nominal, PreslidingSettings settings) : nominal_(&nominal), settings_(std::move(settings)) {
-    const auto joints = static_cast<std::size_t>(nominal.joint_count());
+PreslidingModel::PreslidingModel(const RobotModel& nominal, PreslidingSettings settings) : ModelExtension(nominal), settings_(std::move(settings)) {
+    add_presliding_columns();
+}
+
+void PreslidingModel::add_presliding_columns() {
+    const auto joints = static_cast<std::size_t>(joint_count());
     if (settings_.displacement.size() != joints) {
         throw std::invalid_argument(fmt::format("presliding friction: {} displacements for {} joints", settings_.displacement.size(), joints));
     }
     for (const double x : settings_.displacement) {
         if (!(x > 0.0)) throw std::invalid_argument(fmt::format("presliding friction: displacement {} rad must be > 0", x));
     }
-    names_ = nominal.parameter_names();
-    for (std::size_t j = 0; j < joints; ++j) names_.push_back(fmt::format("FD{}", j + 1));
+    for (std::size_t j = 0; j < joints; ++j) append_parameter(fmt::format("FD{}", j + 1));
 }
 
 void PreslidingModel::regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    const int p = nominal_->parameter_count();
-    nominal_->regressor(q, qd, qdd, D.leftCols(p));
+    const int p = nominal_parameter_count();
+    nominal().regressor(q, qd, qdd, D.leftCols(p));
     D.rightCols(D.cols() - p).setZero();
 }
 
 void PreslidingModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    nominal_->coulomb_columns(q, qd, qdd, D.leftCols(nominal_->parameter_count()));
+    nominal().coulomb_columns(q, qd, qdd, D.leftCols(nominal_parameter_count()));
 }
 
 void PreslidingModel::integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const {
@@ -49,7 +53,7 @@ void PreslidingModel::integrate_history(const std::vector<const std::vector<doub
 }
 
 void PreslidingModel::history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const {
-    const int p = nominal_->parameter_count();
+    const int p = nominal_parameter_count();
     for (int j = 0; j < joint_count(); ++j) D(j, p + j) = state[j];
 }
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "robot/robot_model.hpp"
+#include "robot/model_extension.hpp"
 
 namespace jacobid::robot {
 
@@ -23,37 +23,31 @@ struct PreslidingSettings {
     std::vector<double> initial_state;
 };
 
-class PreslidingModel final : public RobotModel {
+class PreslidingModel final : public ModelExtension {
 public:
     // `nominal` must outlive this model when borrowed; owned when given as unique_ptr.
     PreslidingModel(std::unique_ptr<RobotModel> nominal, PreslidingSettings settings);
     PreslidingModel(const RobotModel& nominal, PreslidingSettings settings);
 
-    std::string model_name() const override { return nominal_->model_name(); }
-    int joint_count() const override { return nominal_->joint_count(); }
-    int parameter_count() const override { return static_cast<int>(names_.size()); }
-    const std::vector<std::string>& parameter_names() const override { return names_; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
     void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
-    bool concurrent_regressor() const override { return nominal_->concurrent_regressor(); }
     // The nominal model's, on its parameters: the presliding columns are history columns, 0 in a stateless
     // evaluation, and the simulator applies them as held friction (sim/simulator.cpp).
     std::unique_ptr<DirectForwardDynamics> articulated_body(const Eigen::VectorXd& X) const override {
-        return nominal_->articulated_body(X.head(nominal_->parameter_count()));
+        return nominal().articulated_body(X.head(nominal_parameter_count()));
     }
     int history_size() const override { return joint_count(); }
     void integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const override;
     void history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const override;
 
-    const RobotModel& nominal() const { return *nominal_; }
     const PreslidingSettings& settings() const { return settings_; }
-    int first_presliding_column() const { return nominal_->parameter_count(); }
+    int first_presliding_column() const { return nominal_parameter_count(); }
 
 private:
-    std::unique_ptr<RobotModel> owned_;
-    const RobotModel* nominal_;
+    // The settings checked against the nominal model, then its FDj columns appended.
+    void add_presliding_columns();
+
     PreslidingSettings settings_;
-    std::vector<std::string> names_;
 };
 
 // The model without its presliding and load-dependent friction columns (itself when it has none): what

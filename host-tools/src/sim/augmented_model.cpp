@@ -41,12 +41,12 @@ private:
 }  // namespace
 
 AugmentedModel::AugmentedModel(const robot::RobotModel& nominal, EffectContext context, std::vector<EffectTerm> terms)
-    : nominal_(nominal), context_(std::move(context)), names_(nominal.parameter_names()) {
+    : ModelExtension(nominal), context_(std::move(context)) {
     for (const auto& t : terms) {
         if (t.column_count() == 0) continue;
         terms_.push_back(t);
-        first_column_.push_back(static_cast<int>(names_.size()));
-        for (auto& name : t.column_names()) names_.push_back(std::move(name));
+        first_column_.push_back(parameter_count());
+        for (auto& name : t.column_names()) append_parameter(std::move(name));
         if (effect_has_history(t.kind)) history_terms_.push_back(terms_.size() - 1);
         load_terms_ = load_terms_ || t.kind == EffectKind::CoulombLoad;
     }
@@ -61,7 +61,7 @@ const double* AugmentedModel::load_factors(const double* q) const {
 }
 
 void AugmentedModel::coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    nominal_.coulomb_columns(q, qd, qdd, D.leftCols(nominal_.parameter_count()));
+    nominal().coulomb_columns(q, qd, qdd, D.leftCols(nominal_parameter_count()));
     const double* factors = load_factors(q);
     for (std::size_t t = 0; t < terms_.size(); ++t) {
         if (!is_sign_column(terms_[t].kind)) continue;
@@ -70,7 +70,7 @@ void AugmentedModel::coulomb_columns(const double* q, const double* qd, const do
 }
 
 std::vector<int> AugmentedModel::coulomb_column_indices() const {
-    std::vector<int> columns = nominal_.coulomb_column_indices();
+    std::vector<int> columns = nominal().coulomb_column_indices();
     for (std::size_t t = 0; t < terms_.size(); ++t) {
         if (is_sign_column(terms_[t].kind)) columns.push_back(first_column_[t]);
     }
@@ -78,14 +78,14 @@ std::vector<int> AugmentedModel::coulomb_column_indices() const {
 }
 
 void AugmentedModel::integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const {
-    const auto nominal_width = static_cast<std::size_t>(nominal_.history_size());
+    const auto nominal_width = static_cast<std::size_t>(nominal().history_size());
     if (history_terms_.empty()) {
-        nominal_.integrate_history(q, state);
+        nominal().integrate_history(q, state);
         return;
     }
     const std::size_t n = q.empty() ? 0 : q.front()->size(), width = static_cast<std::size_t>(history_size());
     std::vector<double> nominal_state;
-    if (nominal_width > 0) nominal_.integrate_history(q, nominal_state);
+    if (nominal_width > 0) nominal().integrate_history(q, nominal_state);
     state.assign(n * width, 0.0);
     for (std::size_t k = 0; k < n && nominal_width > 0; ++k) {
         std::copy(nominal_state.begin() + static_cast<std::ptrdiff_t>(k * nominal_width),
@@ -99,8 +99,8 @@ void AugmentedModel::integrate_history(const std::vector<const std::vector<doubl
 }
 
 void AugmentedModel::history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const {
-    const int nominal_width = nominal_.history_size();
-    if (nominal_width > 0) nominal_.history_columns(state, D.leftCols(nominal_.parameter_count()));
+    const int nominal_width = nominal().history_size();
+    if (nominal_width > 0) nominal().history_columns(state, D.leftCols(nominal_parameter_count()));
     for (std::size_t h = 0; h < history_terms_.size(); ++h) {
         const std::size_t t = history_terms_[h];
         D(terms_[t].joint, first_column_[t]) = state[static_cast<std::size_t>(nominal_width) + h];
@@ -121,7 +121,7 @@ void AugmentedModel::add_term_torques(const double* q, const double* qd, const d
 }
 
 bool AugmentedModel::inverse_dynamics(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, double* tau) const {
-    if (!nominal_.inverse_dynamics(q, qd, qdd, X.head(nominal_.parameter_count()), tau)) return false;
+    if (!nominal().inverse_dynamics(q, qd, qdd, X.head(nominal_parameter_count()), tau)) return false;
     thread_local Eigen::MatrixXd columns;  // inverse dynamics runs on several threads at once
     add_term_torques(q, qd, qdd, X, columns, tau);
     return true;
@@ -131,14 +131,14 @@ std::unique_ptr<robot::DirectForwardDynamics> AugmentedModel::articulated_body(c
     for (const auto& t : terms_) {
         if (t.kind == EffectKind::RotorInertia) return nullptr;
     }
-    std::unique_ptr<robot::DirectForwardDynamics> nominal = nominal_.articulated_body(X.head(nominal_.parameter_count()));
-    if (!nominal) return nullptr;
-    return std::make_unique<AugmentedDynamics>(*this, std::move(nominal), X);
+    std::unique_ptr<robot::DirectForwardDynamics> inner = nominal().articulated_body(X.head(nominal_parameter_count()));
+    if (!inner) return nullptr;
+    return std::make_unique<AugmentedDynamics>(*this, std::move(inner), X);
 }
 
 void AugmentedModel::regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const {
-    const int c0 = nominal_.parameter_count();
-    nominal_.regressor(q, qd, qdd, D.leftCols(c0));
+    const int c0 = nominal_parameter_count();
+    nominal().regressor(q, qd, qdd, D.leftCols(c0));
     const double* factors = load_factors(q);
     for (std::size_t t = 0; t < terms_.size(); ++t) {
         term_columns(terms_[t], context_, q, qd, qdd, D.middleCols(first_column_[t], terms_[t].column_count()), factors);

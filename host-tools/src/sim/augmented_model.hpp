@@ -6,21 +6,16 @@
 // diagnosis identifies nominal and candidate parameters together.
 #include <vector>
 
-#include "robot/robot_model.hpp"
+#include "robot/model_extension.hpp"
 #include "sim/effect_terms.hpp"
 
 namespace jacobid::sim {
 
-class AugmentedModel final : public robot::RobotModel {
+class AugmentedModel final : public robot::ModelExtension {
 public:
     // `nominal` must outlive this model. Terms without columns (torque_delay) are ignored.
     AugmentedModel(const robot::RobotModel& nominal, EffectContext context, std::vector<EffectTerm> terms);
-    std::string model_name() const override { return nominal_.model_name(); }
-    int joint_count() const override { return nominal_.joint_count(); }
-    int parameter_count() const override { return static_cast<int>(names_.size()); }
-    const std::vector<std::string>& parameter_names() const override { return names_; }
     void regressor(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
-    bool concurrent_regressor() const override { return nominal_.concurrent_regressor(); }
     // The nominal model's Coulomb columns and the coulomb_smoothing terms' (the same s(qd_j) at another alpha),
     // so that a candidate sees the velocity and the filter the nominal FCj sees (docs/method.md, "Coulomb columns").
     void coulomb_columns(const double* q, const double* qd, const double* qdd, Eigen::Ref<Eigen::MatrixXd> D) const override;
@@ -28,7 +23,7 @@ public:
     // History columns: the nominal model's (presliding friction), then one state per presliding term (its
     // joint's Dahl state at the term's x_p, through the play operator of EffectContext::presliding_play),
     // so that both are fitted beside the other terms.
-    int history_size() const override { return nominal_.history_size() + static_cast<int>(history_terms_.size()); }
+    int history_size() const override { return nominal().history_size() + static_cast<int>(history_terms_.size()); }
     void integrate_history(const std::vector<const std::vector<double>*>& q, std::vector<double>& state) const override;
     void history_columns(const double* state, Eigen::Ref<Eigen::MatrixXd> D) const override;
     // The nominal model's inverse dynamics plus the terms' columns times their values, when the nominal
@@ -43,7 +38,6 @@ public:
     void add_term_torques(const double* q, const double* qd, const double* qdd, const Eigen::VectorXd& X, Eigen::MatrixXd& columns,
                           double* tau) const;
 
-    const robot::RobotModel& nominal() const { return nominal_; }
     const std::vector<EffectTerm>& terms() const { return terms_; }
     // First column of term t in D.
     int term_column(std::size_t t) const { return first_column_[t]; }
@@ -52,13 +46,11 @@ private:
     // The coulomb_load terms' load factors at q, evaluated once for all of them (null when there are none).
     const double* load_factors(const double* q) const;
 
-    const robot::RobotModel& nominal_;
     EffectContext context_;
     std::vector<EffectTerm> terms_;
     std::vector<int> first_column_;
     std::vector<std::size_t> history_terms_;  // indices into terms_ of the presliding terms
     bool load_terms_ = false;                  // some term is coulomb_load
-    std::vector<std::string> names_;
 };
 
 }  // namespace jacobid::sim
