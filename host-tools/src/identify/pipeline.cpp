@@ -219,7 +219,11 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
     if (s.bandwidth > 0.0) {
         info.bandwidth = s.bandwidth;
     } else {
-        const BandwidthEstimate b = estimate_motion_bandwidth(log.q, ts, log.q_names, s.differentiator_ratio, kMotionEnergyFraction, s.threads);
+        // The velocity's band widened to the torque's (bandwidth.hpp): the differentiators and the torque's
+        // smoothing must pass both alike. Torques aligned by a torque delay are read through its interpolation.
+        const BandwidthEstimate b =
+            estimate_bandwidth(log.q, log.tau, ts, log.q_names, log.tau_names, s.differentiator_ratio, kMotionEnergyFraction, s.threads,
+                               log.tau_aligned_by / ts);
         if (!b.moving) throw InputError(fmt::format("{}: the positions are constant: no parameter can be identified", log.source));
         info.bandwidth = b.frequency;
         info.bandwidth_estimated = true;
