@@ -406,6 +406,7 @@ void run(ExciteOptions o) {
         j["identification"] = {{"velocity_bandwidth_hz", bandwidth.velocity_hz},
                                {"torque_bandwidth_hz", bandwidth.torque_hz},
                                {"automatic_bandwidth_hz", bandwidth.automatic_hz},
+                               {"differentiator_bandwidth_hz", bandwidth.differentiator_hz},
                                {"default_cutoff_hz", bandwidth.default_cutoff_hz()},
                                {"recommended_cutoff_hz", bandwidth.recommended_cutoff_hz()},
                                {"identify_options", needs_cutoff ? fmt::format("--cutoff {:.3g}", bandwidth.recommended_cutoff_hz()) : std::string()}};
@@ -469,9 +470,9 @@ void run(ExciteOptions o) {
         // Said even with --quiet, like the warning below: with identify's defaults this design is identified badly.
         fmt::print(stderr,
                    "excite: identify this trajectory with --cutoff {:.3g}: its model torque holds 99 % of its energy below {:.3g} Hz (velocity {:.3g} Hz), "
-                   "while identify's automatic differentiators would sit at {:.3g} Hz (10 x its automatic bandwidth {:.3g} Hz) and bias the estimate "
+                   "while identify's automatic differentiators would sit at {:.3g} Hz (held there by its position-noise limit) and bias the estimate "
                    "(docs/excite.md)\n",
-                   bandwidth.recommended_cutoff_hz(), bandwidth.torque_hz, bandwidth.velocity_hz, bandwidth.default_cutoff_hz(), bandwidth.automatic_hz);
+                   bandwidth.recommended_cutoff_hz(), bandwidth.torque_hz, bandwidth.velocity_hz, bandwidth.default_cutoff_hz());
     }
     // Said even with --quiet: a design that does not beat the user's own trajectory must not pass unnoticed.
     if (worse) fmt::print(stderr, "{}\n", worse_line);

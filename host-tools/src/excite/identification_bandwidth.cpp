@@ -20,6 +20,7 @@ IdentificationBandwidth identification_bandwidth(const std::vector<std::vector<d
     r.velocity_hz = b.energy_frequency;
     r.torque_hz = b.torque.frequency;
     r.automatic_hz = b.frequency;
+    r.differentiator_hz = b.differentiator_frequency;
     return r;
 }
 

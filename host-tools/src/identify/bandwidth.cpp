@@ -267,20 +267,25 @@ std::string describe_torque(const TorqueBandwidth& t) {
 }
 
 std::string describe(const BandwidthEstimate& e, double ratio) {
-    const bool torque = e.torque.estimated() && e.torque.frequency > 0.0;
-    const std::string torque_energy = "99 % of the torque's energy above its noise floor (the widest joint's)";
     std::string s;
     if (e.noise_limited) {
         s = fmt::format("{:.3g} Hz, limited by the position noise (its share of the acceleration below the {:.3g} Hz differentiator "
                         "cutoff kept under {:.2g}); 99 % of the velocity energy lies below {:.3g} Hz",
                         e.frequency, ratio * e.frequency, kAccelerationNoiseShare, e.energy_frequency);
-        if (torque) s += fmt::format(", {} below {:.3g} Hz", torque_energy, e.torque.frequency);
-    } else if (e.torque_wider) {
-        s = fmt::format("{:.3g} Hz: {} lies below it, above the {:.3g} Hz below which 99 % of the velocity energy lies", e.frequency, torque_energy,
-                        e.energy_frequency);
     } else {
         s = fmt::format("{:.3g} Hz: 99 % of the velocity energy lies below it", e.frequency);
-        if (torque) s += fmt::format(" ({} lies below {:.3g} Hz)", torque_energy, e.torque.frequency);
+    }
+    if (e.torque.estimated() && e.torque.frequency > 0.0) {
+        const std::string torque = fmt::format("99 % of the torque's energy above its noise floor lies below {:.3g} Hz (the widest joint's)", e.torque.frequency);
+        if (e.torque_noise_limited) {
+            s += fmt::format("; {}, but the position noise holds the differentiators and the torque's smoothing at {:.3g} Hz (10 x {:.3g} Hz)", torque,
+                             ratio * e.differentiator_frequency, e.differentiator_frequency);
+        } else if (e.torque_wider) {
+            s += fmt::format("; {}: the differentiators and the torque's smoothing at {:.3g} Hz (10 x {:.3g} Hz)", torque, ratio * e.differentiator_frequency,
+                             e.differentiator_frequency);
+        } else {
+            s += fmt::format("; {}", torque);
+        }
     }
     s += fmt::format(" (noise floor removed; joints used: {}", joint_list(e.joints, true));
     if (e.all_below_floor) s += ", all below their noise floor";
@@ -405,6 +410,7 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
     result.moving = true;
     result.noise_limited = result.noise_limit < result.energy_frequency;
     result.frequency = std::min(result.energy_frequency, result.noise_limit);
+    result.differentiator_frequency = result.frequency;
     result.description = describe(result, cutoff_ratio);
     return result;
 }
@@ -477,8 +483,8 @@ BandwidthEstimate with_torque(BandwidthEstimate motion, TorqueBandwidth torque, 
     if (!motion.moving) return motion;
     const double wanted = std::max(motion.energy_frequency, motion.torque.frequency);
     motion.torque_wider = motion.torque.frequency > motion.energy_frequency;
-    motion.noise_limited = motion.noise_limit < wanted;
-    motion.frequency = std::min(wanted, motion.noise_limit);
+    motion.torque_noise_limited = motion.torque_wider && motion.noise_limit < motion.torque.frequency;
+    motion.differentiator_frequency = std::min(wanted, motion.noise_limit);
     motion.description = describe(motion, cutoff_ratio);
     return motion;
 }

@@ -26,7 +26,9 @@
 // to 0.25 fs and the widest differentiator cutoff the position noise allows. The torques' bandwidth is the
 // widest over the joints whose torque variance is at least 100 x their floor's (RMS 10 x): each joint's
 // equations are biased when the smoothing cuts its own torque.
-// estimate_bandwidth: the automatic bandwidth is min(max(velocity's energy frequency, torque's), noise limit).
+// estimate_bandwidth: the motion's bandwidth (F_p at 5 x) stays the velocity's; the differentiators and the
+// torque's smoothing follow `differentiator_frequency` = min(max(velocity's energy frequency, torque's), noise
+// limit): F_p is one linear filter on both sides and biases nothing, the differentiators' low-pass does.
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -72,19 +74,23 @@ struct TorqueBandwidth {
 };
 
 struct BandwidthEstimate {
-    double frequency = 0.0;         // Hz, min(max(energy_frequency, torque.frequency), noise_limit)
+    double frequency = 0.0;         // Hz, min(energy_frequency, noise_limit): the motion's bandwidth (F_p)
     double resolution = 0.0;        // Hz, bin width of the spectrum
     bool moving = false;            // false: no velocity energy at all (every joint constant)
     double energy_frequency = 0.0;  // Hz, over the joints used
     double noise_limit = 0.0;       // Hz, over the joints used; infinity when the floor never limits
-    bool noise_limited = false;     // frequency == noise_limit < max(energy_frequency, torque.frequency)
+    bool noise_limited = false;     // frequency == noise_limit < energy_frequency
     bool all_below_floor = false;   // no moving joint rose above its floor: all of them were used
     std::size_t jumps = 0;          // over all joints
     std::vector<JointBandwidth> joints;
     std::string description;        // one line: what was estimated and from what
     // From the torques (estimate_bandwidth; empty when not estimated: estimate_motion_bandwidth alone).
     TorqueBandwidth torque;
-    bool torque_wider = false;  // torque.frequency > energy_frequency: the torque's band set `frequency` (unless noise_limited)
+    // Hz, min(max(energy_frequency, torque.frequency), noise_limit): the differentiators' and the torque
+    // smoothing's bandwidth (their cutoff at cutoff_ratio x it); `frequency` when the torques were not estimated.
+    double differentiator_frequency = 0.0;
+    bool torque_wider = false;  // torque.frequency > energy_frequency: the torque's band sets differentiator_frequency
+    bool torque_noise_limited = false;  // torque_wider, and the noise limit holds differentiator_frequency below the torque's band
 };
 
 // `names` label the joints in the description (default "joint 1", ...); `cutoff_ratio` is the
@@ -104,13 +110,13 @@ TorqueBandwidth estimate_torque_bandwidth(const std::vector<const std::vector<do
                                           double fraction = kMotionEnergyFraction, int threads = 1, const std::vector<double>& noise_std = {},
                                           double shift = 0.0);
 
-// `motion` (estimate_motion_bandwidth) widened to `torque`'s band: frequency = min(max(energy frequency,
+// `motion` (estimate_motion_bandwidth) with `torque`'s band: differentiator_frequency = min(max(energy frequency,
 // torque frequency), noise limit), flags and description updated. The bins the torque's estimate may count
 // for `motion`: torque_highest.
 double torque_highest(const BandwidthEstimate& motion, double cutoff_ratio);
 BandwidthEstimate with_torque(BandwidthEstimate motion, TorqueBandwidth torque, double cutoff_ratio);
 
-// identify's automatic bandwidth: the positions' estimate widened to the torques'.
+// identify's automatic bandwidths: the positions' estimate, its differentiators widened to the torques' band.
 BandwidthEstimate estimate_bandwidth(const std::vector<const std::vector<double>*>& positions, const std::vector<const std::vector<double>*>& torques,
                                      double sample_period, const std::vector<std::string>& position_names = {},
                                      const std::vector<std::string>& torque_names = {}, double cutoff_ratio = 10.0,

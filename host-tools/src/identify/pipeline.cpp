@@ -219,8 +219,9 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
     if (s.bandwidth > 0.0) {
         info.bandwidth = s.bandwidth;
     } else {
-        // The velocity's band widened to the torque's (bandwidth.hpp): the differentiators and the torque's
-        // smoothing must pass both alike. Torques aligned by a torque delay are read through its interpolation.
+        // The motion's bandwidth, and the differentiators' widened to the torque's band (bandwidth.hpp): they
+        // and the torque's smoothing must pass both alike. Torques aligned by a torque delay are read through
+        // its interpolation.
         const BandwidthEstimate b =
             estimate_bandwidth(log.q, log.tau, ts, log.q_names, log.tau_names, s.differentiator_ratio, kMotionEnergyFraction, s.threads,
                                log.tau_aligned_by / ts);
@@ -230,7 +231,9 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
         bandwidth_description = b.description;
         info.bandwidth_estimate = b;
     }
-    info.differentiator_cutoff = s.differentiator_cutoff > 0.0 ? s.differentiator_cutoff : s.differentiator_ratio * info.bandwidth;
+    // Estimated: the differentiators (and the torque's smoothing) pass the torque's band too (bandwidth.hpp).
+    const double differentiator_bandwidth = info.bandwidth_estimated ? info.bandwidth_estimate.differentiator_frequency : info.bandwidth;
+    info.differentiator_cutoff = s.differentiator_cutoff > 0.0 ? s.differentiator_cutoff : s.differentiator_ratio * differentiator_bandwidth;
     info.differentiator_cutoff = std::min(info.differentiator_cutoff, 0.4 * fs);
     if (s.method == Method::Jacobi) {
         // Windows: explicit, or the odd tap count whose cutoff is closest to the wanted one.

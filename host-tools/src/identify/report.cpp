@@ -392,7 +392,9 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                                                {"jumps", b.jumps},                            {"resolution_hz", b.resolution},
                                                {"description", b.description},                {"joints", joints},
                                                {"torque_bandwidth_hz", finite(b.torque.frequency)},
+                                               {"differentiator_bandwidth_hz", finite(b.differentiator_frequency)},
                                                {"torque_wider", b.torque_wider},
+                                               {"torque_noise_limited", b.torque_noise_limited},
                                                {"torque_resolution_hz", b.torque.resolution},
                                                {"torque_highest_hz", finite(b.torque.highest)},
                                                {"torque_joints", torque_joints}};

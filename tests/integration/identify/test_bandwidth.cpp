@@ -197,12 +197,15 @@ TEST(TorqueBandwidth, SinesAboveWhiteNoiseGiveTheHandComputed99PercentFrequency)
     EXPECT_NEAR(t.joints[0].frequency, kTorque99, 2 * t.resolution);
     EXPECT_NEAR(t.joints[0].noise_rms, sigma, 0.1 * sigma);
     EXPECT_NEAR(t.highest, 250.0, t.resolution);  // 0.25 fs: the floor's band starts there
-    // identify's bandwidth: the torque's, above the velocity's 0.2 Hz; the positions are clean (no noise limit).
+    // identify's bandwidths: the motion's stays the velocity's 0.2 Hz (F_p), the differentiators' is the torque's;
+    // the positions are clean (no noise limit).
     const BandwidthEstimate b = estimate_bandwidth(pointers(q), pointers(tau), 1.0 / fs, {"q1"}, {"tau1"});
     EXPECT_NEAR(b.energy_frequency, 0.2, 2 * b.resolution);
+    EXPECT_DOUBLE_EQ(b.frequency, b.energy_frequency);
     EXPECT_TRUE(b.torque_wider);
     EXPECT_FALSE(b.noise_limited);
-    EXPECT_NEAR(b.frequency, kTorque99, 2 * t.resolution);
+    EXPECT_FALSE(b.torque_noise_limited);
+    EXPECT_NEAR(b.differentiator_frequency, kTorque99, 2 * t.resolution);
     EXPECT_NE(b.description.find("torque's energy"), std::string::npos) << b.description;
     // Without the noise, the same line (the floor removed is the noise's, not the signal's).
     const std::vector<std::vector<double>> clean = {sines(fs, 60.0, kTorqueSines)};
@@ -224,6 +227,7 @@ TEST(TorqueBandwidth, WhiteNoiseAloneGivesNoTorqueBandwidth) {
     const BandwidthEstimate v = estimate_motion_bandwidth(pointers(q), 1.0 / fs);
     EXPECT_FALSE(b.torque_wider);
     EXPECT_DOUBLE_EQ(b.frequency, v.frequency);
+    EXPECT_DOUBLE_EQ(b.differentiator_frequency, v.frequency);
     EXPECT_NE(b.description.find("velocity's band alone"), std::string::npos) << b.description;
 }
 
@@ -272,7 +276,7 @@ TEST(TorqueBandwidth, AnInterpolatedTorqueKeepsItsFloor) {
     EXPECT_LT(not_told.joints[0].noise_rms, 0.7 * sigma);  // what the shift does unless divided out
 }
 
-// The position-noise limit still bounds the bandwidth: the noisy positions of WhiteNoiseFloorIsRemovedAndLimits
+// The position-noise limit still bounds the differentiators: the noisy positions of WhiteNoiseFloorIsRemovedAndLimits
 // (limit below their 2.5 Hz) under the 2.7 Hz torque give the limit, and the description says it won.
 TEST(TorqueBandwidth, ThePositionNoiseLimitStillBounds) {
     const double fs = 1000.0, sigma = 1e-3;
@@ -282,10 +286,12 @@ TEST(TorqueBandwidth, ThePositionNoiseLimitStillBounds) {
     const double limit = analytic_noise_limit(sigma * sigma, fs);
     EXPECT_TRUE(b.noise_limited);
     EXPECT_TRUE(b.torque_wider);
+    EXPECT_TRUE(b.torque_noise_limited);
     EXPECT_NEAR(b.frequency, limit, 0.05 * limit);
+    EXPECT_DOUBLE_EQ(b.differentiator_frequency, b.frequency);
     EXPECT_NEAR(b.torque.frequency, kTorque99, 2 * b.torque.resolution);
     EXPECT_NE(b.description.find("limited by the position noise"), std::string::npos) << b.description;
-    EXPECT_NE(b.description.find("torque's energy"), std::string::npos) << b.description;
+    EXPECT_NE(b.description.find("the position noise holds the differentiators"), std::string::npos) << b.description;
 }
 
 // Real data (../shared/realdata/pendubot, README there): Unix time ~5 ms non-uniform, q1, q2 (0.01 rad
