@@ -346,8 +346,9 @@ void run(ExciteOptions o) {
     const Sampled s = sample(trajectory, *model, x, o.duration, o.rate, box);
     // The prediction from every control sample (not the optimizer's), the same way as --compare's.
     const excite::Prediction predicted = excite::predict(excite::motion_information(*model, motion_of(s), prior.noise_std), prior.scales);
-    const excite::IdentificationBandwidth bandwidth = excite::identification_bandwidth(s.qd, s.tau, prior.noise_std, o.rate);
-    // Said only when identify's automatic cutoff would miss the torque's band by a margin worth a flag.
+    const excite::IdentificationBandwidth bandwidth = excite::identification_bandwidth(s.q, s.tau, prior.noise_std, o.rate);
+    // Said only when identify's automatic cutoff would miss the torque's band by a margin worth a flag (its rule
+    // takes the torque's band: only if something, e.g. its position-noise limit, held it lower).
     const bool needs_cutoff = bandwidth.recommended_cutoff_hz() > 1.5 * bandwidth.default_cutoff_hz();
     std::optional<CompareMotion> compared;
     std::optional<excite::Prediction> compared_prediction;
@@ -404,6 +405,8 @@ void run(ExciteOptions o) {
         }
         j["identification"] = {{"velocity_bandwidth_hz", bandwidth.velocity_hz},
                                {"torque_bandwidth_hz", bandwidth.torque_hz},
+                               {"automatic_bandwidth_hz", bandwidth.automatic_hz},
+                               {"differentiator_bandwidth_hz", bandwidth.differentiator_hz},
                                {"default_cutoff_hz", bandwidth.default_cutoff_hz()},
                                {"recommended_cutoff_hz", bandwidth.recommended_cutoff_hz()},
                                {"identify_options", needs_cutoff ? fmt::format("--cutoff {:.3g}", bandwidth.recommended_cutoff_hz()) : std::string()}};
@@ -466,9 +469,10 @@ void run(ExciteOptions o) {
     if (needs_cutoff) {
         // Said even with --quiet, like the warning below: with identify's defaults this design is identified badly.
         fmt::print(stderr,
-                   "excite: identify this trajectory with --cutoff {:.3g}: its model torque holds 99 % of its energy below {:.3g} Hz, while identify's "
-                   "automatic differentiators would sit at {:.3g} Hz (10 x its velocity's {:.3g} Hz) and bias the estimate (docs/excite.md)\n",
-                   bandwidth.recommended_cutoff_hz(), bandwidth.torque_hz, bandwidth.default_cutoff_hz(), bandwidth.velocity_hz);
+                   "excite: identify this trajectory with --cutoff {:.3g}: its model torque holds 99 % of its energy below {:.3g} Hz (velocity {:.3g} Hz), "
+                   "while identify's automatic differentiators would sit at {:.3g} Hz (held there by its position-noise limit) and bias the estimate "
+                   "(docs/excite.md)\n",
+                   bandwidth.recommended_cutoff_hz(), bandwidth.torque_hz, bandwidth.velocity_hz, bandwidth.default_cutoff_hz());
     }
     // Said even with --quiet: a design that does not beat the user's own trajectory must not pass unnoticed.
     if (worse) fmt::print(stderr, "{}\n", worse_line);

@@ -64,10 +64,11 @@ void add_fit_options(CLI::App* cmd, FitOptions& o) {
 void add_pipeline_rate_options(CLI::App* cmd, identify::PipelineSettings& pipeline) {
     cmd->add_option("--bandwidth", pipeline.bandwidth,
                     "motion bandwidth in Hz (default: estimated from the data: 99 % of the velocity energy above the noise floor, limited by "
-                    "the noise; docs/method.md)")
+                    "the noise; the differentiators' widened to the measured torque's band; docs/method.md)")
         ->check(positive_number());
     cmd->add_option("--cutoff", pipeline.differentiator_cutoff,
-                    "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth)")
+                    "wanted cutoff of the differentiators / Butterworth prefilter in Hz (default: 10 x bandwidth, or with the bandwidth "
+                    "estimated 10 x the larger of it and the torque's band)")
         ->check(positive_number());
     cmd->add_option("--decimation-cutoff", pipeline.decimation_cutoff, "cutoff of the decimation filter F_p in Hz (default: 5 x bandwidth)")
         ->check(positive_number());

@@ -14,6 +14,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <utility>
 
 namespace jacobid::identify {
 namespace {
@@ -102,6 +104,23 @@ double quantization_step(const std::vector<double>& q) {
     return static_cast<double>(on_grid) >= 0.95 * static_cast<double>(nonzero) ? step : 0.0;
 }
 
+// Joint j's label: names[j], or "joint j+1".
+std::string joint_name(const std::vector<std::string>& names, std::size_t j) { return j < names.size() ? names[j] : fmt::format("joint {}", j + 1); }
+
+// Whether a column changes at all (two adjacent samples differ).
+bool varies(const std::vector<double>& x) { return std::adjacent_find(x.begin(), x.end(), std::not_equal_to<double>()) != x.end(); }
+
+// f(j) for every joint j < count on up to `threads` threads; the first exception is rethrown.
+template <class F>
+void for_each_joint(std::size_t count, int threads, F&& f) {
+    ParallelForOptions pool;
+    pool.threads = threads;
+    const auto errors = parallel_for(count, pool, std::forward<F>(f));
+    for (const auto& e : errors) {
+        if (e) std::rethrow_exception(e);
+    }
+}
+
 // Welch spectrum (sum over segments) of the first difference `d`: segments of ~20 s (resolution 0.05 Hz),
 // a power of two, at most the record, at most 64 spread over it (bounded cost on hour-long logs).
 struct Welch {
@@ -144,6 +163,30 @@ struct Welch {
             fftw_destroy_plan(plan);
         }
         return p;
+    }
+};
+
+// The band a white floor's level is read from, 0.25..0.4 fs: above any motion a position loop follows (and
+// the torque it takes), below the roll-off that interpolation onto a uniform grid or an anti-aliasing filter
+// puts near fs / 2 (docs/method.md). Each bin sums `used` periodograms: chi-square with 2 x used degrees of
+// freedom, whose median is nu (1 - 2 / (9 nu))^3 of its mean nu (Wilson-Hilferty).
+struct FloorBand {
+    std::size_t lo = 0, hi = 0;
+    double median_to_mean = 1.0;
+    FloorBand(const Welch& welch, double resolution, double fs) {
+        const std::size_t bins = welch.seg / 2 + 1;
+        lo = static_cast<std::size_t>(std::ceil(0.25 * fs / resolution));
+        hi = std::min(bins - 1, static_cast<std::size_t>(std::floor(0.4 * fs / resolution)));
+        const double nu = 2.0 * static_cast<double>(welch.used);
+        median_to_mean = 1.0 / std::pow(1.0 - 2.0 / (9.0 * nu), 3.0);
+    }
+    bool usable() const { return hi > lo + 8; }
+    // The mean level of p / shape over the band (shape: the floor's form, 1 for a white signal itself).
+    double level(const std::vector<double>& p, const std::vector<double>* shape) const {
+        if (!usable()) return 0.0;
+        std::vector<double> ratio;
+        for (std::size_t k = lo; k <= hi; ++k) ratio.push_back(shape ? p[k] / (*shape)[k] : p[k]);
+        return quantile(ratio, 0.5) * median_to_mean;
     }
 };
 
@@ -206,7 +249,24 @@ std::string joint_list(const std::vector<JointBandwidth>& joints, bool used) {
     return s;
 }
 
-std::string describe(const BandwidthEstimate& e, double ratio, bool fallback) {
+// The torques' part of the description: what each torque's floor held, which were left out.
+std::string describe_torque(const TorqueBandwidth& t) {
+    std::string s, floors, unused;
+    for (const auto& j : t.joints) {
+        if (!j.moving) continue;
+        if (j.used) {
+            floors += fmt::format("{}{} {:.2g} % (noise {:.2g} rms)", floors.empty() ? "" : ", ", j.name, 100.0 * j.floor_fraction, j.noise_rms);
+        } else {
+            unused += (unused.empty() ? "" : ", ") + j.name;
+        }
+    }
+    if (!floors.empty()) s += fmt::format("; torque floor share{}: {}", t.noise_known ? " (noise given)" : "", floors);
+    if (!unused.empty()) s += "; torques not used (within 10 x noise RMS): " + unused;
+    if (!(t.frequency > 0.0)) s += "; no torque rises 10 x above its noise floor: the velocity's band alone";
+    return s;
+}
+
+std::string describe(const BandwidthEstimate& e, double ratio) {
     std::string s;
     if (e.noise_limited) {
         s = fmt::format("{:.3g} Hz, limited by the position noise (its share of the acceleration below the {:.3g} Hz differentiator "
@@ -215,8 +275,20 @@ std::string describe(const BandwidthEstimate& e, double ratio, bool fallback) {
     } else {
         s = fmt::format("{:.3g} Hz: 99 % of the velocity energy lies below it", e.frequency);
     }
+    if (e.torque.estimated() && e.torque.frequency > 0.0) {
+        const std::string torque = fmt::format("99 % of the torque's energy above its noise floor lies below {:.3g} Hz (the widest joint's)", e.torque.frequency);
+        if (e.torque_noise_limited) {
+            s += fmt::format("; {}, but the position noise holds the differentiators and the torque's smoothing at {:.3g} Hz (10 x {:.3g} Hz)", torque,
+                             ratio * e.differentiator_frequency, e.differentiator_frequency);
+        } else if (e.torque_wider) {
+            s += fmt::format("; {}: the differentiators and the torque's smoothing at {:.3g} Hz (10 x {:.3g} Hz)", torque, ratio * e.differentiator_frequency,
+                             e.differentiator_frequency);
+        } else {
+            s += fmt::format("; {}", torque);
+        }
+    }
     s += fmt::format(" (noise floor removed; joints used: {}", joint_list(e.joints, true));
-    if (fallback) s += ", all below their noise floor";
+    if (e.all_below_floor) s += ", all below their noise floor";
     s += ")";
     std::string floors;
     for (const auto& j : e.joints) {
@@ -234,6 +306,7 @@ std::string describe(const BandwidthEstimate& e, double ratio, bool fallback) {
         }
         s += fmt::format("; {} isolated jump(s) ignored ({})", e.jumps, where);
     }
+    if (e.torque.estimated()) s += describe_torque(e.torque);
     return s;
 }
 
@@ -254,27 +327,18 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
         const double s = std::sin(M_PI * static_cast<double>(k) / static_cast<double>(welch.seg));
         g[k] = 4.0 * s * s;
     }
-    // Floor band 0.25..0.4 fs: above any motion a position loop follows, below the roll-off that
-    // interpolation onto a uniform grid or an anti-aliasing filter puts near fs / 2 (docs/method.md).
-    const auto band_lo = static_cast<std::size_t>(std::ceil(0.25 * fs / result.resolution));
-    const auto band_hi = std::min(bins - 1, static_cast<std::size_t>(std::floor(0.4 * fs / result.resolution)));
-    // Each bin sums `used` periodograms: chi-square with 2 x used degrees of freedom, whose median is
-    // nu (1 - 2 / (9 nu))^3 of its mean nu (Wilson-Hilferty).
-    const double nu = 2.0 * static_cast<double>(welch.used);
-    const double median_to_mean = 1.0 / std::pow(1.0 - 2.0 / (9.0 * nu), 3.0);
+    const FloorBand band(welch, result.resolution, fs);
 
     // Each joint on its own (a few whole-log passes and two selections each: 1.5 s for an hour of 6 joints on
     // one thread), on up to `threads` threads; nothing is shared, so the result does not depend on them.
     std::vector<Spectrum> spectra(positions.size());
     result.joints.resize(positions.size());
-    ParallelForOptions pool;
-    pool.threads = threads;
-    const auto errors = parallel_for(positions.size(), pool, [&](std::size_t j) {
+    for_each_joint(positions.size(), threads, [&](std::size_t j) {
         const std::vector<double>& q = *positions[j];
         JointBandwidth& jb = result.joints[j];
-        jb.name = j < names.size() ? names[j] : fmt::format("joint {}", j + 1);
+        jb.name = joint_name(names, j);
         // A difference is nonzero exactly where two finite samples differ.
-        jb.moving = std::adjacent_find(q.begin(), q.end(), std::not_equal_to<double>()) != q.end();
+        jb.moving = varies(q);
         Spectrum s;
         s.g = g;
         if (jb.moving) {
@@ -282,11 +346,7 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
             jb.jumps = bridged_differences(q, d);
             jb.quantization_step = quantization_step(q);
             s.power = welch.power(d);
-            if (band_hi > band_lo + 8) {
-                std::vector<double> ratio;
-                for (std::size_t k = band_lo; k <= band_hi; ++k) ratio.push_back(s.power[k] / g[k]);
-                s.level = quantile(ratio, 0.5) * median_to_mean;
-            }
+            s.level = band.level(s.power, &g);
             // A coarse quantizer's error is not white when the motion crosses few steps per sample: it
             // piles up at low frequencies, below the floor band, which then underestimates it there. Its
             // variance is D^2 / 12 all the same: a detected step sets the noise the bandwidth limit counts
@@ -315,15 +375,13 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
         jb.used = jb.moving && motion_variance >= kMotionToNoise * s.level * static_cast<double>(bins - 1);
         spectra[j] = std::move(s);
     });
-    for (const auto& e : errors) {
-        if (e) std::rethrow_exception(e);
-    }
     for (const auto& jb : result.joints) result.jumps += jb.jumps;
     const bool any_moving = std::any_of(result.joints.begin(), result.joints.end(), [](const JointBandwidth& j) { return j.moving; });
     if (!any_moving) return result;
     // Joints whose motion is lost in their own noise would only add noise; if every moving joint is such a
     // joint, they are all the information there is.
     const bool fallback = std::none_of(result.joints.begin(), result.joints.end(), [](const JointBandwidth& j) { return j.used; });
+    result.all_below_floor = fallback;
     if (fallback) {
         for (auto& j : result.joints) j.used = j.moving;
     }
@@ -352,8 +410,94 @@ BandwidthEstimate estimate_motion_bandwidth(const std::vector<const std::vector<
     result.moving = true;
     result.noise_limited = result.noise_limit < result.energy_frequency;
     result.frequency = std::min(result.energy_frequency, result.noise_limit);
-    result.description = describe(result, cutoff_ratio, fallback);
+    result.differentiator_frequency = result.frequency;
+    result.description = describe(result, cutoff_ratio);
     return result;
+}
+
+TorqueBandwidth estimate_torque_bandwidth(const std::vector<const std::vector<double>*>& torques, double sample_period,
+                                          const std::vector<std::string>& names, double highest, double fraction, int threads,
+                                          const std::vector<double>& noise_std, double shift) {
+    TorqueBandwidth result;
+    if (torques.empty() || torques.front()->size() < 16) return result;
+    if (!noise_std.empty() && noise_std.size() != torques.size()) {
+        throw InputError(fmt::format("torque bandwidth: {} noise levels for {} torques", noise_std.size(), torques.size()));
+    }
+    const double fs = 1.0 / sample_period;
+    const Welch welch(torques.front()->size(), sample_period);
+    const std::size_t bins = welch.seg / 2 + 1;
+    result.resolution = 1.0 / (static_cast<double>(welch.seg) * sample_period);
+    const FloorBand band(welch, result.resolution, fs);
+    // Bins from 0.25 fs up are the floor's by construction: torque there cannot be told from noise. The
+    // variances (floor share, the joint's use) count bins up to the floor band's top, 0.4 fs.
+    result.highest = std::min(highest, static_cast<double>(band.lo) * result.resolution);
+    const std::size_t top = std::min(bins - 1, band.hi);
+    result.noise_known = !noise_std.empty();
+    // Torques read `shift` samples later by linear interpolation (identify's torque delay) went through
+    // |H|^2 = (1 - a)^2 + a^2 + 2 a (1 - a) cos(2 pi f Ts), a the fractional part: divided out, so that
+    // their white noise is white again (a = 0.5 keeps 10 % of it at 0.4 fs).
+    const double a = shift - std::floor(shift);
+    std::vector<double> interpolation(bins, 1.0);
+    for (std::size_t k = 0; k < bins && a > 0.0; ++k) {
+        const double c = std::cos(2.0 * M_PI * static_cast<double>(k) / static_cast<double>(welch.seg));
+        interpolation[k] = std::max((1.0 - a) * (1.0 - a) + a * a + 2.0 * a * (1.0 - a) * c, 1e-12);
+    }
+    // A white noise of variance s^2 per sample puts s^2 x (segments x sum of w^2) in every bin of the sum.
+    const double per_variance = static_cast<double>(welch.used) * welch.window_power;
+    result.joints.resize(torques.size());
+    for_each_joint(torques.size(), threads, [&](std::size_t j) {
+        const std::vector<double>& tau = *torques[j];
+        JointTorqueBandwidth& jt = result.joints[j];
+        jt.name = joint_name(names, j);
+        jt.moving = varies(tau);
+        if (!jt.moving) return;
+        std::vector<double> power = welch.power(tau);  // mean removed per segment: bin 0 is no bandwidth
+        for (std::size_t k = 0; k < bins; ++k) power[k] /= interpolation[k];
+        const double level = result.noise_known ? noise_std[j] * noise_std[j] * per_variance : band.level(power, nullptr);
+        double total = 0.0, removed = 0.0, variance = 0.0;
+        std::vector<double> clean(bins, 0.0);
+        for (std::size_t k = 1; k < bins; ++k) clean[k] = power[k] - level;
+        for (std::size_t k = 1; k <= top; ++k) {
+            total += power[k];
+            removed += std::min(level, power[k]);
+            variance += std::max(clean[k], 0.0);
+        }
+        jt.floor_fraction = total > 0.0 ? removed / total : 0.0;
+        jt.noise_rms = std::sqrt(level / per_variance);
+        jt.frequency = energy_frequency(clean, result.resolution, fraction, result.highest);
+        // Same rule as the positions': the torque's variance at least kMotionToNoise x its floor's.
+        jt.used = variance >= kMotionToNoise * level * static_cast<double>(top);
+    });
+    // Each joint's own band counts (its equations are biased when the smoothing cuts its torque, whatever the
+    // other joints hold): the widest of the joints used.
+    for (const auto& jt : result.joints) {
+        if (jt.used) result.frequency = std::max(result.frequency, jt.frequency);
+    }
+    return result;
+}
+
+double torque_highest(const BandwidthEstimate& motion, double cutoff_ratio) { return cutoff_ratio * motion.noise_limit; }
+
+BandwidthEstimate with_torque(BandwidthEstimate motion, TorqueBandwidth torque, double cutoff_ratio) {
+    motion.torque = std::move(torque);
+    if (!motion.moving) return motion;
+    const double wanted = std::max(motion.energy_frequency, motion.torque.frequency);
+    motion.torque_wider = motion.torque.frequency > motion.energy_frequency;
+    motion.torque_noise_limited = motion.torque_wider && motion.noise_limit < motion.torque.frequency;
+    motion.differentiator_frequency = std::min(wanted, motion.noise_limit);
+    motion.description = describe(motion, cutoff_ratio);
+    return motion;
+}
+
+BandwidthEstimate estimate_bandwidth(const std::vector<const std::vector<double>*>& positions, const std::vector<const std::vector<double>*>& torques,
+                                     double sample_period, const std::vector<std::string>& position_names,
+                                     const std::vector<std::string>& torque_names, double cutoff_ratio, double fraction, int threads,
+                                     double torque_shift) {
+    BandwidthEstimate motion = estimate_motion_bandwidth(positions, sample_period, position_names, cutoff_ratio, fraction, threads);
+    if (!motion.moving) return motion;
+    TorqueBandwidth torque = estimate_torque_bandwidth(torques, sample_period, torque_names, torque_highest(motion, cutoff_ratio), fraction,
+                                                       threads, {}, torque_shift);
+    return with_torque(std::move(motion), std::move(torque), cutoff_ratio);
 }
 
 }  // namespace jacobid::identify

@@ -219,14 +219,21 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
     if (s.bandwidth > 0.0) {
         info.bandwidth = s.bandwidth;
     } else {
-        const BandwidthEstimate b = estimate_motion_bandwidth(log.q, ts, log.q_names, s.differentiator_ratio, kMotionEnergyFraction, s.threads);
+        // The motion's bandwidth, and the differentiators' widened to the torque's band (bandwidth.hpp): they
+        // and the torque's smoothing must pass both alike. Torques aligned by a torque delay are read through
+        // its interpolation.
+        const BandwidthEstimate b =
+            estimate_bandwidth(log.q, log.tau, ts, log.q_names, log.tau_names, s.differentiator_ratio, kMotionEnergyFraction, s.threads,
+                               log.tau_aligned_by / ts);
         if (!b.moving) throw InputError(fmt::format("{}: the positions are constant: no parameter can be identified", log.source));
         info.bandwidth = b.frequency;
         info.bandwidth_estimated = true;
         bandwidth_description = b.description;
         info.bandwidth_estimate = b;
     }
-    info.differentiator_cutoff = s.differentiator_cutoff > 0.0 ? s.differentiator_cutoff : s.differentiator_ratio * info.bandwidth;
+    // Estimated: the differentiators (and the torque's smoothing) pass the torque's band too (bandwidth.hpp).
+    const double differentiator_bandwidth = info.bandwidth_estimated ? info.bandwidth_estimate.differentiator_frequency : info.bandwidth;
+    info.differentiator_cutoff = s.differentiator_cutoff > 0.0 ? s.differentiator_cutoff : s.differentiator_ratio * differentiator_bandwidth;
     info.differentiator_cutoff = std::min(info.differentiator_cutoff, 0.4 * fs);
     if (s.method == Method::Jacobi) {
         // Windows: explicit, or the odd tap count whose cutoff is closest to the wanted one.

@@ -378,10 +378,26 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
                               {"moving", jb.moving},
                               {"used", jb.used}});
         }
+        json torque_joints = json::array();
+        for (const auto& jt : b.torque.joints) {
+            torque_joints.push_back({{"name", jt.name},
+                                     {"frequency_hz", finite(jt.frequency)},
+                                     {"noise_rms", finite(jt.noise_rms)},
+                                     {"floor_fraction", finite(jt.floor_fraction)},
+                                     {"moving", jt.moving},
+                                     {"used", jt.used}});
+        }
         j["settings"]["bandwidth_estimate"] = {{"frequency_hz", finite(b.frequency)},         {"energy_frequency_hz", finite(b.energy_frequency)},
                                                {"noise_limit_hz", finite(b.noise_limit)},     {"noise_limited", b.noise_limited},
                                                {"jumps", b.jumps},                            {"resolution_hz", b.resolution},
-                                               {"description", b.description},                {"joints", joints}};
+                                               {"description", b.description},                {"joints", joints},
+                                               {"torque_bandwidth_hz", finite(b.torque.frequency)},
+                                               {"differentiator_bandwidth_hz", finite(b.differentiator_frequency)},
+                                               {"torque_wider", b.torque_wider},
+                                               {"torque_noise_limited", b.torque_noise_limited},
+                                               {"torque_resolution_hz", b.torque.resolution},
+                                               {"torque_highest_hz", finite(b.torque.highest)},
+                                               {"torque_joints", torque_joints}};
     }
     j["timing_seconds"] = {{"differentiate", i.seconds_differentiate}, {"regressor_filter", i.seconds_regressor_filter}, {"ls", i.seconds_ls}};
     if (r.essential) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -19,8 +20,11 @@
 namespace {
 
 using jacobid::identify::BandwidthEstimate;
+using jacobid::identify::estimate_bandwidth;
 using jacobid::identify::estimate_motion_bandwidth;
+using jacobid::identify::estimate_torque_bandwidth;
 using jacobid::identify::kAccelerationNoiseShare;
+using jacobid::identify::TorqueBandwidth;
 
 struct Sine {
     double amplitude, frequency, phase;
@@ -159,6 +163,135 @@ TEST(MotionBandwidth, ThreadsDoNotChangeTheEstimate) {
     }
     EXPECT_EQ(one.jumps, 1u);
     EXPECT_FALSE(one.joints[2].moving);
+}
+
+// The torque's bandwidth (bandwidth.hpp, docs/method.md "Motion bandwidth estimate", step 5), against
+// frequencies worked out from the torque's construction. Torque lines of amplitude 4 / 2 / 0.8 / 0.2 N.m at
+// 0.3 / 1.1 / 2.7 / 4.3 Hz hold energies A^2 / 2 = 8 / 2 / 0.32 / 0.02 N.m^2: cumulative 77.4 %, 96.7 %, 99.81 %,
+// 100 %, so 99 % is first reached by the 2.7 Hz line. The positions move at 0.2 Hz only.
+const std::vector<Sine> kTorqueSines = {{4.0, 0.3, 0.4}, {2.0, 1.1, 2.1}, {0.8, 2.7, 0.9}, {0.2, 4.3, 1.7}};
+constexpr double kTorque99 = 2.7;
+const std::vector<Sine> kSlowMotion = {{0.5, 0.2, 0.3}};
+
+std::vector<double> with_white_noise(std::vector<double> x, double sigma, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, sigma);
+    for (double& v : x) v += noise(rng);
+    return x;
+}
+
+std::vector<const std::vector<double>*> pointers(const std::vector<std::vector<double>>& x) {
+    std::vector<const std::vector<double>*> p;
+    for (const auto& v : x) p.push_back(&v);
+    return p;
+}
+
+TEST(TorqueBandwidth, SinesAboveWhiteNoiseGiveTheHandComputed99PercentFrequency) {
+    const double fs = 1000.0, sigma = 0.05;
+    const std::vector<std::vector<double>> q = {sines(fs, 60.0, kSlowMotion)};
+    const std::vector<std::vector<double>> tau = {with_white_noise(sines(fs, 60.0, kTorqueSines), sigma, 11)};
+    const TorqueBandwidth t = estimate_torque_bandwidth(pointers(tau), 1.0 / fs);
+    ASSERT_EQ(t.joints.size(), 1u);
+    EXPECT_TRUE(t.joints[0].used);
+    EXPECT_NEAR(t.frequency, kTorque99, 2 * t.resolution);
+    EXPECT_NEAR(t.joints[0].frequency, kTorque99, 2 * t.resolution);
+    EXPECT_NEAR(t.joints[0].noise_rms, sigma, 0.1 * sigma);
+    EXPECT_NEAR(t.highest, 250.0, t.resolution);  // 0.25 fs: the floor's band starts there
+    // identify's bandwidths: the motion's stays the velocity's 0.2 Hz (F_p), the differentiators' is the torque's;
+    // the positions are clean (no noise limit).
+    const BandwidthEstimate b = estimate_bandwidth(pointers(q), pointers(tau), 1.0 / fs, {"q1"}, {"tau1"});
+    EXPECT_NEAR(b.energy_frequency, 0.2, 2 * b.resolution);
+    EXPECT_DOUBLE_EQ(b.frequency, b.energy_frequency);
+    EXPECT_TRUE(b.torque_wider);
+    EXPECT_FALSE(b.noise_limited);
+    EXPECT_FALSE(b.torque_noise_limited);
+    EXPECT_NEAR(b.differentiator_frequency, kTorque99, 2 * t.resolution);
+    EXPECT_NE(b.description.find("torque's energy"), std::string::npos) << b.description;
+    // Without the noise, the same line (the floor removed is the noise's, not the signal's).
+    const std::vector<std::vector<double>> clean = {sines(fs, 60.0, kTorqueSines)};
+    EXPECT_NEAR(estimate_torque_bandwidth(pointers(clean), 1.0 / fs).frequency, kTorque99, 2 * t.resolution);
+}
+
+TEST(TorqueBandwidth, WhiteNoiseAloneGivesNoTorqueBandwidth) {
+    const double fs = 1000.0;
+    const std::vector<std::vector<double>> q = {sines(fs, 60.0, kSlowMotion), sines(fs, 60.0)};
+    const std::vector<std::vector<double>> tau = {with_white_noise(std::vector<double>(60'000, 1.5), 0.2, 4),
+                                                  with_white_noise(std::vector<double>(60'000, -0.3), 0.01, 5)};
+    const TorqueBandwidth t = estimate_torque_bandwidth(pointers(tau), 1.0 / fs);
+    ASSERT_EQ(t.joints.size(), 2u);
+    EXPECT_TRUE(t.joints[0].moving);
+    EXPECT_FALSE(t.joints[0].used);
+    EXPECT_FALSE(t.joints[1].used);
+    EXPECT_EQ(t.frequency, 0.0);
+    const BandwidthEstimate b = estimate_bandwidth(pointers(q), pointers(tau), 1.0 / fs);
+    const BandwidthEstimate v = estimate_motion_bandwidth(pointers(q), 1.0 / fs);
+    EXPECT_FALSE(b.torque_wider);
+    EXPECT_DOUBLE_EQ(b.frequency, v.frequency);
+    EXPECT_DOUBLE_EQ(b.differentiator_frequency, v.frequency);
+    EXPECT_NE(b.description.find("velocity's band alone"), std::string::npos) << b.description;
+}
+
+// Each joint's own band counts: joint 1's torque is a 1 N.m line at 0.5 Hz, joint 2's a 0.07 N.m line at 3 Hz
+// (0.49 % of the two joints' energy: summed, 99 % would be reached at 0.5 Hz). Over noises of 0.05 and 0.0035 N.m
+// both hold 200 floor variances (used): the widest, 3 Hz. With joint 2's noise at 0.01 N.m its line holds 24.5
+// floor variances, under the 100 that count: joint 1's 0.5 Hz.
+TEST(TorqueBandwidth, TheWidestJointAboveItsFloorSetsTheBand) {
+    const double fs = 1000.0;
+    const std::vector<double> a = sines(fs, 60.0, {{1.0, 0.5, 0.2}}), b = sines(fs, 60.0, {{0.07, 3.0, 1.0}});
+    const std::vector<std::vector<double>> both = {with_white_noise(a, 0.05, 1), with_white_noise(b, 0.0035, 2)};
+    const TorqueBandwidth t = estimate_torque_bandwidth(pointers(both), 1.0 / fs);
+    EXPECT_TRUE(t.joints[0].used);
+    EXPECT_TRUE(t.joints[1].used);
+    EXPECT_NEAR(t.joints[0].frequency, 0.5, 2 * t.resolution);
+    EXPECT_NEAR(t.frequency, 3.0, 2 * t.resolution);
+    const std::vector<std::vector<double>> lost = {with_white_noise(a, 0.05, 1), with_white_noise(b, 0.01, 2)};
+    const TorqueBandwidth l = estimate_torque_bandwidth(pointers(lost), 1.0 / fs);
+    EXPECT_FALSE(l.joints[1].used);
+    EXPECT_NEAR(l.frequency, 0.5, 2 * t.resolution);
+    // Given noise levels (excite's model torque, noise-free) decide the same way as estimated ones.
+    const std::vector<std::vector<double>> clean = {a, b};
+    const double inf = std::numeric_limits<double>::infinity();
+    const TorqueBandwidth given = estimate_torque_bandwidth(pointers(clean), 1.0 / fs, {}, inf, 0.99, 1, {0.05, 0.0035});
+    EXPECT_TRUE(given.noise_known);
+    EXPECT_NEAR(given.frequency, 3.0, 2 * t.resolution);
+    EXPECT_DOUBLE_EQ(given.joints[1].noise_rms, 0.0035);
+    EXPECT_NEAR(estimate_torque_bandwidth(pointers(clean), 1.0 / fs, {}, inf, 0.99, 1, {0.05, 0.01}).frequency, 0.5, 2 * t.resolution);
+}
+
+// identify aligns a delayed torque by linear interpolation (x[k] <- (1 - a) x[k] + a x[k + 1]), which low-passes its
+// noise: at a = 0.5 the floor band 0.25..0.4 fs keeps 10..50 % of it. Told the shift, the estimate reads the noise
+// and the band as before the interpolation.
+TEST(TorqueBandwidth, AnInterpolatedTorqueKeepsItsFloor) {
+    const double fs = 1000.0, sigma = 0.05;
+    const std::vector<double> raw = with_white_noise(sines(fs, 60.0, kTorqueSines), sigma, 11);
+    std::vector<double> shifted(raw.size());
+    for (std::size_t k = 0; k + 1 < raw.size(); ++k) shifted[k] = 0.5 * raw[k] + 0.5 * raw[k + 1];
+    shifted.back() = raw.back();
+    const std::vector<std::vector<double>> tau = {shifted};
+    const double inf = std::numeric_limits<double>::infinity();
+    const TorqueBandwidth told = estimate_torque_bandwidth(pointers(tau), 1.0 / fs, {}, inf, 0.99, 1, {}, 3.5);
+    EXPECT_NEAR(told.joints[0].noise_rms, sigma, 0.1 * sigma);
+    EXPECT_NEAR(told.frequency, kTorque99, 2 * told.resolution);
+    const TorqueBandwidth not_told = estimate_torque_bandwidth(pointers(tau), 1.0 / fs);
+    EXPECT_LT(not_told.joints[0].noise_rms, 0.7 * sigma);  // what the shift does unless divided out
+}
+
+// The position-noise limit still bounds the differentiators: the noisy positions of WhiteNoiseFloorIsRemovedAndLimits
+// (limit below their 2.5 Hz) under the 2.7 Hz torque give the limit, and the description says it won.
+TEST(TorqueBandwidth, ThePositionNoiseLimitStillBounds) {
+    const double fs = 1000.0, sigma = 1e-3;
+    const std::vector<std::vector<double>> q = {with_white_noise(sines(fs, 60.0), sigma, 5)};
+    const std::vector<std::vector<double>> tau = {with_white_noise(sines(fs, 60.0, kTorqueSines), 0.05, 11)};
+    const BandwidthEstimate b = estimate_bandwidth(pointers(q), pointers(tau), 1.0 / fs);
+    const double limit = analytic_noise_limit(sigma * sigma, fs);
+    EXPECT_TRUE(b.noise_limited);
+    EXPECT_TRUE(b.torque_wider);
+    EXPECT_TRUE(b.torque_noise_limited);
+    EXPECT_NEAR(b.frequency, limit, 0.05 * limit);
+    EXPECT_DOUBLE_EQ(b.differentiator_frequency, b.frequency);
+    EXPECT_NEAR(b.torque.frequency, kTorque99, 2 * b.torque.resolution);
+    EXPECT_NE(b.description.find("limited by the position noise"), std::string::npos) << b.description;
+    EXPECT_NE(b.description.find("the position noise holds the differentiators"), std::string::npos) << b.description;
 }
 
 // Real data (../shared/realdata/pendubot, README there): Unix time ~5 ms non-uniform, q1, q2 (0.01 rad
