@@ -39,6 +39,9 @@ struct PipelineSettings {
     double differentiator_ratio = 10.0;  // differentiator / F_q cutoff = ratio x bandwidth
     double decimation_ratio = 5.0;       // F_p cutoff = ratio x bandwidth
     double differentiator_cutoff = 0.0;  // Hz; overrides the ratio
+    // Hz: the differentiators of a validation's raw full-rate comparison (validate_prediction); 0: differentiator_cutoff.
+    // validation_settings sets it to the motion's own band when the differentiators were widened to the torque's.
+    double raw_differentiator_cutoff = 0.0;
     double velocity_window = 0.0;        // s; Jacobi windows, override the cutoff
     double acceleration_window = 0.0;    // s
     double kappa = 6.0, mu = 6.0;

@@ -226,7 +226,7 @@ std::string format_table(const std::vector<MethodResult>& results, const ReportC
             const auto& v = *r.validation;
             s += fmt::format("{} validation on {} ({} decimated samples per joint): filtered RMS error", method_title(r), v.source, v.samples);
             for (std::size_t j = 0; j < v.rms_error.size(); ++j) s += fmt::format(" joint {} {:.4g} N.m;", j + 1, v.rms_error[j]);
-            s += " raw full-rate RMS error";
+            s += fmt::format(" raw full-rate RMS error (differentiators at {:.3g} Hz)", v.raw_differentiator_cutoff);
             for (std::size_t j = 0; j < v.raw_rms_error.size(); ++j) s += fmt::format(" joint {} {:.4g} N.m;", j + 1, v.raw_rms_error[j]);
             s += fmt::format(" relative error {:.4g} %\n", 100 * v.relative_error);
         }
@@ -413,7 +413,7 @@ nlohmann::json to_json(const MethodResult& r, const ReportContext& ctx) {
     }
     if (r.validation) {
         const auto& v = *r.validation;
-        j["validation"] = {{"log", v.source}, {"samples", v.samples}, {"rms_error", v.rms_error}, {"raw_rms_error", v.raw_rms_error}, {"rms_torque", v.rms_torque}, {"relative_error", v.relative_error}};
+        j["validation"] = {{"log", v.source}, {"samples", v.samples}, {"rms_error", v.rms_error}, {"raw_rms_error", v.raw_rms_error}, {"raw_differentiator_cutoff_hz", v.raw_differentiator_cutoff}, {"rms_torque", v.rms_torque}, {"relative_error", v.relative_error}};
     }
     return j;
 }

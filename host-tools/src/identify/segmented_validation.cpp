@@ -18,6 +18,7 @@ ValidationResult pool_validations(const std::vector<ValidationResult>& parts, co
     std::vector<double> e2(joints, 0.0), raw2(joints, 0.0), y2(joints, 0.0);
     v.measured.resize(joints);
     v.predicted.resize(joints);
+    v.raw_differentiator_cutoff = parts.front().raw_differentiator_cutoff;  // every part's settings are the same
     for (const ValidationResult& p : parts) {
         const auto n = static_cast<double>(p.samples), raw = static_cast<double>(p.raw_samples);
         v.samples += p.samples;

@@ -20,6 +20,7 @@ struct ValidationResult {
     std::size_t raw_samples = 0;        // full-rate samples of the raw comparison
     std::vector<double> rms_error;      // per joint, N.m, filtered (F_p) measured - predicted
     std::vector<double> raw_rms_error;  // per joint, N.m, full-rate raw measured - predicted
+    double raw_differentiator_cutoff = 0.0;  // Hz: the differentiators of the raw comparison
     std::vector<double> rms_torque;     // per joint, N.m
     double relative_error = 0.0;        // ||Y - W X|| / ||Y|| over all joints (filtered)
     std::vector<double> t;              // a few thousand samples for plots

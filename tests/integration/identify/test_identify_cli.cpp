@@ -145,6 +145,28 @@ TEST(IdentifyAcceptance, ValidationOnASecondTrajectoryIsWithinTwiceTheNoise) {
     EXPECT_LT(j["validation"]["relative_error"].get<double>(), 0.02);
 }
 
+// When the torque's band widens the differentiators (bandwidth.hpp), the raw full-rate comparison still
+// differentiates at the motion's own band (10 x the velocity's): at full rate nothing filters the acceleration
+// noise the wider band lets in. An explicit --cutoff is used as given.
+TEST(IdentifyAcceptance, RawValidationDifferentiatesAtTheMotionsOwnBand) {
+    const std::string log = simulate("noisy1k", kNoisy + " --rate 1000");
+    const std::string other = simulate("other1k", "--duration 20 --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 99 --noise-seed 98");
+    const json automatic = identify_json(log, "--validate " + other);
+    const json& settings = automatic["settings"];
+    ASSERT_TRUE(settings["bandwidth_estimate"]["torque_wider"].get<bool>()) << "this log no longer widens the differentiators: pick another";
+    const double motion_cutoff = 10.0 * settings["bandwidth_hz"].get<double>();
+    const double cutoff = settings["differentiator_cutoff_hz"].get<double>();
+    ASSERT_GT(cutoff, 1.2 * motion_cutoff);
+    EXPECT_NEAR(automatic["validation"]["raw_differentiator_cutoff_hz"].get<double>(), motion_cutoff, 1e-9 * motion_cutoff);
+    // The same fit compared at full rate through the wide differentiators carries more noise on joint 1.
+    const json wide = identify_json(log, "--validate " + other + " --cutoff " + std::to_string(cutoff));
+    EXPECT_NEAR(wide["validation"]["raw_differentiator_cutoff_hz"].get<double>(), cutoff, 1e-6 * cutoff);
+    EXPECT_GT(wide["validation"]["raw_rms_error"][0].get<double>(), 1.5 * automatic["validation"]["raw_rms_error"][0].get<double>());
+    // The filtered comparison is the identification's own, through the wide differentiators either way.
+    EXPECT_NEAR(wide["validation"]["rms_error"][0].get<double>(), automatic["validation"]["rms_error"][0].get<double>(),
+                0.05 * automatic["validation"]["rms_error"][0].get<double>());
+}
+
 TEST(IdentifyAcceptance, WeightedAndEssentialParameters) {
     const std::string log = simulate("noisy1k", kNoisy + " --rate 1000");
     const json w = identify_json(log, "--weighted");
