@@ -60,17 +60,21 @@ ExcitationProblem::ExcitationProblem(const robot::RobotModel& model, Eigen::Vect
         basis_.evaluate(basis_.period() * i / samples_, psi_.col(i), dpsi_.col(i), ddpsi_.col(i));
     }
     W_.resize(static_cast<Eigen::Index>(samples_) * joints_, columns_);
-    derivatives_ = make_regressor_derivatives(model_);
+    derivatives_ = make_regressor_derivatives(model_, settings_.derivatives);
 }
 
 ExcitationProblem::ExcitationProblem(const ExcitationProblem& o)
     : model_(o.model_), x_(o.x_), basis_(o.basis_), pose_(o.pose_), limits_(o.limits_), settings_(o.settings_), joints_(o.joints_), columns_(o.columns_),
       samples_(o.samples_), psi_(o.psi_), dpsi_(o.dpsi_), ddpsi_(o.ddpsi_), W_(o.W_),
-      derivatives_(make_regressor_derivatives(o.model_, o.derivatives_->automatic())), workspace_(o.workspace_) {}
+      derivatives_(make_regressor_derivatives(o.model_, o.derivatives_->route())), workspace_(o.workspace_) {}
 
-void ExcitationProblem::use_automatic_differentiation(bool automatic) {
-    derivatives_ = make_regressor_derivatives(model_, automatic);
+void ExcitationProblem::use_derivative_route(DerivativeRoute route) {
+    derivatives_ = make_regressor_derivatives(model_, route);
     derivatives_for_.resize(0);
+}
+
+bool ExcitationProblem::torque_limited() const {
+    return std::any_of(limits_.begin(), limits_.end(), [](const JointLimits& l) { return std::isfinite(l.torque); });
 }
 
 void ExcitationProblem::set_limits(std::vector<JointLimits> limits) {
@@ -129,7 +133,8 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
 
 void ExcitationProblem::prepare_derivatives(const Eigen::VectorXd& c) {
     prepare(c);
-    if (derivatives_for_.size() == c.size() && derivatives_for_ == c) return;
+    const bool torque = torque_limited();
+    if (derivatives_for_.size() == c.size() && derivatives_for_ == c && (dtau_ready_ || !torque)) return;
     Eigen::MatrixXd GW;  // dF/dW
     value_ = evaluate_criterion(settings_.criterion, W_, joints_, settings_.information, &GW);
     dphi_.resize(3 * joints_, samples_);
@@ -138,10 +143,11 @@ void ExcitationProblem::prepare_derivatives(const Eigen::VectorXd& c) {
     for (int i = 0; i < samples_; ++i) {
         const Eigen::VectorXd q = q_.col(i), qd = qd_.col(i), qdd = qdd_.col(i);
         const Eigen::MatrixXd H = GW.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_);
-        derivatives_->evaluate(q.data(), qd.data(), qdd.data(), H, x_, dphi, dtau_[static_cast<std::size_t>(i)]);
+        derivatives_->evaluate(q.data(), qd.data(), qdd.data(), H, x_, dphi, torque ? &dtau_[static_cast<std::size_t>(i)] : nullptr);
         dphi_.col(i) = dphi;
     }
     derivatives_for_ = c;
+    dtau_ready_ = torque;
 }
 
 double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient) {

@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// Reverse-mode (adjoint) derivatives of one contraction of the RNEA regressor (rnea_regressor.hpp):
+//   phi(q, qd, qdd) = <H, D(q, qd, qdd)> = sum_ik H_ik D_ik(q, qd, qdd),
+// H a fixed weight matrix (joints x standard parameters). All 3n partial derivatives of phi come from the
+// regressor's own forward Newton-Euler pass and one adjoint pass through it: a few regressor costs, whatever
+// the number of joints, where central differences need 5n + 1 regressor calls and forward-mode automatic
+// differentiation carries 3n derivative lanes through every operation. What `jacobid excite` needs: its
+// criterion's gradient is, per sample, the regressor's derivative contracted with dF/dW at that sample's rows
+// (docs/excite.md, "Speed"); a torque tau_i = D_i. X is the contraction with H = e_i X^T.
+//
+// The forward pass, as in RneaRegressor (link frames; a the antecedent, R and p joint j's rotation and origin in
+// a's frame, t = vd_a + wd_a x p + w_a x (w_a x p)):
+//   w_j = R^T w_a + z qd_j (revolute) | R^T w_a (prismatic)
+//   wd_j = R^T wd_a + z qdd_j + (R^T w_a) x z qd_j (revolute) | R^T wd_a (prismatic)
+//   vd_j = R^T t (revolute) | R^T t + z qdd_j + 2 (R^T w_a) x z qd_j (prismatic)
+//   R0_j = R0_a R, o0_j = o0_a + R0_a p, z0_j = R0_j z; R = J rot(z, q_j) (revolute), p = P + J z q_j (prismatic)
+// and per link j and carrying joint i (i = j and its ancestors), with h the 10 weights of H's row i on link
+// j's inertial columns (inertia I, first moments s, mass m) and K_j the wrench matrix,
+//   phi_ij = e_ij . K_j h = ef . (wd x s + w x (w x s) + m vd) + en . (I wd + w x (I w) + s x vd),
+//   e_ij = (ef, en) = (R0_j^T (z0_i x (o0_j - o0_i)), R0_j^T z0_i) (revolute i) | (R0_j^T z0_i, 0) (prismatic i).
+// The adjoint pass runs it backwards: first every pair's adjoints of (w, wd, vd)_j (the gradients of phi_ij
+// written out below), of R0_j, o0_j, o0_i and z0_i (the adjoint of e_ij is K_j h); then the links from the
+// leaves to the base, each passing its adjoints to its antecedent and giving its joint's three partial
+// derivatives (d/dq_j of a revolute rotation: <adjoint of R, R [z]x> = z . vee(R^T Rb - Rb^T R)). Friction and
+// rotor inertia act on their own joint: d/dqdd IA, d/dqd FV, s'(qd) FC. Everything is fixed-size: no allocation.
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+
+#include "jacobid/robot/rnea_regressor.hpp"
+
+namespace jacobid::robot {
+
+template <int N>
+class RneaRegressorAdjoint {
+public:
+    using Regression = RneaRegressor<N>;
+    using Weights = typename Regression::Regressor;  // H: the regressor's shape
+    using Joints = typename Regression::Joints;
+    using Links = std::array<typename Regression::LinkState, N>;
+
+    // The regressor must outlive the adjoint.
+    explicit RneaRegressorAdjoint(const Regression& regressor) noexcept : r_(regressor) {}
+
+    // The forward pass at one state, shared by every gradient() at that state.
+    RegressorStatus kinematics(const Joints& q, const Joints& qd, const Joints& qdd, Links& links) const noexcept {
+        for (int j = 0; j < r_.joint_count(); ++j) {
+            if (!std::isfinite(q[j]) || !std::isfinite(qd[j]) || !std::isfinite(qdd[j])) return RegressorStatus::NonFiniteInput;
+        }
+        r_.forward(q, qd, qdd, links);
+        return RegressorStatus::Ok;
+    }
+
+    // d phi / dq, d phi / dqd, d phi / dqdd of phi = <H, D(q, qd, qdd)> (the first joint_count() rows and
+    // parameter_count() columns of H), at the state `links` holds (kinematics() at q, qd, qdd; qd: the same).
+    // A link's block of a row of H that is exactly zero costs nothing.
+    void gradient(const Joints& qd, const Links& links, const Weights& H, Joints& gq, Joints& gqd, Joints& gqdd) const noexcept {
+        using V3 = Eigen::Vector3d;
+        using M3 = Eigen::Matrix3d;
+        const int n = r_.joint_count();
+        const auto& layout = r_.layout();
+        // Adjoints (d phi / d .) of every link's w, wd, vd (link frame), o0, z0, R0 (base frame).
+        std::array<V3, N> bw, bwd, bvd, bo, bz;
+        std::array<M3, N> bR0;
+        for (int j = 0; j < n; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            bw[k].setZero(), bwd[k].setZero(), bvd[k].setZero(), bo[k].setZero(), bz[k].setZero(), bR0[k].setZero();
+        }
+        gq.setZero(), gqd.setZero(), gqdd.setZero();
+        for (int j = 0; j < n; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            const auto& link = links[k];
+            const Eigen::Matrix<double, 6, kInertialKinds> K = Regression::wrench_matrix(link);
+            const int first = layout.column(j, ParameterKind::XX);
+            for (int i = j; i >= 0; i = r_.chain().joint(i).antecedent) {
+                const Eigen::Matrix<double, kInertialKinds, 1> h = H.row(i).template segment<kInertialKinds>(first).transpose();
+                if ((h.array() == 0.0).all()) continue;
+                const auto c = static_cast<std::size_t>(i);
+                const auto& carrier = links[c];
+                const Eigen::Matrix<double, 6, 1> f = K * h;  // the adjoint of e_ij
+                const V3 a = link.R0 * f.template head<3>();
+                V3 ef, en;
+                if (r_.chain().joint(i).type == JointType::Revolute) {
+                    const V3 d = link.o0 - carrier.o0, u = carrier.z0.cross(d), b = link.R0 * f.template tail<3>();
+                    ef.noalias() = link.R0.transpose() * u;
+                    en.noalias() = link.R0.transpose() * carrier.z0;
+                    bR0[k].noalias() += u * f.template head<3>().transpose();
+                    bR0[k].noalias() += carrier.z0 * f.template tail<3>().transpose();
+                    bz[c] += d.cross(a) + b;
+                    const V3 moved = a.cross(carrier.z0);  // d phi / d(o0_j - o0_i)
+                    bo[k] += moved;
+                    bo[c] -= moved;
+                } else {
+                    ef.noalias() = link.R0.transpose() * carrier.z0;
+                    en.setZero();
+                    bR0[k].noalias() += carrier.z0 * f.template head<3>().transpose();
+                    bz[c] += a;
+                }
+                // K_j's own dependence on link j's w, wd, vd.
+                M3 I;
+                I << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
+                const V3 s = h.template segment<3>(6);
+                const V3& w = link.w;
+                bvd[k] += h[9] * ef + en.cross(s);
+                bwd[k] += s.cross(ef) + I * en;
+                bw[k] += ef * w.dot(s) + s * ef.dot(w) - (2.0 * ef.dot(s)) * w + (I * w).cross(en) + I * en.cross(w);
+            }
+            const int ia = layout.column(j, ParameterKind::IA), fv = layout.column(j, ParameterKind::FV), fc = layout.column(j, ParameterKind::FC);
+            if (ia >= 0) gqdd[j] += H(j, ia);
+            gqd[j] += H(j, fv) + r_.coulomb(j).slope(qd[j]) * H(j, fc);
+        }
+        for (int j = 0; j < n; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            bR0[k].noalias() += bz[k] * r_.chain().joint(j).axis.transpose();  // z0_j = R0_j z
+        }
+        const V3 base_vd = -r_.gravity();
+        for (int j = n - 1; j >= 0; --j) {
+            const auto k = static_cast<std::size_t>(j);
+            const ChainJoint& joint = r_.chain().joint(j);
+            const auto& link = links[k];
+            const bool at_base = joint.antecedent < 0, revolute = joint.type == JointType::Revolute;
+            const auto* parent = at_base ? nullptr : &links[static_cast<std::size_t>(joint.antecedent)];
+            const V3 w_a = at_base ? V3::Zero() : parent->w, wd_a = at_base ? V3::Zero() : parent->wd, vd_a = at_base ? base_vd : parent->vd;
+            const M3& R = link.R;
+            const V3& p = link.p;
+            const V3 w_in = R.transpose() * w_a, rate = joint.axis * qd[j];
+            const V3 t = vd_a + wd_a.cross(p) + w_a.cross(w_a.cross(p));
+            V3 bw_in = bw[k], brate;
+            if (revolute) {
+                gqd[j] += joint.axis.dot(bw[k]);
+                gqdd[j] += joint.axis.dot(bwd[k]);
+                bw_in += rate.cross(bwd[k]);
+                brate = bwd[k].cross(w_in);
+            } else {
+                gqdd[j] += joint.axis.dot(bvd[k]);
+                bw_in += 2.0 * rate.cross(bvd[k]);
+                brate = 2.0 * bvd[k].cross(w_in);
+            }
+            gqd[j] += joint.axis.dot(brate);
+            // w = R^T w_a + .., wd = R^T wd_a + .., vd = R^T t + ..
+            M3 bR = w_a * bw_in.transpose();
+            bR.noalias() += wd_a * bwd[k].transpose();
+            bR.noalias() += t * bvd[k].transpose();
+            const V3 bt = R * bvd[k];
+            // t = vd_a + wd_a x p + w_a x (w_a x p)
+            const V3 bw_a = R * bw_in + bt * w_a.dot(p) + p * bt.dot(w_a) - (2.0 * bt.dot(p)) * w_a;
+            const V3 bwd_a = R * bwd[k] + p.cross(bt);
+            V3 bp = bt.cross(wd_a) + w_a * bt.dot(w_a) - bt * w_a.squaredNorm();
+            // R0_j = R0_a R, o0_j = o0_a + R0_a p
+            if (at_base) {
+                bR += bR0[k];
+                bp += bo[k];
+            } else {
+                const auto a = static_cast<std::size_t>(joint.antecedent);
+                bR0[a].noalias() += bR0[k] * R.transpose();
+                bR0[a].noalias() += bo[k] * p.transpose();
+                bR.noalias() += parent->R0.transpose() * bR0[k];
+                bp.noalias() += parent->R0.transpose() * bo[k];
+                bo[a] += bo[k];
+                bw[a] += bw_a;
+                bwd[a] += bwd_a;
+                bvd[a] += bt;
+            }
+            if (revolute) {
+                const M3 M = R.transpose() * bR;
+                gq[j] += joint.axis.dot(V3(M(2, 1) - M(1, 2), M(0, 2) - M(2, 0), M(1, 0) - M(0, 1)));
+            } else {
+                gq[j] += (R * joint.axis).dot(bp);
+            }
+        }
+    }
+
+private:
+    const Regression& r_;
+};
+
+}  // namespace jacobid::robot
