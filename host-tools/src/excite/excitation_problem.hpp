@@ -119,6 +119,7 @@ private:
     Eigen::MatrixXd W_;                 // (samples * joints) x columns
     std::unique_ptr<RegressorDerivatives> derivatives_;
     double value_ = 0.0;                // the criterion at derivatives_for_
+    Eigen::MatrixXd GW_;                // dF/dW there (W_'s shape; kept so that its storage is reused)
     Eigen::MatrixXd dphi_;              // 3 * joints x samples: d<dF/dW_i, Y_i>/d(q, qd, qdd)
     std::vector<Eigen::MatrixXd> dtau_; // per sample, joints x 3 * joints: d tau / d(q, qd, qdd) (when torque_limited())
     Eigen::VectorXd derivatives_for_;

@@ -25,7 +25,7 @@ public:
     explicit CentralDifferences(const robot::RobotModel& model) : model_(model) {}
     DerivativeRoute route() const override { return DerivativeRoute::CentralDifferences; }
 
-    void evaluate(const double* q0, const double* qd0, const double* qdd0, const Eigen::MatrixXd& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
+    void evaluate(const double* q0, const double* qd0, const double* qdd0, const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
                   Eigen::MatrixXd* dtau) const override {
         constexpr double kStep = 1e-6;
         const int n = model_.joint_count(), p = model_.parameter_count();
@@ -88,7 +88,7 @@ public:
     }
     DerivativeRoute route() const override { return DerivativeRoute::Automatic; }
 
-    void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::MatrixXd& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
+    void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
                   Eigen::MatrixXd* dtau) const override {
         // The base-parameter weights on their standard columns (every other standard column weighs 0).
         Eigen::Matrix<double, N, Eigen::Dynamic> Hs = Eigen::Matrix<double, N, Eigen::Dynamic>::Zero(N, standard_count_);
@@ -240,7 +240,7 @@ public:
     Adjoint& operator=(const Adjoint&) = delete;
     DerivativeRoute route() const override { return DerivativeRoute::Adjoint; }
 
-    void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::MatrixXd& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
+    void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
                   Eigen::MatrixXd* dtau) const override {
         typename Regression::Joints vq, vqd, vqdd, gq, gqd, gqdd;
         for (int j = 0; j < N; ++j) vq[j] = q[j], vqd[j] = qd[j], vqdd[j] = qdd[j];

@@ -29,7 +29,7 @@ public:
     virtual ~RegressorDerivatives() = default;
     // H (joints x parameters) may be empty: dphi is then not computed. x: the model's parameters.
     // dphi: 3n; dtau (not computed when null): joints x 3n. Does not keep state between calls (const, may run on several threads).
-    virtual void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::MatrixXd& H, const Eigen::VectorXd& x,
+    virtual void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::VectorXd& x,
                           Eigen::VectorXd& dphi, Eigen::MatrixXd* dtau) const = 0;
     // The route this is (central differences when the one asked for does not apply to the model).
     virtual DerivativeRoute route() const = 0;
