@@ -227,8 +227,8 @@ private:
     int standard_count_ = 0;
 };
 
-// The adjoint route: per sample one forward Newton-Euler pass, one adjoint pass for phi and, with dtau, one per
-// joint for tau_i = <e_i x^T, Y> (the weights on the standard columns of the base parameters).
+// The adjoint route: per sample one forward Newton-Euler pass, one adjoint pass for phi and, with dtau, one with a
+// lane per joint for tau_i = <e_i x^T, Y> (the weights on the standard columns of the base parameters).
 template <int N>
 class Adjoint final : public RegressorDerivatives {
 public:
@@ -257,16 +257,12 @@ public:
             store(dphi);
         }
         if (!dtau) return;
+        typename Regression::Parameters xs = Regression::Parameters::Zero();
+        for (std::size_t b = 0; b < standard_of_base_.size(); ++b) xs[standard_of_base_[b]] = x[static_cast<Eigen::Index>(b)];
+        typename robot::RneaRegressorAdjoint<N>::Square dq, dqd, dqdd;
+        adjoint_.torque_gradient(vqd, links, xs, dq, dqd, dqdd);
         dtau->resize(N, 3 * N);
-        Hs.setZero();
-        Eigen::VectorXd row(3 * N);
-        for (int i = 0; i < N; ++i) {
-            if (i > 0) Hs.row(i - 1).setZero();
-            for (std::size_t b = 0; b < standard_of_base_.size(); ++b) Hs(i, standard_of_base_[b]) = x[static_cast<Eigen::Index>(b)];
-            adjoint_.gradient(vqd, links, Hs, gq, gqd, gqdd);
-            store(row);
-            dtau->row(i) = row.transpose();
-        }
+        *dtau << dq, dqd, dqdd;
     }
 
 private:

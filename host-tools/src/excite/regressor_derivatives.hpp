@@ -6,7 +6,7 @@
 // Three routes, one interface:
 //  - the adjoint of the Newton-Euler regressor (lib/include/jacobid/robot/rnea_regressor_adjoint.hpp), serial
 //    robots only: one forward pass and one adjoint pass per sample give dphi/dz exactly, and one more adjoint
-//    pass per joint dtau/dz; the default, because it is the fastest (docs/excite.md, "Speed");
+//    pass with a lane per joint dtau/dz; the default, because it is the fastest (docs/excite.md, "Speed");
 //  - central differences of the model's regressor (step 1e-6 in q and qd, exact in qdd where Y is linear),
 //    5n + 1 regressor calls per sample: any model (the route every other model takes);
 //  - forward-mode automatic differentiation (Eigen's AutoDiffScalar, 3n derivative lanes of fixed size) of a

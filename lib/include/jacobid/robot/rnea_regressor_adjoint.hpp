@@ -171,6 +171,130 @@ public:
         }
     }
 
+    using Square = Eigen::Matrix<double, N, N>;
+    using Parameters = typename Regression::Parameters;
+
+    // The torque's derivatives, tau = D(q, qd, qdd) X (the first parameter_count() entries of X): (i, j) of dq, dqd, dqdd
+    // is d tau_i / dq_j, d tau_i / dqd_j, d tau_i / dqdd_j. The n contractions tau_i = <e_i X^T, D> in one adjoint pass
+    // with n lanes (column i of every adjoint: tau_i's), where gradient() would take n passes. The rotations' adjoints
+    // are carried in the base frame as 3-vectors instead of 3 x 3 matrices: R0_l of every link l below a revolute
+    // joint k turns with q_k about z0_k, and o0_l turns about (z0_k, o0_k), so d tau / dq_k gets
+    // z0_k . (sum over l below k of rho_l + (o0_l - o0_k) x ob_l), rho_l = vee(Rb_l R0_l^T - R0_l Rb_l^T) the
+    // adjoint of R0_l as a vector (an outer product x y^T contributes (R0_l y) x x) and ob_l the adjoint of o0_l; a
+    // prismatic joint k moves them by z0_k; the link frames' kinematics keep their local recursion.
+    void torque_gradient(const Joints& qd, const Links& links, const Parameters& X, Square& dq, Square& dqd, Square& dqdd) const noexcept {
+        using V3 = Eigen::Vector3d;
+        using M3 = Eigen::Matrix3d;
+        using Lanes = Eigen::Matrix<double, 3, N>;
+        const int n = r_.joint_count();
+        const auto& layout = r_.layout();
+        // Per link, 3 x n (lane i: tau_i): adjoints of w, wd, vd (link frame); rho, ob and o0 x ob summed over the
+        // link and everything below it (base frame).
+        std::array<Lanes, N> bw, bwd, bvd, rho, ob, moment;
+        for (int j = 0; j < n; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            bw[k].setZero(), bwd[k].setZero(), bvd[k].setZero(), rho[k].setZero(), ob[k].setZero(), moment[k].setZero();
+        }
+        dq.setZero(), dqd.setZero(), dqdd.setZero();
+        for (int j = 0; j < n; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            const auto& link = links[k];
+            const Eigen::Matrix<double, kInertialKinds, 1> h = X.template segment<kInertialKinds>(layout.column(j, ParameterKind::XX));
+            const Eigen::Matrix<double, 6, 1> f = Regression::wrench_matrix(link) * h;  // link j's wrench: the adjoint of every e_ij
+            const V3 a = link.R0 * f.template head<3>(), b = link.R0 * f.template tail<3>();
+            M3 I;
+            I << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
+            const V3 s = h.template segment<3>(6);
+            const V3& w = link.w;
+            const V3 Iw = I * w;
+            for (int i = j; i >= 0; i = r_.chain().joint(i).antecedent) {
+                const auto c = static_cast<std::size_t>(i);
+                const auto& carrier = links[c];
+                V3 ef, en;
+                if (r_.chain().joint(i).type == JointType::Revolute) {
+                    const V3 d = link.o0 - carrier.o0, u = carrier.z0.cross(d), moved = a.cross(carrier.z0);
+                    ef.noalias() = link.R0.transpose() * u;
+                    en.noalias() = link.R0.transpose() * carrier.z0;
+                    rho[k].col(i) += a.cross(u) + b.cross(carrier.z0);
+                    rho[c].col(i) += carrier.z0.cross(d.cross(a) + b);
+                    ob[k].col(i) += moved;
+                    moment[k].col(i) += link.o0.cross(moved);
+                    ob[c].col(i) -= moved;
+                    moment[c].col(i) -= carrier.o0.cross(moved);
+                } else {
+                    ef.noalias() = link.R0.transpose() * carrier.z0;
+                    en.setZero();
+                    rho[k].col(i) += a.cross(carrier.z0);
+                    rho[c].col(i) += carrier.z0.cross(a);
+                }
+                bvd[k].col(i) += h[9] * ef + en.cross(s);
+                bwd[k].col(i) += s.cross(ef) + I * en;
+                bw[k].col(i) += ef * w.dot(s) + s * ef.dot(w) - (2.0 * ef.dot(s)) * w + Iw.cross(en) + I * en.cross(w);
+            }
+            const int ia = layout.column(j, ParameterKind::IA), fv = layout.column(j, ParameterKind::FV), fc = layout.column(j, ParameterKind::FC);
+            if (ia >= 0) dqdd(j, j) += X[ia];
+            dqd(j, j) += X[fv] + r_.coulomb(j).slope(qd[j]) * X[fc];
+        }
+        const V3 base_vd = -r_.gravity();
+        for (int j = n - 1; j >= 0; --j) {
+            const auto k = static_cast<std::size_t>(j);
+            const ChainJoint& joint = r_.chain().joint(j);
+            const auto& link = links[k];
+            const bool at_base = joint.antecedent < 0, revolute = joint.type == JointType::Revolute;
+            const auto* parent = at_base ? nullptr : &links[static_cast<std::size_t>(joint.antecedent)];
+            const V3 w_a = at_base ? V3::Zero() : parent->w, wd_a = at_base ? V3::Zero() : parent->wd, vd_a = at_base ? base_vd : parent->vd;
+            const M3& R = link.R;
+            const V3& p = link.p;
+            const V3 w_in = R.transpose() * w_a, rate = joint.axis * qd[j];
+            const V3 t = vd_a + wd_a.cross(p) + w_a.cross(w_a.cross(p));
+            Lanes bw_in = bw[k], brate;
+            if (revolute) {
+                dqd.col(j) += (joint.axis.transpose() * bw[k]).transpose();
+                dqdd.col(j) += (joint.axis.transpose() * bwd[k]).transpose();
+                bw_in.noalias() += Regression::skew(rate) * bwd[k];
+                brate.noalias() = -Regression::skew(w_in) * bwd[k];
+            } else {
+                dqdd.col(j) += (joint.axis.transpose() * bvd[k]).transpose();
+                bw_in.noalias() += 2.0 * Regression::skew(rate) * bvd[k];
+                brate.noalias() = -2.0 * Regression::skew(w_in) * bvd[k];
+            }
+            dqd.col(j) += (joint.axis.transpose() * brate).transpose();
+            const Lanes bt = R * bvd[k];
+            // t = vd_a + wd_a x p + w_a x (w_a x p)
+            Lanes bw_a = R * bw_in + w_a.dot(p) * bt;
+            bw_a.noalias() += p * (w_a.transpose() * bt);
+            bw_a.noalias() -= 2.0 * w_a * (p.transpose() * bt);
+            Lanes bwd_a = R * bwd[k];
+            bwd_a.noalias() += Regression::skew(p) * bt;
+            if (revolute) {
+                // The local rotation (w = R^T w_a + .., wd = R^T wd_a + .., vd = R^T t: y x (R^T x) per outer product
+                // x y^T of its adjoint), in the link frame; the base-frame turn of everything below, rho + (o0_l - o0_j) x ob.
+                const V3 wd_in = R.transpose() * wd_a;
+                Lanes local = -Regression::skew(w_in) * bw_in;
+                local.noalias() -= Regression::skew(wd_in) * bwd[k];
+                local.noalias() -= Regression::skew(link.vd) * bvd[k];
+                Lanes world = rho[k] + moment[k];
+                world.noalias() -= Regression::skew(link.o0) * ob[k];
+                dq.col(j) += (joint.axis.transpose() * local + link.z0.transpose() * world).transpose();
+            } else {
+                // p = P + J z q_j in t, and every origin below moved along z0_j.
+                Lanes bp = -Regression::skew(wd_a) * bt;
+                bp.noalias() += w_a * (w_a.transpose() * bt);
+                bp -= w_a.squaredNorm() * bt;
+                dq.col(j) += ((R * joint.axis).transpose() * bp + link.z0.transpose() * ob[k]).transpose();
+            }
+            if (!at_base) {
+                const auto a = static_cast<std::size_t>(joint.antecedent);
+                rho[a] += rho[k];
+                ob[a] += ob[k];
+                moment[a] += moment[k];
+                bw[a] += bw_a;
+                bwd[a] += bwd_a;
+                bvd[a] += bt;
+            }
+        }
+    }
+
 private:
     const Regression& r_;
 };
