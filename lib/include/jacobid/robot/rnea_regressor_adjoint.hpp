@@ -22,8 +22,14 @@
 // The adjoint pass runs it backwards: first every pair's adjoints of (w, wd, vd)_j (the gradients of phi_ij
 // written out below), of R0_j, o0_j, o0_i and z0_i (the adjoint of e_ij is K_j h); then the links from the
 // leaves to the base, each passing its adjoints to its antecedent and giving its joint's three partial
-// derivatives (d/dq_j of a revolute rotation: <adjoint of R, R [z]x> = z . vee(R^T Rb - Rb^T R)). Friction and
-// rotor inertia act on their own joint: d/dqdd IA, d/dqd FV, s'(qd) FC. Everything is fixed-size: no allocation.
+// derivatives. The rotations' adjoints are carried in the base frame as 3-vectors, not 3 x 3 matrices: R0_l of
+// every link l below a revolute joint k turns with q_k about z0_k and o0_l about (z0_k, o0_k), so d phi / dq_k
+// gets z0_k . (sum over l below k of rho_l + (o0_l - o0_k) x ob_l), rho_l = vee(Rb_l R0_l^T - R0_l Rb_l^T) the
+// adjoint of R0_l as a vector (an outer product x y^T in it contributes (R0_l y) x x) and ob_l that of o0_l; a
+// prismatic joint k moves them all by z0_k; the local rotation R of the link frames' recursion gives
+// z . (y x (R^T x)) per outer product x y^T of its adjoint. Friction and rotor inertia act on their own joint:
+// d/dqdd IA, d/dqd FV, s'(qd) FC. Everything is fixed-size: no allocation. Several contractions share one pass
+// as lanes (torque_gradient: the n torques).
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
@@ -56,140 +62,48 @@ public:
     // parameter_count() columns of H), at the state `links` holds (kinematics() at q, qd, qdd; qd: the same).
     // A link's block of a row of H that is exactly zero costs nothing.
     void gradient(const Joints& qd, const Links& links, const Weights& H, Joints& gq, Joints& gqd, Joints& gqdd) const noexcept {
-        using V3 = Eigen::Vector3d;
-        using M3 = Eigen::Matrix3d;
-        const int n = r_.joint_count();
         const auto& layout = r_.layout();
-        // Adjoints (d phi / d .) of every link's w, wd, vd (link frame), o0, z0, R0 (base frame).
-        std::array<V3, N> bw, bwd, bvd, bo, bz;
-        std::array<M3, N> bR0;
-        for (int j = 0; j < n; ++j) {
-            const auto k = static_cast<std::size_t>(j);
-            bw[k].setZero(), bwd[k].setZero(), bvd[k].setZero(), bo[k].setZero(), bz[k].setZero(), bR0[k].setZero();
-        }
-        gq.setZero(), gqd.setZero(), gqdd.setZero();
-        for (int j = 0; j < n; ++j) {
-            const auto k = static_cast<std::size_t>(j);
-            const auto& link = links[k];
-            const Eigen::Matrix<double, 6, kInertialKinds> K = Regression::wrench_matrix(link);
-            const int first = layout.column(j, ParameterKind::XX);
-            for (int i = j; i >= 0; i = r_.chain().joint(i).antecedent) {
-                const Eigen::Matrix<double, kInertialKinds, 1> h = H.row(i).template segment<kInertialKinds>(first).transpose();
-                if ((h.array() == 0.0).all()) continue;
-                const auto c = static_cast<std::size_t>(i);
-                const auto& carrier = links[c];
-                const Eigen::Matrix<double, 6, 1> f = K * h;  // the adjoint of e_ij
-                const V3 a = link.R0 * f.template head<3>();
-                V3 ef, en;
-                if (r_.chain().joint(i).type == JointType::Revolute) {
-                    const V3 d = link.o0 - carrier.o0, u = carrier.z0.cross(d), b = link.R0 * f.template tail<3>();
-                    ef.noalias() = link.R0.transpose() * u;
-                    en.noalias() = link.R0.transpose() * carrier.z0;
-                    bR0[k].noalias() += u * f.template head<3>().transpose();
-                    bR0[k].noalias() += carrier.z0 * f.template tail<3>().transpose();
-                    bz[c] += d.cross(a) + b;
-                    const V3 moved = a.cross(carrier.z0);  // d phi / d(o0_j - o0_i)
-                    bo[k] += moved;
-                    bo[c] -= moved;
-                } else {
-                    ef.noalias() = link.R0.transpose() * carrier.z0;
-                    en.setZero();
-                    bR0[k].noalias() += carrier.z0 * f.template head<3>().transpose();
-                    bz[c] += a;
-                }
-                // K_j's own dependence on link j's w, wd, vd.
-                M3 I;
-                I << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
-                const V3 s = h.template segment<3>(6);
-                const V3& w = link.w;
-                bvd[k] += h[9] * ef + en.cross(s);
-                bwd[k] += s.cross(ef) + I * en;
-                bw[k] += ef * w.dot(s) + s * ef.dot(w) - (2.0 * ef.dot(s)) * w + (I * w).cross(en) + I * en.cross(w);
-            }
-            const int ia = layout.column(j, ParameterKind::IA), fv = layout.column(j, ParameterKind::FV), fc = layout.column(j, ParameterKind::FC);
-            if (ia >= 0) gqdd[j] += H(j, ia);
-            gqd[j] += H(j, fv) + r_.coulomb(j).slope(qd[j]) * H(j, fc);
-        }
-        for (int j = 0; j < n; ++j) {
-            const auto k = static_cast<std::size_t>(j);
-            bR0[k].noalias() += bz[k] * r_.chain().joint(j).axis.transpose();  // z0_j = R0_j z
-        }
-        const V3 base_vd = -r_.gravity();
-        for (int j = n - 1; j >= 0; --j) {
-            const auto k = static_cast<std::size_t>(j);
-            const ChainJoint& joint = r_.chain().joint(j);
-            const auto& link = links[k];
-            const bool at_base = joint.antecedent < 0, revolute = joint.type == JointType::Revolute;
-            const auto* parent = at_base ? nullptr : &links[static_cast<std::size_t>(joint.antecedent)];
-            const V3 w_a = at_base ? V3::Zero() : parent->w, wd_a = at_base ? V3::Zero() : parent->wd, vd_a = at_base ? base_vd : parent->vd;
-            const M3& R = link.R;
-            const V3& p = link.p;
-            const V3 w_in = R.transpose() * w_a, rate = joint.axis * qd[j];
-            const V3 t = vd_a + wd_a.cross(p) + w_a.cross(w_a.cross(p));
-            V3 bw_in = bw[k], brate;
-            if (revolute) {
-                gqd[j] += joint.axis.dot(bw[k]);
-                gqdd[j] += joint.axis.dot(bwd[k]);
-                bw_in += rate.cross(bwd[k]);
-                brate = bwd[k].cross(w_in);
-            } else {
-                gqdd[j] += joint.axis.dot(bvd[k]);
-                bw_in += 2.0 * rate.cross(bvd[k]);
-                brate = 2.0 * bvd[k].cross(w_in);
-            }
-            gqd[j] += joint.axis.dot(brate);
-            // w = R^T w_a + .., wd = R^T wd_a + .., vd = R^T t + ..
-            M3 bR = w_a * bw_in.transpose();
-            bR.noalias() += wd_a * bwd[k].transpose();
-            bR.noalias() += t * bvd[k].transpose();
-            const V3 bt = R * bvd[k];
-            // t = vd_a + wd_a x p + w_a x (w_a x p)
-            const V3 bw_a = R * bw_in + bt * w_a.dot(p) + p * bt.dot(w_a) - (2.0 * bt.dot(p)) * w_a;
-            const V3 bwd_a = R * bwd[k] + p.cross(bt);
-            V3 bp = bt.cross(wd_a) + w_a * bt.dot(w_a) - bt * w_a.squaredNorm();
-            // R0_j = R0_a R, o0_j = o0_a + R0_a p
-            if (at_base) {
-                bR += bR0[k];
-                bp += bo[k];
-            } else {
-                const auto a = static_cast<std::size_t>(joint.antecedent);
-                bR0[a].noalias() += bR0[k] * R.transpose();
-                bR0[a].noalias() += bo[k] * p.transpose();
-                bR.noalias() += parent->R0.transpose() * bR0[k];
-                bp.noalias() += parent->R0.transpose() * bo[k];
-                bo[a] += bo[k];
-                bw[a] += bw_a;
-                bwd[a] += bwd_a;
-                bvd[a] += bt;
-            }
-            if (revolute) {
-                const M3 M = R.transpose() * bR;
-                gq[j] += joint.axis.dot(V3(M(2, 1) - M(1, 2), M(0, 2) - M(2, 0), M(1, 0) - M(0, 1)));
-            } else {
-                gq[j] += (R * joint.axis).dot(bp);
-            }
-        }
+        Eigen::Matrix<double, 1, N> dq, dqd, dqdd;
+        pass<1>(
+            qd, links, [&](int i, int j) { return H.row(i).template segment<kInertialKinds>(layout.column(j, ParameterKind::XX)).transpose(); },
+            [&](int j) { return own_weights(j, [&](int column) { return H(j, column); }); }, [](int) { return 0; }, dq, dqd, dqdd);
+        gq = dq.transpose(), gqd = dqd.transpose(), gqdd = dqdd.transpose();
     }
 
     using Square = Eigen::Matrix<double, N, N>;
     using Parameters = typename Regression::Parameters;
 
     // The torque's derivatives, tau = D(q, qd, qdd) X (the first parameter_count() entries of X): (i, j) of dq, dqd, dqdd
-    // is d tau_i / dq_j, d tau_i / dqd_j, d tau_i / dqdd_j. The n contractions tau_i = <e_i X^T, D> in one adjoint pass
-    // with n lanes (column i of every adjoint: tau_i's), where gradient() would take n passes. The rotations' adjoints
-    // are carried in the base frame as 3-vectors instead of 3 x 3 matrices: R0_l of every link l below a revolute
-    // joint k turns with q_k about z0_k, and o0_l turns about (z0_k, o0_k), so d tau / dq_k gets
-    // z0_k . (sum over l below k of rho_l + (o0_l - o0_k) x ob_l), rho_l = vee(Rb_l R0_l^T - R0_l Rb_l^T) the
-    // adjoint of R0_l as a vector (an outer product x y^T contributes (R0_l y) x x) and ob_l the adjoint of o0_l; a
-    // prismatic joint k moves them by z0_k; the link frames' kinematics keep their local recursion.
+    // is d tau_i / dq_j, d tau_i / dqd_j, d tau_i / dqdd_j. The n contractions tau_i = <e_i X^T, D> in one pass with
+    // n lanes (lane i: tau_i), where gradient() would take n passes.
     void torque_gradient(const Joints& qd, const Links& links, const Parameters& X, Square& dq, Square& dqd, Square& dqdd) const noexcept {
+        const auto& layout = r_.layout();
+        pass<N>(
+            qd, links, [&](int, int j) { return X.template segment<kInertialKinds>(layout.column(j, ParameterKind::XX)); },
+            [&](int j) { return own_weights(j, [&](int column) { return X[column]; }); }, [](int i) { return i; }, dq, dqd, dqdd);
+    }
+
+private:
+    // The weights of joint j's own columns (IA, FV, FC; IA 0 when switched off), weight(column) read from H or X.
+    template <typename Weight>
+    Eigen::Vector3d own_weights(int j, Weight weight) const noexcept {
+        const auto& layout = r_.layout();
+        const int ia = layout.column(j, ParameterKind::IA);
+        return {ia >= 0 ? weight(ia) : 0.0, weight(layout.column(j, ParameterKind::FV)), weight(layout.column(j, ParameterKind::FC))};
+    }
+
+    // One adjoint pass for L contractions: weights(i, j) the 10 inertial weights of carrier i's row on link j's columns,
+    // lane(i) the contraction they belong to, own(j) joint j's own (IA, FV, FC) weights (in lane(j)). Out: (l, j) =
+    // d phi_l / d(q_j, qd_j, qdd_j).
+    template <int L, typename PairWeights, typename OwnWeights, typename Lane>
+    void pass(const Joints& qd, const Links& links, PairWeights weights, OwnWeights own, Lane lane, Eigen::Matrix<double, L, N>& dq,
+              Eigen::Matrix<double, L, N>& dqd, Eigen::Matrix<double, L, N>& dqdd) const noexcept {
         using V3 = Eigen::Vector3d;
         using M3 = Eigen::Matrix3d;
-        using Lanes = Eigen::Matrix<double, 3, N>;
+        using Lanes = Eigen::Matrix<double, 3, L>;
         const int n = r_.joint_count();
-        const auto& layout = r_.layout();
-        // Per link, 3 x n (lane i: tau_i): adjoints of w, wd, vd (link frame); rho, ob and o0 x ob summed over the
-        // link and everything below it (base frame).
+        // Per link, 3 x L: adjoints of w, wd, vd (link frame); rho, ob and o0 x ob summed over the link and
+        // everything below it (base frame).
         std::array<Lanes, N> bw, bwd, bvd, rho, ob, moment;
         for (int j = 0; j < n; ++j) {
             const auto k = static_cast<std::size_t>(j);
@@ -199,41 +113,44 @@ public:
         for (int j = 0; j < n; ++j) {
             const auto k = static_cast<std::size_t>(j);
             const auto& link = links[k];
-            const Eigen::Matrix<double, kInertialKinds, 1> h = X.template segment<kInertialKinds>(layout.column(j, ParameterKind::XX));
-            const Eigen::Matrix<double, 6, 1> f = Regression::wrench_matrix(link) * h;  // link j's wrench: the adjoint of every e_ij
-            const V3 a = link.R0 * f.template head<3>(), b = link.R0 * f.template tail<3>();
-            M3 I;
-            I << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
-            const V3 s = h.template segment<3>(6);
+            const Eigen::Matrix<double, 6, kInertialKinds> K = Regression::wrench_matrix(link);
             const V3& w = link.w;
-            const V3 Iw = I * w;
             for (int i = j; i >= 0; i = r_.chain().joint(i).antecedent) {
+                const Eigen::Matrix<double, kInertialKinds, 1> h = weights(i, j);
+                if ((h.array() == 0.0).all()) continue;
                 const auto c = static_cast<std::size_t>(i);
+                const int l = lane(i);
                 const auto& carrier = links[c];
+                const Eigen::Matrix<double, 6, 1> f = K * h;  // the adjoint of e_ij
+                const V3 a = link.R0 * f.template head<3>();
                 V3 ef, en;
                 if (r_.chain().joint(i).type == JointType::Revolute) {
-                    const V3 d = link.o0 - carrier.o0, u = carrier.z0.cross(d), moved = a.cross(carrier.z0);
+                    const V3 d = link.o0 - carrier.o0, u = carrier.z0.cross(d), b = link.R0 * f.template tail<3>(), moved = a.cross(carrier.z0);
                     ef.noalias() = link.R0.transpose() * u;
                     en.noalias() = link.R0.transpose() * carrier.z0;
-                    rho[k].col(i) += a.cross(u) + b.cross(carrier.z0);
-                    rho[c].col(i) += carrier.z0.cross(d.cross(a) + b);
-                    ob[k].col(i) += moved;
-                    moment[k].col(i) += link.o0.cross(moved);
-                    ob[c].col(i) -= moved;
-                    moment[c].col(i) -= carrier.o0.cross(moved);
+                    rho[k].col(l) += a.cross(u) + b.cross(carrier.z0);
+                    rho[c].col(l) += carrier.z0.cross(d.cross(a) + b);
+                    ob[k].col(l) += moved;
+                    moment[k].col(l) += link.o0.cross(moved);
+                    ob[c].col(l) -= moved;
+                    moment[c].col(l) -= carrier.o0.cross(moved);
                 } else {
                     ef.noalias() = link.R0.transpose() * carrier.z0;
                     en.setZero();
-                    rho[k].col(i) += a.cross(carrier.z0);
-                    rho[c].col(i) += carrier.z0.cross(a);
+                    rho[k].col(l) += a.cross(carrier.z0);
+                    rho[c].col(l) += carrier.z0.cross(a);
                 }
-                bvd[k].col(i) += h[9] * ef + en.cross(s);
-                bwd[k].col(i) += s.cross(ef) + I * en;
-                bw[k].col(i) += ef * w.dot(s) + s * ef.dot(w) - (2.0 * ef.dot(s)) * w + Iw.cross(en) + I * en.cross(w);
+                // K_j's own dependence on link j's w, wd, vd.
+                M3 I;
+                I << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
+                const V3 s = h.template segment<3>(6);
+                bvd[k].col(l) += h[9] * ef + en.cross(s);
+                bwd[k].col(l) += s.cross(ef) + I * en;
+                bw[k].col(l) += ef * w.dot(s) + s * ef.dot(w) - (2.0 * ef.dot(s)) * w + (I * w).cross(en) + I * en.cross(w);
             }
-            const int ia = layout.column(j, ParameterKind::IA), fv = layout.column(j, ParameterKind::FV), fc = layout.column(j, ParameterKind::FC);
-            if (ia >= 0) dqdd(j, j) += X[ia];
-            dqd(j, j) += X[fv] + r_.coulomb(j).slope(qd[j]) * X[fc];
+            const V3 mine = own(j);
+            dqdd(lane(j), j) += mine[0];
+            dqd(lane(j), j) += mine[1] + r_.coulomb(j).slope(qd[j]) * mine[2];
         }
         const V3 base_vd = -r_.gravity();
         for (int j = n - 1; j >= 0; --j) {
@@ -246,7 +163,6 @@ public:
             const M3& R = link.R;
             const V3& p = link.p;
             const V3 w_in = R.transpose() * w_a, rate = joint.axis * qd[j];
-            const V3 t = vd_a + wd_a.cross(p) + w_a.cross(w_a.cross(p));
             Lanes bw_in = bw[k], brate;
             if (revolute) {
                 dqd.col(j) += (joint.axis.transpose() * bw[k]).transpose();
@@ -259,16 +175,15 @@ public:
                 brate.noalias() = -2.0 * Regression::skew(w_in) * bvd[k];
             }
             dqd.col(j) += (joint.axis.transpose() * brate).transpose();
-            const Lanes bt = R * bvd[k];
-            // t = vd_a + wd_a x p + w_a x (w_a x p)
+            const Lanes bt = R * bvd[k];  // vd = R^T t + .., t = vd_a + wd_a x p + w_a x (w_a x p)
             Lanes bw_a = R * bw_in + w_a.dot(p) * bt;
             bw_a.noalias() += p * (w_a.transpose() * bt);
             bw_a.noalias() -= 2.0 * w_a * (p.transpose() * bt);
             Lanes bwd_a = R * bwd[k];
             bwd_a.noalias() += Regression::skew(p) * bt;
             if (revolute) {
-                // The local rotation (w = R^T w_a + .., wd = R^T wd_a + .., vd = R^T t: y x (R^T x) per outer product
-                // x y^T of its adjoint), in the link frame; the base-frame turn of everything below, rho + (o0_l - o0_j) x ob.
+                // The local rotation (w = R^T w_a + .., wd = R^T wd_a + .., vd = R^T t), in the link frame; the
+                // base-frame turn of everything below, rho + (o0_l - o0_j) x ob.
                 const V3 wd_in = R.transpose() * wd_a;
                 Lanes local = -Regression::skew(w_in) * bw_in;
                 local.noalias() -= Regression::skew(wd_in) * bwd[k];
@@ -295,7 +210,6 @@ public:
         }
     }
 
-private:
     const Regression& r_;
 };
 
