@@ -3,8 +3,9 @@
 // criterion with its gradient and the constraints with their Jacobian at a new point (what SLSQP asks per
 // iteration), on the PUMA 560 and the UR5-like arm, 5 harmonics at 0.1 Hz, 400 samples per period (the
 // default), without (box 0) and with (box 1) a workspace box on the last frame's point, the regressor's
-// derivatives by central differences (automatic 0, the default) or automatic differentiation (automatic 1);
-// and the box's share alone, the point and its Jacobian per sample.
+// derivatives by central differences (route 0), automatic differentiation (route 1) or the adjoint Newton-Euler
+// (route 2, the default), without (torque 0) and with (torque 1) a torque limit on every joint (its constraints
+// need the torque's derivatives too); and the box's share alone, the point and its Jacobian per sample.
 // Run: build/benchmarks/bench_excite --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -27,7 +28,12 @@ void evaluation(benchmark::State& state, const char* robot_file) {
     excite::ProblemSettings settings;
     settings.samples = 400;
     excite::ExcitationProblem problem(*model, x, excite::FourierBasis(10.0, 5, 0.1), pose, limits, settings);
-    problem.use_automatic_differentiation(state.range(1) == 1);
+    const excite::DerivativeRoute routes[] = {excite::DerivativeRoute::CentralDifferences, excite::DerivativeRoute::Automatic, excite::DerivativeRoute::Adjoint};
+    problem.use_derivative_route(routes[state.range(1)]);
+    if (state.range(2) == 1) {
+        for (auto& l : limits) l.torque = 1e6;  // never reached: its value changes nothing, its derivatives are computed
+        problem.set_limits(limits);
+    }
     if (state.range(0) == 1) {
         const std::vector<double> box = {-2, 2, -2, 2, -2, 2};
         problem.set_workspace(excite::make_workspace(robot, "tool", {0.0, 0.0, 0.1}, box, pose));
@@ -58,8 +64,8 @@ void BM_WorkspacePointAndJacobianPuma560(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_WorkspacePointAndJacobianPuma560);
-BENCHMARK(BM_ExciteEvaluationPuma560)->ArgNames({"box", "automatic"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ExciteEvaluationUr5Like)->ArgNames({"box", "automatic"})->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExciteEvaluationPuma560)->ArgNames({"box", "route", "torque"})->ArgsProduct({{0, 1}, {0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExciteEvaluationUr5Like)->ArgNames({"box", "route", "torque"})->ArgsProduct({{0, 1}, {0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

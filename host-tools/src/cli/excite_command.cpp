@@ -41,6 +41,7 @@ struct ExciteOptions {
     int harmonics = 5;
     double base_frequency = 0.1;
     std::string criterion = "d-optimal";
+    std::string derivatives = "adjoint";
     std::string prior, compare;
     std::vector<double> torque_noise;
     std::vector<std::string> position_limit;  // LOWER:UPPER, one or one per joint
@@ -321,6 +322,9 @@ void run(ExciteOptions o) {
     ps.criterion = *excite::criterion_from_string(o.criterion);
     ps.information = {prior.noise_std, prior.scales, 1.0};
     ps.samples = o.samples;
+    for (const auto route : {excite::DerivativeRoute::Adjoint, excite::DerivativeRoute::CentralDifferences, excite::DerivativeRoute::Automatic}) {
+        if (o.derivatives == excite::to_string(route)) ps.derivatives = route;
+    }
     excite::ExcitationProblem problem(*model, x, excite::FourierBasis(1.0 / o.base_frequency, o.harmonics, o.base_frequency), pose, limits, ps);
     // Each criterion sample stands for rate x duration / samples log samples (the information of the whole run).
     problem.set_sample_weight(o.rate * o.duration / problem.samples());
@@ -527,6 +531,11 @@ void add_excite_command(CLI::App& app) {
     cmd->add_option("--rate", o->rate, "Hz: control rate of the CSV; every sample is checked against the limits")->check(positive_number())->capture_default_str();
     cmd->add_option("--samples", o->samples, "samples per period seen by the optimizer (0: 20 per period of the highest harmonic, at least 100)")
         ->check(whole_number_in(0, 1e6))
+        ->capture_default_str();
+    cmd->add_option("--derivatives", o->derivatives,
+                    "the regressor's derivatives in the gradients: adjoint (reverse-mode Newton-Euler, serial robots), or for comparison central "
+                    "(central differences, any model) or automatic (forward-mode automatic differentiation, serial robots)")
+        ->check(CLI::IsMember({"adjoint", "central", "automatic"}))
         ->capture_default_str();
     cmd->add_option("--starts", o->starts, "random starts of the optimizer (the best feasible one is kept)")->check(whole_number_from(1))->capture_default_str();
     cmd->add_option("--time-limit", o->time_limit, "s for all starts together")->check(positive_number())->capture_default_str();

@@ -8,14 +8,15 @@
 namespace jacobid::excite {
 namespace {
 
-// The Kreisselmeier-Steinhauser aggregate of `terms` (a smooth upper bound of their maximum); when `row` is not
-// null, its gradient (the softmax weights times each term's slope, `slopes` one per term) added to jacobian's `row`.
-double ks_aggregate(const std::vector<double>& terms, const std::vector<Eigen::VectorXd>& slopes, double rho, Eigen::MatrixXd* jacobian, int row) {
+// The Kreisselmeier-Steinhauser aggregate of `terms` (a smooth upper bound of their maximum); when `weights` is
+// not null, its derivative in each term there (the softmax weights).
+double ks_aggregate(const std::vector<double>& terms, double rho, std::vector<double>* weights) {
     const double top = *std::max_element(terms.begin(), terms.end());
     double sum = 0.0;
     for (const double t : terms) sum += std::exp(rho * (t - top));
-    if (jacobian) {
-        for (std::size_t t = 0; t < terms.size(); ++t) jacobian->row(row) += std::exp(rho * (terms[t] - top)) / sum * slopes[t].transpose();
+    if (weights) {
+        weights->resize(terms.size());
+        for (std::size_t t = 0; t < terms.size(); ++t) (*weights)[t] = std::exp(rho * (terms[t] - top)) / sum;
     }
     return top + std::log(sum) / rho;
 }
@@ -60,17 +61,21 @@ ExcitationProblem::ExcitationProblem(const robot::RobotModel& model, Eigen::Vect
         basis_.evaluate(basis_.period() * i / samples_, psi_.col(i), dpsi_.col(i), ddpsi_.col(i));
     }
     W_.resize(static_cast<Eigen::Index>(samples_) * joints_, columns_);
-    derivatives_ = make_regressor_derivatives(model_);
+    derivatives_ = make_regressor_derivatives(model_, settings_.derivatives);
 }
 
 ExcitationProblem::ExcitationProblem(const ExcitationProblem& o)
     : model_(o.model_), x_(o.x_), basis_(o.basis_), pose_(o.pose_), limits_(o.limits_), settings_(o.settings_), joints_(o.joints_), columns_(o.columns_),
       samples_(o.samples_), psi_(o.psi_), dpsi_(o.dpsi_), ddpsi_(o.ddpsi_), W_(o.W_),
-      derivatives_(make_regressor_derivatives(o.model_, o.derivatives_->automatic())), workspace_(o.workspace_) {}
+      derivatives_(make_regressor_derivatives(o.model_, o.derivatives_->route())), workspace_(o.workspace_) {}
 
-void ExcitationProblem::use_automatic_differentiation(bool automatic) {
-    derivatives_ = make_regressor_derivatives(model_, automatic);
+void ExcitationProblem::use_derivative_route(DerivativeRoute route) {
+    derivatives_ = make_regressor_derivatives(model_, route);
     derivatives_for_.resize(0);
+}
+
+bool ExcitationProblem::torque_limited() const {
+    return std::any_of(limits_.begin(), limits_.end(), [](const JointLimits& l) { return std::isfinite(l.torque); });
 }
 
 void ExcitationProblem::set_limits(std::vector<JointLimits> limits) {
@@ -129,19 +134,19 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
 
 void ExcitationProblem::prepare_derivatives(const Eigen::VectorXd& c) {
     prepare(c);
-    if (derivatives_for_.size() == c.size() && derivatives_for_ == c) return;
-    Eigen::MatrixXd GW;  // dF/dW
-    value_ = evaluate_criterion(settings_.criterion, W_, joints_, settings_.information, &GW);
+    const bool torque = torque_limited();
+    if (derivatives_for_.size() == c.size() && derivatives_for_ == c && (dtau_ready_ || !torque)) return;
+    value_ = evaluate_criterion(settings_.criterion, W_, joints_, settings_.information, &GW_);
     dphi_.resize(3 * joints_, samples_);
     dtau_.resize(static_cast<std::size_t>(samples_));
     Eigen::VectorXd dphi;
     for (int i = 0; i < samples_; ++i) {
-        const Eigen::VectorXd q = q_.col(i), qd = qd_.col(i), qdd = qdd_.col(i);
-        const Eigen::MatrixXd H = GW.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_);
-        derivatives_->evaluate(q.data(), qd.data(), qdd.data(), H, x_, dphi, dtau_[static_cast<std::size_t>(i)]);
+        derivatives_->evaluate(q_.col(i).data(), qd_.col(i).data(), qdd_.col(i).data(), GW_.middleRows(static_cast<Eigen::Index>(i) * joints_, joints_), x_,
+                               dphi, torque ? &dtau_[static_cast<std::size_t>(i)] : nullptr);
         dphi_.col(i) = dphi;
     }
     derivatives_for_ = c;
+    dtau_ready_ = torque;
 }
 
 double ExcitationProblem::criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient) {
@@ -175,9 +180,11 @@ Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, E
     const int m = basis_.size();
     Eigen::VectorXd g(constraints());
     if (jacobian) jacobian->setZero(constraints(), variables());
-    // One KS aggregate over (sign, sample) of sign * value / limit - 1, with d value / dc per sample.
-    std::vector<double> terms;
-    std::vector<Eigen::VectorXd> slopes;  // per term: d term / d c over all variables (only needed with the Jacobian)
+    // One KS aggregate over (sample, sign) of sign * value / limit - 1. Its gradient: per sample, the weights' net
+    // d KS / d value (w+ - w-) / limit times d value / dc, summed into `slope` (joint a's coefficients: segment a).
+    std::vector<double> terms, weights;
+    Eigen::VectorXd slope(variables());
+    auto segment = [&](int joint) { return slope.segment(static_cast<Eigen::Index>(joint) * m, m); };
     for (int j = 0; j < joints_; ++j) {
         for (int kind = 0; kind < kLimitKinds; ++kind) {
             const auto k = static_cast<LimitKind>(kind);
@@ -187,47 +194,42 @@ Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, E
                 g[row] = -1.0;
                 continue;
             }
+            const bool two_sided = k != LimitKind::Upper && k != LimitKind::Lower;
+            const double side = k == LimitKind::Lower ? -1.0 : 1.0;  // the position kinds: the excursion toward their bound
             terms.clear();
-            slopes.clear();
             for (int i = 0; i < samples_; ++i) {
                 double value = 0.0;
-                Eigen::VectorXd slope;
-                if (jacobian) slope.setZero(variables());
                 switch (k) {
                     case LimitKind::Upper:
-                    case LimitKind::Lower: {
-                        const double sign = k == LimitKind::Upper ? 1.0 : -1.0;
-                        value = sign * (q_(j, i) - pose_[j]);
-                        if (jacobian) slope.segment(static_cast<Eigen::Index>(j) * m, m) = sign * psi_.col(i);
-                        break;
-                    }
-                    case LimitKind::Velocity:
-                        value = qd_(j, i);
-                        if (jacobian) slope.segment(static_cast<Eigen::Index>(j) * m, m) = dpsi_.col(i);
-                        break;
-                    case LimitKind::Acceleration:
-                        value = qdd_(j, i);
-                        if (jacobian) slope.segment(static_cast<Eigen::Index>(j) * m, m) = ddpsi_.col(i);
-                        break;
+                    case LimitKind::Lower: value = side * (q_(j, i) - pose_[j]); break;
+                    case LimitKind::Velocity: value = qd_(j, i); break;
+                    case LimitKind::Acceleration: value = qdd_(j, i); break;
+                    case LimitKind::Torque: value = tau_(j, i); break;
+                }
+                terms.push_back(value / room - 1.0);
+                if (two_sided) terms.push_back(-value / room - 1.0);
+            }
+            g[row] = ks_aggregate(terms, settings_.ks_rho, jacobian ? &weights : nullptr);
+            if (!jacobian) continue;
+            slope.setZero();
+            for (int i = 0; i < samples_; ++i) {
+                const auto t = static_cast<std::size_t>(i);
+                const double w = (two_sided ? weights[2 * t] - weights[2 * t + 1] : weights[t]) / room;
+                switch (k) {
+                    case LimitKind::Upper:
+                    case LimitKind::Lower: segment(j) += (w * side) * psi_.col(i); break;
+                    case LimitKind::Velocity: segment(j) += w * dpsi_.col(i); break;
+                    case LimitKind::Acceleration: segment(j) += w * ddpsi_.col(i); break;
                     case LimitKind::Torque: {
-                        value = tau_(j, i);
-                        if (jacobian) {
-                            const Eigen::MatrixXd& d = dtau_[static_cast<std::size_t>(i)];
-                            for (int a = 0; a < joints_; ++a) {
-                                slope.segment(static_cast<Eigen::Index>(a) * m, m) = d(j, a) * psi_.col(i) + d(j, joints_ + a) * dpsi_.col(i) + d(j, 2 * joints_ + a) * ddpsi_.col(i);
-                            }
+                        const Eigen::MatrixXd& d = dtau_[t];
+                        for (int a = 0; a < joints_; ++a) {
+                            segment(a) += (w * d(j, a)) * psi_.col(i) + (w * d(j, joints_ + a)) * dpsi_.col(i) + (w * d(j, 2 * joints_ + a)) * ddpsi_.col(i);
                         }
                         break;
                     }
                 }
-                const bool two_sided = k != LimitKind::Upper && k != LimitKind::Lower;
-                for (const double sign : {1.0, -1.0}) {
-                    if (sign < 0.0 && !two_sided) break;
-                    terms.push_back(sign * value / room - 1.0);
-                    if (jacobian) slopes.push_back(sign * slope / room);
-                }
             }
-            g[row] = ks_aggregate(terms, slopes, settings_.ks_rho, jacobian, row);
+            jacobian->row(row) = slope.transpose();
         }
     }
     if (workspace_) {
@@ -237,16 +239,16 @@ Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, E
             const int axis = f / 2, row = workspace_row() + f;
             const double sign = f % 2 == 0 ? 1.0 : -1.0, room = face_room(workspace_->box, workspace_->start, f);
             terms.clear();
-            slopes.clear();
+            for (int i = 0; i < samples_; ++i) terms.push_back(sign * (points_(axis, i) - workspace_->start[axis]) / room - 1.0);
+            g[row] = ks_aggregate(terms, settings_.ks_rho, jacobian ? &weights : nullptr);
+            if (!jacobian) continue;
+            slope.setZero();
             for (int i = 0; i < samples_; ++i) {
-                terms.push_back(sign * (points_(axis, i) - workspace_->start[axis]) / room - 1.0);
-                if (!jacobian) continue;
-                Eigen::VectorXd slope(variables());
                 const Eigen::Matrix3Xd& J = point_jacobians_[static_cast<std::size_t>(i)];
-                for (int k = 0; k < joints_; ++k) slope.segment(static_cast<Eigen::Index>(k) * m, m) = (sign * J(axis, k) / room) * psi_.col(i);
-                slopes.push_back(std::move(slope));
+                const double w = weights[static_cast<std::size_t>(i)] * sign / room;
+                for (int k = 0; k < joints_; ++k) segment(k) += (w * J(axis, k)) * psi_.col(i);
             }
-            g[row] = ks_aggregate(terms, slopes, settings_.ks_rho, jacobian, row);
+            jacobian->row(row) = slope.transpose();
         }
     }
     return g;

@@ -47,6 +47,7 @@ struct ProblemSettings {
     InformationModel information;  // noise, prior scales, sample weight (information criteria only)
     int samples = 0;       // per period for the criterion and constraints; 0: 20 per period of the highest harmonic (>= 100; information criteria: 40, >= 400)
     double ks_rho = 200.0; // sharpness of the KS aggregate (dimensionless g): over-estimate <= log(2 N) / rho
+    DerivativeRoute derivatives = DerivativeRoute::Adjoint;  // the regressor's derivatives (regressor_derivatives.hpp)
 };
 
 class ExcitationProblem {
@@ -57,9 +58,10 @@ public:
                       std::vector<JointLimits> limits, ProblemSettings settings);
     ExcitationProblem(const ExcitationProblem& other);  // a copy for another thread (its own caches, the same model)
     ExcitationProblem& operator=(const ExcitationProblem&) = delete;
-    // The derivative route (regressor_derivatives.hpp): central differences (the default) or automatic
-    // differentiation (serial robots; the benchmark and the tests compare both).
-    void use_automatic_differentiation(bool automatic);
+    // The route of the regressor's derivatives (regressor_derivatives.hpp): the adjoint (the default), central
+    // differences or automatic differentiation (the last two for comparison: the benchmark, the tests, --derivatives).
+    void use_derivative_route(DerivativeRoute route);
+    DerivativeRoute derivative_route() const { return derivatives_->route(); }
 
     int variables() const { return joints_ * basis_.size(); }
     int constraints() const { return joints_ * kLimitKinds + (workspace_ ? kBoxFaces : 0); }
@@ -100,7 +102,8 @@ public:
 
 private:
     void prepare(const Eigen::VectorXd& c);              // per-sample states, regressors and torques at c (cached)
-    void prepare_derivatives(const Eigen::VectorXd& c);  // and dF/dW, the criterion, per-sample dphi and dtau (cached)
+    void prepare_derivatives(const Eigen::VectorXd& c);  // and dF/dW, the criterion, per-sample dphi and (with a torque limit) dtau (cached)
+    bool torque_limited() const;                         // whether a joint's torque limit is finite (the constraints need dtau)
     double limit(int joint, LimitKind kind) const;
 
     const robot::RobotModel& model_;
@@ -116,9 +119,11 @@ private:
     Eigen::MatrixXd W_;                 // (samples * joints) x columns
     std::unique_ptr<RegressorDerivatives> derivatives_;
     double value_ = 0.0;                // the criterion at derivatives_for_
+    Eigen::MatrixXd GW_;                // dF/dW there (W_'s shape; kept so that its storage is reused)
     Eigen::MatrixXd dphi_;              // 3 * joints x samples: d<dF/dW_i, Y_i>/d(q, qd, qdd)
-    std::vector<Eigen::MatrixXd> dtau_; // per sample, joints x 3 * joints: d tau / d(q, qd, qdd)
+    std::vector<Eigen::MatrixXd> dtau_; // per sample, joints x 3 * joints: d tau / d(q, qd, qdd) (when torque_limited())
     Eigen::VectorXd derivatives_for_;
+    bool dtau_ready_ = false;           // dtau_ holds derivatives_for_'s
     std::optional<Workspace> workspace_;
     Eigen::Matrix3Xd points_;                      // the workspace point at every sample (base frame)
     std::vector<Eigen::Matrix3Xd> point_jacobians_;  // per sample, dp/dq (3 x joints)

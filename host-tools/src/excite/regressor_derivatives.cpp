@@ -6,7 +6,10 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <vector>
 
+#include "jacobid/robot/rnea_regressor_adjoint.hpp"
 #include "robot/serial_robot_model.hpp"
 
 namespace jacobid::excite {
@@ -20,10 +23,10 @@ using robot::ParameterKind;
 class CentralDifferences final : public RegressorDerivatives {
 public:
     explicit CentralDifferences(const robot::RobotModel& model) : model_(model) {}
-    bool automatic() const override { return false; }
+    DerivativeRoute route() const override { return DerivativeRoute::CentralDifferences; }
 
-    void evaluate(const double* q0, const double* qd0, const double* qdd0, const Eigen::MatrixXd& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
-                  Eigen::MatrixXd& dtau) const override {
+    void evaluate(const double* q0, const double* qd0, const double* qdd0, const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
+                  Eigen::MatrixXd* dtau) const override {
         constexpr double kStep = 1e-6;
         const int n = model_.joint_count(), p = model_.parameter_count();
         Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(q0, n), qd = Eigen::Map<const Eigen::VectorXd>(qd0, n),
@@ -31,10 +34,10 @@ public:
         Eigen::MatrixXd Y(n, p), plus(n, p), minus(n, p), d(n, p);
         model_.regressor(q.data(), qd.data(), qdd.data(), Y);
         dphi.setZero(3 * n);
-        dtau.resize(n, 3 * n);
+        if (dtau) dtau->resize(n, 3 * n);
         auto store = [&](int lane) {
             if (H.size() > 0) dphi[lane] = H.cwiseProduct(d).sum();
-            dtau.col(lane) = d * x;
+            if (dtau) dtau->col(lane) = d * x;
         };
         auto central = [&](Eigen::VectorXd& v, int j, int lane) {
             const double h = kStep * std::max(1.0, std::abs(v[j]));
@@ -83,10 +86,10 @@ public:
         standard_of_base_.assign(base.begin(), base.end());
         standard_count_ = layout_.count();
     }
-    bool automatic() const override { return true; }
+    DerivativeRoute route() const override { return DerivativeRoute::Automatic; }
 
-    void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::MatrixXd& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
-                  Eigen::MatrixXd& dtau) const override {
+    void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
+                  Eigen::MatrixXd* dtau) const override {
         // The base-parameter weights on their standard columns (every other standard column weighs 0).
         Eigen::Matrix<double, N, Eigen::Dynamic> Hs = Eigen::Matrix<double, N, Eigen::Dynamic>::Zero(N, standard_count_);
         Eigen::VectorXd xs = Eigen::VectorXd::Zero(standard_count_);
@@ -125,20 +128,21 @@ public:
             }
         }
         dphi.setZero(3 * N);
-        dtau.resize(N, 3 * N);
         if (with_phi) dphi = phi.derivatives();
-        for (int i = 0; i < N; ++i) dtau.row(i) = tau[static_cast<std::size_t>(i)].derivatives().transpose();
+        Eigen::MatrixXd dt(N, 3 * N);
+        for (int i = 0; i < N; ++i) dt.row(i) = tau[static_cast<std::size_t>(i)].derivatives().transpose();
         // Rotor inertia, viscous and Coulomb friction act on their own joint: d/dqdd_j IA, d/dqd_j FV, s'(qd_j) FC.
         for (int j = 0; j < N; ++j) {
-            const double slope = coulomb_slope(coulomb_[static_cast<std::size_t>(j)], qd[j]);
+            const double slope = coulomb_[static_cast<std::size_t>(j)].slope(qd[j]);
             const int ia = layout_.column(j, ParameterKind::IA), fv = layout_.column(j, ParameterKind::FV), fc = layout_.column(j, ParameterKind::FC);
             if (ia >= 0) {
-                dtau(j, 2 * N + j) += xs[ia];
+                dt(j, 2 * N + j) += xs[ia];
                 if (with_phi) dphi[2 * N + j] += Hs(j, ia);
             }
-            dtau(j, N + j) += xs[fv] + slope * xs[fc];
+            dt(j, N + j) += xs[fv] + slope * xs[fc];
             if (with_phi) dphi[N + j] += Hs(j, fv) + slope * Hs(j, fc);
         }
+        if (dtau) *dtau = dt;
     }
 
 private:
@@ -146,12 +150,6 @@ private:
         V3 w, wd, vd, o0, z0;
         M3 R0;
     };
-
-    static double coulomb_slope(const robot::CoulombSign& s, double v) {
-        if (s.model != robot::CoulombModel::SmoothAtan) return 0.0;  // sign(qd): flat on either side
-        const double a = s.alpha * v;
-        return 0.63661977236758134308 * s.alpha / (1.0 + a * a);
-    }
 
     static AD constant(double v) { return AD(v, Lanes::Zero()); }
     static AD lane(double v, int k) { return AD(v, 3 * N, k); }
@@ -229,22 +227,78 @@ private:
     int standard_count_ = 0;
 };
 
+// The adjoint route: per sample one forward Newton-Euler pass, one adjoint pass for phi and, with dtau, one with a
+// lane per joint for tau_i = <e_i x^T, Y> (the weights on the standard columns of the base parameters).
 template <int N>
-std::unique_ptr<RegressorDerivatives> make_automatic(const robot::SerialRobotModel& model) {
+class Adjoint final : public RegressorDerivatives {
+public:
+    using Regression = robot::RneaRegressor<N>;
+
+    explicit Adjoint(const robot::SerialRobotModel& model)
+        : regressor_(robot::make_rnea_regressor<N>(model.config())), adjoint_(regressor_), standard_of_base_(model.base().base_columns) {}
+    Adjoint(const Adjoint&) = delete;
+    Adjoint& operator=(const Adjoint&) = delete;
+    DerivativeRoute route() const override { return DerivativeRoute::Adjoint; }
+
+    void evaluate(const double* q, const double* qd, const double* qdd, const Eigen::Ref<const Eigen::MatrixXd>& H, const Eigen::VectorXd& x, Eigen::VectorXd& dphi,
+                  Eigen::MatrixXd* dtau) const override {
+        typename Regression::Joints vq, vqd, vqdd, gq, gqd, gqdd;
+        for (int j = 0; j < N; ++j) vq[j] = q[j], vqd[j] = qd[j], vqdd[j] = qdd[j];
+        typename robot::RneaRegressorAdjoint<N>::Links links;
+        if (adjoint_.kinematics(vq, vqd, vqdd, links) != robot::RegressorStatus::Ok) {
+            throw std::invalid_argument("regressor derivatives: non-finite joint position, velocity or acceleration");
+        }
+        auto store = [&](Eigen::Ref<Eigen::VectorXd> out) { out << gq, gqd, gqdd; };
+        typename Regression::Regressor Hs = Regression::Regressor::Zero();
+        dphi.setZero(3 * N);
+        if (H.size() > 0) {
+            for (std::size_t b = 0; b < standard_of_base_.size(); ++b) Hs.col(standard_of_base_[b]) = H.col(static_cast<Eigen::Index>(b));
+            adjoint_.gradient(vqd, links, Hs, gq, gqd, gqdd);
+            store(dphi);
+        }
+        if (!dtau) return;
+        typename Regression::Parameters xs = Regression::Parameters::Zero();
+        for (std::size_t b = 0; b < standard_of_base_.size(); ++b) xs[standard_of_base_[b]] = x[static_cast<Eigen::Index>(b)];
+        typename robot::RneaRegressorAdjoint<N>::Square dq, dqd, dqdd;
+        adjoint_.torque_gradient(vqd, links, xs, dq, dqd, dqdd);
+        dtau->resize(N, 3 * N);
+        *dtau << dq, dqd, dqdd;
+    }
+
+private:
+    Regression regressor_;
+    robot::RneaRegressorAdjoint<N> adjoint_;  // refers to regressor_
+    std::vector<int> standard_of_base_;
+};
+
+// One of the fixed-size routes for the model's joint count.
+template <template <int> class Route, int N = 1>
+std::unique_ptr<RegressorDerivatives> make_fixed(const robot::SerialRobotModel& model) {
     if constexpr (N > robot::kMaxSerialJoints) {
         return nullptr;
     } else {
-        if (model.joint_count() == N) return std::make_unique<Automatic<N>>(model);
-        return make_automatic<N + 1>(model);
+        if (model.joint_count() == N) return std::make_unique<Route<N>>(model);
+        return make_fixed<Route, N + 1>(model);
     }
 }
 
 }  // namespace
 
-std::unique_ptr<RegressorDerivatives> make_regressor_derivatives(const robot::RobotModel& model, bool automatic) {
-    const auto* serial = dynamic_cast<const robot::SerialRobotModel*>(&model);
-    if (serial && automatic) {
-        if (auto route = make_automatic<1>(*serial)) return route;
+const char* to_string(DerivativeRoute route) {
+    switch (route) {
+        case DerivativeRoute::Adjoint: return "adjoint";
+        case DerivativeRoute::CentralDifferences: return "central";
+        case DerivativeRoute::Automatic: return "automatic";
+    }
+    return "?";
+}
+
+std::unique_ptr<RegressorDerivatives> make_regressor_derivatives(const robot::RobotModel& model, DerivativeRoute route) {
+    if (const auto* serial = dynamic_cast<const robot::SerialRobotModel*>(&model)) {
+        std::unique_ptr<RegressorDerivatives> fixed;
+        if (route == DerivativeRoute::Adjoint) fixed = make_fixed<Adjoint>(*serial);
+        if (route == DerivativeRoute::Automatic) fixed = make_fixed<Automatic>(*serial);
+        if (fixed) return fixed;
     }
     return std::make_unique<CentralDifferences>(model);
 }

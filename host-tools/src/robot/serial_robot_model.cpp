@@ -75,11 +75,7 @@ private:
 template <int N>
 class FixedEvaluator final : public SerialRobotModel::Evaluator {
 public:
-    FixedEvaluator(const KinematicChain<N>& chain, const Eigen::Vector3d& gravity, const StandardParameterOptions& options,
-                   const std::vector<CoulombSign>& joint_coulomb)
-        : regressor_(chain, gravity, options) {
-        for (std::size_t j = 0; j < joint_coulomb.size(); ++j) regressor_.set_coulomb(static_cast<int>(j), joint_coulomb[j]);
-    }
+    explicit FixedEvaluator(const RneaRegressor<N>& regressor) : regressor_(regressor) {}
 
     void evaluate(const double* q, const double* qd, const double* qdd, const std::vector<int>* base_columns,
                   Eigen::Ref<Eigen::MatrixXd> out) const override {
@@ -131,21 +127,11 @@ private:
 };
 
 template <int N>
-std::unique_ptr<SerialRobotModel::Evaluator> make_fixed(const SerialRobotConfig& config) {
-    KinematicChain<N> chain;
-    for (std::size_t j = 0; j < config.joints.size(); ++j) {
-        const ChainError e = chain.add(config.joints[j]);
-        if (e != ChainError::Ok) throw std::invalid_argument(fmt::format("joint {}: {}", j + 1, to_string(e)));
-    }
-    return std::make_unique<FixedEvaluator<N>>(chain, config.gravity, config.options, config.joint_coulomb);
-}
-
-template <int N>
 std::unique_ptr<SerialRobotModel::Evaluator> make_evaluator(const SerialRobotConfig& config) {
     if constexpr (N > kMaxSerialJoints) {
         throw std::invalid_argument(fmt::format("{} joints: at most {} are supported", config.joints.size(), kMaxSerialJoints));
     } else {
-        if (static_cast<int>(config.joints.size()) == N) return make_fixed<N>(config);
+        if (static_cast<int>(config.joints.size()) == N) return std::make_unique<FixedEvaluator<N>>(make_rnea_regressor<N>(config));
         return make_evaluator<N + 1>(config);
     }
 }

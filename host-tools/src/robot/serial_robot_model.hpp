@@ -6,11 +6,13 @@
 // FV1, ...), regressor() is the base regressor; the standard regressor and the regrouping stay available
 // for printing the relations and for turning true standard values into true base values.
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "jacobid/robot/kinematic_chain.hpp"
+#include "jacobid/robot/rnea_regressor.hpp"
 #include "jacobid/robot/standard_parameters.hpp"
 #include "robot/base_parameters.hpp"
 #include "robot/robot_model.hpp"
@@ -26,6 +28,20 @@ struct SerialRobotConfig {
     StandardParameterOptions options{};
     std::vector<CoulombSign> joint_coulomb;  // per joint; empty (or shorter): options.coulomb
 };
+
+// The lib's fixed-size regressor of a configuration of N joints: its chain, gravity, options and per-joint
+// Coulomb functions. std::invalid_argument for an invalid chain.
+template <int N>
+RneaRegressor<N> make_rnea_regressor(const SerialRobotConfig& config) {
+    KinematicChain<N> chain;
+    for (std::size_t j = 0; j < config.joints.size(); ++j) {
+        const ChainError e = chain.add(config.joints[j]);
+        if (e != ChainError::Ok) throw std::invalid_argument("joint " + std::to_string(j + 1) + ": " + to_string(e));
+    }
+    RneaRegressor<N> regressor(chain, config.gravity, config.options);
+    for (std::size_t j = 0; j < config.joint_coulomb.size(); ++j) regressor.set_coulomb(static_cast<int>(j), config.joint_coulomb[j]);
+    return regressor;
+}
 
 // Standard parameter names in column order for `joints` joints: XX1 XY1 ... FC1 [FOFF1] XX2 ...
 std::vector<std::string> standard_parameter_names(int joints, const StandardParameterOptions& options);

@@ -59,16 +59,17 @@ TEST(ExcitationProblem, CriterionGradientsMatchCentralDifferencesOfTheCriterion)
     std::vector<excite::JointLimits> limits(6);
     for (auto& l : limits) l.lower = -2.5, l.upper = 2.5, l.velocity = 3.0, l.torque = 200.0;
     // Every criterion (issue 35: the information criteria weigh per-joint noise and prior scales), with the
-    // regressor's derivatives by central differences (the default) and by automatic differentiation.
+    // regressor's derivatives by each route: the adjoint (the default), central differences, automatic differentiation.
     for (const auto criterion : {excite::Criterion::Cond, excite::Criterion::LogDet, excite::Criterion::DOptimal, excite::Criterion::ARelative,
                                  excite::Criterion::ERelative})
-    for (const bool automatic : {false, true}) {
+    for (const auto route : {excite::DerivativeRoute::Adjoint, excite::DerivativeRoute::CentralDifferences, excite::DerivativeRoute::Automatic}) {
         excite::ProblemSettings settings;
         settings.criterion = criterion;
         settings.samples = 40;
         settings.information = {Eigen::VectorXd::LinSpaced(6, 0.2, 0.02), Eigen::VectorXd::LinSpaced(model->parameter_count(), 0.01, 2.0), 50.0};
         excite::ExcitationProblem problem(*model, x, excite::FourierBasis(5.0, 2, 0.2), Eigen::VectorXd::Zero(6), limits, settings);
-        problem.use_automatic_differentiation(automatic);
+        problem.use_derivative_route(route);
+        ASSERT_EQ(problem.derivative_route(), route);
         Eigen::VectorXd c = 0.3 * Eigen::VectorXd::Random(problem.variables());
         Eigen::VectorXd g;
         problem.criterion(c, &g);
@@ -93,8 +94,8 @@ TEST(ExcitationProblem, CriterionGradientsMatchCentralDifferencesOfTheCriterion)
         // 3e-4: the relative criteria on the PUMA weigh parameters whose predicted variances span ten decades, and
         // the two derivative routes agree to ~1e-8 relative per entry (RegressorDerivatives test), which e-relative's
         // weights amplify to ~1e-4 here; a wrong gradient misses by O(1).
-        EXPECT_LT(worst, 3e-4) << file << " " << excite::to_string(criterion) << (automatic ? " automatic" : " central");
-        EXPECT_LT(worst_constraint, 1e-4) << file << " " << excite::to_string(criterion) << (automatic ? " automatic" : " central");
+        EXPECT_LT(worst, 3e-4) << file << " " << excite::to_string(criterion) << " " << excite::to_string(route);
+        EXPECT_LT(worst_constraint, 1e-4) << file << " " << excite::to_string(criterion) << " " << excite::to_string(route);
     }
   }
 }

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 // Issue 35: excite's information criteria and predictions, against independent checks: the criteria's
 // gradients against central differences of the criteria; the predicted std against the spread of WLS
-// estimates solved again and again on simulated noise (linear algebra alone, no shared formula); the two
-// routes to the regressor's derivatives (automatic differentiation of a Newton-Euler regressor written again,
-// central differences of the model's) against each other; the prior scale rule against numbers worked out
+// estimates solved again and again on simulated noise (linear algebra alone, no shared formula); the exact
+// routes to the regressor's derivatives (the adjoint Newton-Euler, automatic differentiation of a Newton-Euler
+// regressor written again) against central differences of the model's regressor; the prior scale rule against numbers worked out
 // from the description by hand; the frequency rule; --prior read from identify's own JSON; --compare and the
 // one-line warning when the design loses; simulate's random moves within velocity and acceleration limits;
 // identify's own bandwidth rule covering a design's torque (end to end, against --cutoff 20).
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <cmath>
 #include <fstream>
@@ -23,6 +24,7 @@
 #include "excite/regressor_derivatives.hpp"
 #include "io/csv_table.hpp"
 #include "robot/robot_description.hpp"
+#include "robot/serial_robot_model.hpp"
 #include "run_command.hpp"
 #include "excite_test_support.hpp"
 
@@ -98,30 +100,80 @@ TEST(InformationCriterion, PredictedStdIsTheSpreadOfWlsEstimatesOnSimulatedNoise
     EXPECT_EQ(predicted.worst_relative_std, predicted.relative_std.maxCoeff());
 }
 
-TEST(RegressorDerivatives, AutomaticDifferentiationEqualsCentralDifferencesOnThreeRobots) {
+// The adjoint Newton-Euler (the default route) and forward-mode automatic differentiation against central
+// differences of the model's own regressor (lib/include/jacobid/robot/rnea_regressor.hpp, no shared derivative
+// code), on random states and random weights: the UR5-like arm and the PUMA 560 (revolute), the SCARA (a
+// prismatic joint), and a branched tree of revolute and prismatic joints with tilted axes, rotor inertia,
+// smooth Coulomb friction and offsets, built here (every path of the adjoint through antecedents and siblings).
+TEST(RegressorDerivatives, AdjointAndAutomaticDifferentiationEqualCentralDifferences) {
+    std::vector<std::pair<std::string, std::unique_ptr<robot::RobotModel>>> models;
+    std::vector<Eigen::VectorXd> parameters;
     for (const std::string file : {"ur5_like.yaml", "puma560.yaml", "scara_rrpr.yaml"}) {
         const robot::RobotDescription robot = robot::load_robot_description(std::string(JACOBID_SOURCE_DIR) + "/examples/robots/" + file);
-        const auto model = robot::make_robot_model(robot);
-        const int n = model->joint_count(), p = model->parameter_count();
-        const Eigen::VectorXd x = robot::true_parameters(robot, *model);
-        const auto automatic = excite::make_regressor_derivatives(*model, true), central = excite::make_regressor_derivatives(*model, false);
-        ASSERT_TRUE(automatic->automatic()) << file;
-        ASSERT_FALSE(central->automatic()) << file;
+        models.emplace_back(file, robot::make_robot_model(robot));
+        parameters.push_back(robot::true_parameters(robot, *models.back().second));
+    }
+    {
+        std::mt19937_64 rng(4);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        robot::SerialRobotConfig tree;
+        const int antecedents[] = {-1, 0, 1, 1, 3, 0};
+        const robot::JointType types[] = {robot::JointType::Revolute, robot::JointType::Prismatic, robot::JointType::Revolute,
+                                          robot::JointType::Revolute, robot::JointType::Prismatic, robot::JointType::Revolute};
+        for (int j = 0; j < 6; ++j) {
+            robot::ChainJoint joint;
+            joint.type = types[j];
+            joint.antecedent = antecedents[j];
+            joint.rotation = Eigen::AngleAxisd(3.0 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+            joint.position = 0.3 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+            joint.axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+            tree.joints.push_back(joint);
+            tree.joint_coulomb.push_back({robot::CoulombModel::SmoothAtan, 3.0 + j});
+        }
+        tree.gravity = Eigen::Vector3d(1.0, -2.0, -9.0);
+        tree.options.rotor_inertia = true;
+        tree.options.friction_offset = true;
+        models.emplace_back("tree", std::make_unique<robot::SerialRobotModel>(tree));
+        parameters.push_back(Eigen::VectorXd::Random(models.back().second->parameter_count()));
+    }
+    for (std::size_t m = 0; m < models.size(); ++m) {
+        const std::string& name = models[m].first;
+        const robot::RobotModel& model = *models[m].second;
+        const int n = model.joint_count(), p = model.parameter_count();
+        const Eigen::VectorXd& x = parameters[m];
+        const auto central = excite::make_regressor_derivatives(model, excite::DerivativeRoute::CentralDifferences);
+        ASSERT_EQ(central->route(), excite::DerivativeRoute::CentralDifferences) << name;
         std::mt19937_64 rng(9);
         std::uniform_real_distribution<double> u(-1.0, 1.0);
-        for (int trial = 0; trial < 5; ++trial) {
-            Eigen::VectorXd q(n), qd(n), qdd(n);
-            for (int j = 0; j < n; ++j) q[j] = 0.5 * u(rng), qd[j] = 2.0 * u(rng), qdd[j] = 5.0 * u(rng);
-            Eigen::MatrixXd H(n, p);
-            for (Eigen::Index i = 0; i < H.size(); ++i) H.data()[i] = u(rng);
-            Eigen::VectorXd da, dc;
-            Eigen::MatrixXd ta, tc;
-            automatic->evaluate(q.data(), qd.data(), qdd.data(), H, x, da, ta);
-            central->evaluate(q.data(), qd.data(), qdd.data(), H, x, dc, tc);
-            EXPECT_LT((da - dc).cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, dc.cwiseAbs().maxCoeff())) << file << " trial " << trial;
-            EXPECT_LT((ta - tc).cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, tc.cwiseAbs().maxCoeff())) << file << " trial " << trial;
+        for (const auto route : {excite::DerivativeRoute::Adjoint, excite::DerivativeRoute::Automatic}) {
+            const auto exact = excite::make_regressor_derivatives(model, route);
+            ASSERT_EQ(exact->route(), route) << name;
+            for (int trial = 0; trial < 5; ++trial) {
+                Eigen::VectorXd q(n), qd(n), qdd(n);
+                for (int j = 0; j < n; ++j) q[j] = 0.5 * u(rng), qd[j] = 2.0 * u(rng), qdd[j] = 5.0 * u(rng);
+                Eigen::MatrixXd H(n, p);
+                for (Eigen::Index i = 0; i < H.size(); ++i) H.data()[i] = u(rng);
+                Eigen::VectorXd de, dc;
+                Eigen::MatrixXd te, tc;
+                exact->evaluate(q.data(), qd.data(), qdd.data(), H, x, de, &te);
+                central->evaluate(q.data(), qd.data(), qdd.data(), H, x, dc, &tc);
+                const std::string what = name + " " + excite::to_string(route) + " trial " + std::to_string(trial);
+                ASSERT_EQ(de.size(), 3 * n) << what;
+                ASSERT_EQ(te.rows(), n) << what;
+                ASSERT_EQ(te.cols(), 3 * n) << what;
+                EXPECT_LT((de - dc).cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, dc.cwiseAbs().maxCoeff())) << what;
+                EXPECT_LT((te - tc).cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, tc.cwiseAbs().maxCoeff())) << what;
+                // Without the torque's derivatives, the same dphi.
+                Eigen::VectorXd alone;
+                exact->evaluate(q.data(), qd.data(), qdd.data(), H, x, alone, nullptr);
+                EXPECT_EQ(alone, de) << what;
+            }
         }
     }
+    // A model that is not a serial robot takes central differences whatever the route asked.
+    const auto planar = robot::make_robot_model(robot::load_robot_description(std::string(JACOBID_SOURCE_DIR) + "/examples/robots/planar2r.yaml"));
+    ASSERT_EQ(dynamic_cast<const robot::SerialRobotModel*>(planar.get()), nullptr);
+    EXPECT_EQ(excite::make_regressor_derivatives(*planar, excite::DerivativeRoute::Adjoint)->route(), excite::DerivativeRoute::CentralDifferences);
 }
 
 TEST(ParameterScales, PriorValueOrATenthOfItsKindsPhysicalScale) {

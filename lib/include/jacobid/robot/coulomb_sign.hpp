@@ -21,6 +21,12 @@ struct CoulombSign {
         if (model == CoulombModel::SmoothAtan) return 0.63661977236758134308 * std::atan(alpha * velocity);
         return velocity > 0.0 ? 1.0 : (velocity < 0.0 ? -1.0 : 0.0);
     }
+    // d/d velocity of the above: 2/pi alpha / (1 + (alpha qd)^2) smoothed; 0 for sign(qd) (flat on either side).
+    double slope(double velocity) const noexcept {
+        if (model != CoulombModel::SmoothAtan) return 0.0;
+        const double a = alpha * velocity;
+        return 0.63661977236758134308 * alpha / (1.0 + a * a);
+    }
 };
 
 }  // namespace jacobid::robot

@@ -132,7 +132,8 @@ public:
         return RegressorStatus::Ok;
     }
 
-private:
+    // The pieces of the regressor, public for its adjoint (rnea_regressor_adjoint.hpp), which differentiates
+    // the same forward pass and wrench matrices rather than a copy of them.
     // Kinematics of one link frame: w, wd, vd in the link frame; orientation, origin and joint axis in the base frame.
     struct LinkState {
         Eigen::Matrix3d R;  // link frame in the antecedent frame, at q
@@ -213,6 +214,7 @@ private:
         return K;
     }
 
+private:
     KinematicChain<N> chain_;
     Eigen::Vector3d gravity_;
     StandardParameterOptions options_;
