@@ -9,6 +9,8 @@
 #    ASan and UBSan lose no checks at -O2. That work is in the libraries (jacobid::host); the test
 #    executables' own sources are compiled at -O1 (tests/CMakeLists.txt, JACOBID_TEST_OPTIMIZATION).
 #  - no benchmarks, no examples: the sanitizer run does not run them (scripts/sanitize-test.sh).
+#  - shared libraries (JACOBID_SHARED_LIBRARIES, CMakeLists.txt): a change to one library source relinks that
+#    library only, not the ~150 ASan test executables that link it.
 #  - Debug build type without NDEBUG: assert() and Eigen's index and size checks stay on.
 #  - -gline-tables-only: file:line in every stack trace without the full debug info's compile time.
 #  - -fno-sanitize-recover=all: every UBSan finding aborts (fails its test or its fuzz run).
@@ -29,7 +31,7 @@ configure_hardening() {
     -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only" -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
-    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_EXAMPLES=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_PYTHON=OFF >/dev/null
+    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_EXAMPLES=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_PYTHON=OFF -DJACOBID_SHARED_LIBRARIES=ON >/dev/null
 }
 
 # Leaks inside system libraries we cannot fix (urdfdom on a cyclic URDF), each documented in the file.

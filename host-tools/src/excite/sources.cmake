@@ -2,7 +2,7 @@
 # Excitation trajectories (jacobid excite; included by host-tools/CMakeLists.txt when NLopt is found): an
 # internal library, not installed (so that jacobid::host's users do not need NLopt), linked by the command
 # line and the tests.
-add_library(jacobid_excite STATIC
+add_library(jacobid_excite ${JACOBID_LIBRARY_KIND}
   ${CMAKE_CURRENT_LIST_DIR}/fourier_trajectory.cpp
   ${CMAKE_CURRENT_LIST_DIR}/information_criterion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/parameter_scales.cpp
