@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/kernel_options.hpp"
+#include "options/kernel_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -8,10 +8,10 @@
 #include <type_traits>
 
 #include "cli/command.hpp"
-#include "cli/option_checks.hpp"
+#include "options/option_checks.hpp"
 #include "jacobid/kernel_design.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 namespace {
 // Host-side bound on kernel length: 10 million taps is far beyond any useful window and keeps a typo
@@ -151,4 +151,4 @@ std::vector<double> design_kernel_or_throw(const KernelParams& params) {
     return weights;
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options
