@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "options/option_checks.hpp"
 #include "core/same_file.hpp"
 #include "identify/drive_gains.hpp"

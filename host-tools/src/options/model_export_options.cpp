@@ -4,7 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "options/option_checks.hpp"
 #include "options/output_file.hpp"
 

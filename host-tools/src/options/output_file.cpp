@@ -10,7 +10,7 @@
 #include <fstream>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "core/same_file.hpp"
 
 namespace jacobid::options {
