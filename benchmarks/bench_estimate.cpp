@@ -16,21 +16,21 @@
 #include <random>
 #include <vector>
 
-#include "cli/kernel_options.hpp"
+#include "options/kernel_options.hpp"
 #include "signal/differentiation.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app("bench_estimate: jacobi_estimate timed on a long record");
     std::size_t samples = 10'000'000;
     int repeat = 7;
-    jacobid::cli::KernelOptions options;
+    jacobid::options::KernelOptions options;
     app.add_option("--samples", samples, "record length");
     app.add_option("--repeat", repeat, "timed runs (the median is reported)");
-    jacobid::cli::add_kernel_options(&app, options, true, true);
+    jacobid::options::add_kernel_options(&app, options, true, true);
     CLI11_PARSE(app, argc, argv);
 
-    const jacobid::KernelParams params = jacobid::cli::to_kernel_params(options);
-    const std::vector<double> weights = jacobid::cli::design_kernel_or_throw(params);
+    const jacobid::KernelParams params = jacobid::options::to_kernel_params(options);
+    const std::vector<double> weights = jacobid::options::design_kernel_or_throw(params);
     // The same record as the Python side: a 1 Hz sine plus uniform noise (the values do not change the cost).
     std::vector<double> x(samples);
     std::mt19937_64 rng(1);

@@ -36,17 +36,20 @@ __all__ = [
 def identify(robot=None, log=None, validate=None, truth=None, *extra, **options):
     """Identify the base dynamic parameters of ``robot`` from ``log``, as ``jacobid identify --format json``.
 
-    robot: a :class:`Robot` or the path of its description. log and validate: a path (CSV, or a raw log with
-    ``log_format=``), a tuple ``(t, q, tau)`` of numpy arrays (t in s; q, tau samples x joints), or the dict
-    :func:`simulate` returns. truth: the true values (a dict name -> value, simulate's result or its --truth
-    JSON file) added to each parameter. options: identify's options as keywords (method="both", bandwidth=5,
-    cutoff=50, estimator="didim", weighting="ols", torque_delay=0, log_format=..., on_gap="interpolate",
-    time_column="t", quiet=True ...).
+    The command line's own identify job runs, so every feature and number is the command's. robot: a
+    :class:`Robot` or the path of its description. log: a path (CSV, a raw log with ``log_format=``, a candump
+    capture with ``can_config=``), a tuple ``(t, q, tau)`` of numpy arrays (t in s; q, tau samples x joints),
+    the dict :func:`simulate` returns, or a list of these identified together (``--in a --in b``). validate: one
+    log of those kinds. truth: the true values (a dict name -> value, simulate's result or its --truth JSON
+    file) added to each parameter. options: identify's options as keywords (docs/python.md lists them all:
+    method="both", bandwidth=5, cutoff=50, estimator="didim", weighting="ols", torque_delay=0, log_format=...,
+    on_gap="split", period="auto", physical=True, essential=10, report="dir", export_robot="r.yaml",
+    drive_gains=True with loaded=..., threads=2, quiet=True ...).
 
     Returns the CLI's JSON as a dict: parameters (name -> value, std, rel_std_percent, identified, truth),
     parameter_order, cond, equations, sigma_rho, residual_rms, pipeline, torque_delay, validation (with validate),
-    methods (every method's result), log, model ... (docs/identify.md).
-    One continuous log: --on-gap split, --period, --physical, --essential and the reports are the command line's.
+    segments, period, physical, essential, warnings, methods (every method's result), log, logs, model ...
+    (docs/identify.md).
     """
     return _jacobid._identify(robot, log, validate, truth, *extra, **options)
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// lib/ through the host's checked wrappers: kernel options are parsed by the CLI's definitions (cli/kernel_options),
+// lib/ through the host's checked wrappers: kernel options are parsed by the CLI's definitions (options/kernel_options),
 // so a bad value raises the message `jacobid kernel` prints. Every argument is taken as a plain Python object and
 // checked by the module's one layer (checked_array for arrays, parse_keywords for everything else, the scalar
 // arguments given by position included), so pybind11 never converts (or refuses) a user's value itself.
@@ -12,9 +12,9 @@
 #include <memory>
 
 #include "bindings.hpp"
-#include "cli/kernel_description.hpp"
-#include "cli/kernel_options.hpp"
-#include "cli/option_checks.hpp"
+#include "options/kernel_description.hpp"
+#include "options/kernel_options.hpp"
+#include "options/option_checks.hpp"
 #include "cli_arguments.hpp"
 #include "core/errors.hpp"
 #include "json_to_python.hpp"
@@ -39,19 +39,19 @@ py::dict with_arguments(const py::kwargs& keywords, std::initializer_list<std::p
 // The kernel of `jacobid kernel` options given as keywords (order, kappa, mu, q, window, ts, xi, discretization)
 // to `function`, whose own `arguments` are named among its keywords.
 KernelParams kernel_params(const py::dict& keywords, const std::string& function, const std::vector<std::string>& arguments = {}) {
-    cli::KernelOptions options;
+    options::KernelOptions options;
     CLI::App app("", function);
-    cli::add_kernel_options(&app, options, true, true);
+    options::add_kernel_options(&app, options, true, true);
     app.get_option("--window")->required();
     parse_keywords(app, keywords, arguments);
-    return cli::to_kernel_params(options);
+    return options::to_kernel_params(options);
 }
 
 py::dict kernel(const py::args& extra, const py::kwargs& keywords) {
     refuse_extra_positional("kernel", extra, {});
     const KernelParams p = kernel_params(keywords, "kernel");
-    std::vector<double> weights = cli::design_kernel_or_throw(p);
-    py::dict d = to_python(cli::describe_kernel(p, weights));
+    std::vector<double> weights = options::design_kernel_or_throw(p);
+    py::dict d = to_python(options::describe_kernel(p, weights));
     d["weights"] = owning_array(std::move(weights));
     return d;
 }
@@ -61,7 +61,7 @@ py::dict frequency_response(const py::object& weights_value, const py::object& t
     refuse_extra_positional("frequency_response", extra, {"weights", "ts", "frequencies"});
     double ts = 0.0;
     CLI::App app("", "frequency_response");
-    app.add_option("--ts", ts)->check(cli::positive_number())->required();
+    app.add_option("--ts", ts)->check(options::positive_number())->required();
     parse_keywords(app, with_arguments(keywords, {{"ts", ts_value}}), {"weights", "frequencies"});
     const DoubleArray weights = checked_array(weights_value, "weights", Layout::Samples);
     const DoubleArray frequencies = checked_array(frequencies_value, "frequencies", Layout::Samples);
@@ -98,7 +98,7 @@ PyEstimate differentiate(const py::object& x_value, const py::args& extra, const
     refuse_extra_positional("differentiate", extra, {"x"});
     const KernelParams p = kernel_params(keywords, "differentiate", {"x"});
     const DoubleArray x = checked_array(x_value, "x", Layout::Samples);
-    const std::vector<double> weights = cli::design_kernel_or_throw(p);
+    const std::vector<double> weights = options::design_kernel_or_throw(p);
     const Span<const double> samples = samples_of(x);
     signal::Estimate e;
     {
@@ -117,10 +117,10 @@ PyEstimate butterworth_euler(const py::object& x_value, const py::object& ts_val
     int order = 1;
     std::size_t crop = 0;
     CLI::App app("", "butterworth_euler");
-    app.add_option("--ts", ts)->check(cli::positive_number())->required();
+    app.add_option("--ts", ts)->check(options::positive_number())->required();
     app.add_option("--butterworth", spec)->required();
-    app.add_option("--order", order)->check(cli::whole_number_in(0, 2));
-    app.add_option("--crop", crop)->check(cli::whole_number_from(0));
+    app.add_option("--order", order)->check(options::whole_number_in(0, 2));
+    app.add_option("--crop", crop)->check(options::whole_number_from(0));
     parse_keywords(app, with_arguments(keywords, {{"ts", ts_value}, {"butterworth", spec_value}, {"order", order_value}, {"crop", crop_value}}), {"x"});
     const signal::ButterworthEuler bw = signal::parse_butterworth_spec(spec, "butterworth", ts);
     const DoubleArray x = checked_array(x_value, "x", Layout::Samples);
@@ -216,13 +216,13 @@ std::unique_ptr<Bank> bank_of(int joints) {
 // options; windows=(T0, T1, T2) gives each channel its own window.
 std::unique_ptr<Bank> make_bank(const py::object& joints_value, const py::args& extra, const py::kwargs& keywords) {
     refuse_extra_positional("Bank", extra, {"joints"});
-    cli::KernelOptions options;
+    options::KernelOptions options;
     int joints = 0;
     std::vector<double> windows;
     CLI::App app("", "Bank");
-    cli::add_kernel_options(&app, options, true, true);
-    app.add_option("--joints", joints)->check(cli::whole_number_in(1, kMaxJoints))->required();
-    app.add_option("--windows", windows)->delimiter(',')->check(cli::positive_number());
+    options::add_kernel_options(&app, options, true, true);
+    app.add_option("--joints", joints)->check(options::whole_number_in(1, kMaxJoints))->required();
+    app.add_option("--windows", windows)->delimiter(',')->check(options::positive_number());
     parse_keywords(app, with_arguments(keywords, {{"joints", joints_value}}));
     if (app.count("--order") != 0) throw InputError("order: a bank has one kernel per order (0, 1, 2); give window or windows");
     if (app.count("--window") != 0 && app.count("--windows") != 0) throw InputError("--window and --windows: give one of them");
@@ -233,10 +233,10 @@ std::unique_ptr<Bank> make_bank(const py::object& joints_value, const py::args& 
     std::unique_ptr<Bank> bank = bank_of<1>(joints);
     KernelParams channels[kChannelCount];
     for (int c = 0; c < kChannelCount; ++c) {
-        cli::KernelOptions channel = options;
+        options::KernelOptions channel = options;
         channel.order = c;
         if (!windows.empty()) channel.window = windows[static_cast<std::size_t>(c)];
-        channels[c] = cli::to_kernel_params(channel);
+        channels[c] = options::to_kernel_params(channel);
     }
     const BankConfigResult r = bank->configure(channels);
     if (r.status != BankStatus::Ok) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // jacobid::host: the library calls of `jacobid simulate`, `identify` and `diagnose` on one continuous log, with
-// their options given as keywords and parsed by the command line's own definitions (cli/*_options), and their
+// their options given as keywords and parsed by the command line's own definitions (options/*_options), and their
 // results converted from the host library's JSON producers, so the names and values are the CLI's. Arguments are
 // plain Python objects checked by the module's one layer (python_values, numpy_views, cli_arguments) before
 // anything is read or computed.
@@ -13,16 +13,17 @@
 #include <memory>
 
 #include "bindings.hpp"
-#include "cli/diagnose_options.hpp"
-#include "cli/fit_options.hpp"
-#include "cli/log_format_options.hpp"
-#include "cli/output_file.hpp"
-#include "cli/simulation_options.hpp"
+#include "options/diagnose_options.hpp"
+#include "job/identify_job.hpp"
+#include "options/drive_gains_options.hpp"
+#include "options/identify_options.hpp"
+#include "options/log_format_options.hpp"
+#include "options/output_file.hpp"
+#include "options/simulation_options.hpp"
 #include "cli_arguments.hpp"
 #include "core/errors.hpp"
 #include "diagnose/diagnose_log.hpp"
 #include "diagnose/diagnosis_report.hpp"
-#include "identify/identify_run.hpp"
 #include "identify/least_squares.hpp"
 #include "identify/log_columns.hpp"
 #include "identify/report.hpp"
@@ -58,7 +59,7 @@ Robot load_robot(const py::object& path, const py::args& extra, const py::kwargs
         r.description = robot::default_planar2r_description();
     } else {
         const std::string file = path_text(path, "path");
-        cli::check_outputs({}, {{"--robot", file}});
+        options::check_outputs({}, {{"--robot", file}});
         r.description = robot::load_robot_description(file);
     }
     r.model = robot::make_robot_model(r.description);
@@ -82,19 +83,19 @@ std::vector<std::string> joint_field(const Robot& r, std::string robot::JointDes
 
 py::dict simulate(const py::object& robot_value, const py::args& extra, const py::kwargs& keywords) {
     refuse_extra_positional("simulate", extra, {"robot"});
-    cli::SimulationOptions o;
+    options::SimulationOptions o;
     CLI::App app("", "simulate");
-    cli::add_simulation_options(&app, o);
+    options::add_simulation_options(&app, o);
     parse_keywords(app, keywords, {"robot"});
     const Robot r = robot_of(robot_value);
     const robot::RobotModel& model = *r.model;
     const int n = model.joint_count();
     const Eigen::VectorXd x = robot::simulated_parameters(r.description, model);
     // In the order of `jacobid simulate`: the sensors, the description's controller, then the checked settings.
-    const sim::MeasurementSettings ms = cli::measurement_settings(o, n);
-    cli::apply_controller(r.description, o);
-    o.settings = cli::simulation_settings(o);
-    cli::refuse_oversized_simulation(o.settings, 8.0 * (1.0 + 6.0 * n));  // t + q, tau, q_ref, qd_ref per joint, doubles
+    const sim::MeasurementSettings ms = options::measurement_settings(o, n);
+    options::apply_controller(r.description, o);
+    o.settings = options::simulation_settings(o);
+    options::refuse_oversized_simulation(o.settings, 8.0 * (1.0 + 6.0 * n));  // t + q, tau, q_ref, qd_ref per joint, doubles
     sim::MeasurementModel measurement(ms);
     const std::size_t total = sim::simulated_sample_count(o.settings);
     const auto joints = static_cast<std::size_t>(n);
@@ -137,15 +138,15 @@ py::dict simulate(const py::object& robot_value, const py::args& extra, const py
 // --- logs: a file read as the CLI reads --in, or numpy arrays t, q, tau -------------------------------------
 
 struct LogKeywords {
-    cli::LogFormatOptions log_format;
+    options::LogFormatOptions log_format;
     std::string time_column = "t";
     double time_tolerance = io::kDefaultTimeTolerance;
     bool quiet = false;
 };
 
 void add_log_keywords(CLI::App& app, LogKeywords& o) {
-    cli::add_log_format_options(&app, o.log_format);
-    cli::add_time_tolerance_option(&app, o.time_tolerance);
+    options::add_log_format_options(&app, o.log_format);
+    options::add_time_tolerance_option(&app, o.time_tolerance);
     app.add_option("--time-column", o.time_column, "name of the time column (s)");
     app.add_flag("--quiet", o.quiet, "no progress messages on stderr");
 }
@@ -211,70 +212,85 @@ io::CsvTable read_log(const Robot& r, const py::handle& source, const LogKeyword
         throw InputError(fmt::format("{}: expected a path, a tuple (t, q, tau) or simulate()'s result, got {}", option, type_name(source)));
     }
     const std::string path = path_text(source, option);
-    cli::check_outputs({}, {{option, path}, {"--log-format", o.log_format.file}});
-    return cli::read_log_table(path, o.log_format, cli::robot_column_names(r.description, o.time_column), o.quiet, period);
+    options::check_outputs({}, {{option, path}, {"--log-format", o.log_format.file}});
+    return options::read_log_table(path, o.log_format, options::robot_column_names(r.description, o.time_column), o.quiet, period);
 }
 
-// --- identify -----------------------------------------------------------------------------------------------
+// --- identify ----------------------------------------------------------------------------------------------
 
-struct IdentifyKeywords : cli::FitOptions {
-    LogKeywords log;
-    std::string method = "jacobi";
-    std::string velocity;  // measured | jacobi | butterworth; empty: the method's own
-};
+// A log of identify (job/identify_inputs.hpp): a path, read by the job as --in reads it (--log-format, --on-gap
+// split, --can-config, in pieces when long), or arrays made into a table here. `option` names it in messages.
+job::LogSource log_source(const Robot& r, const py::handle& source, const std::string& time_column, const std::string& option) {
+    if (is_path(source)) return {path_text(source, option), std::nullopt};
+    LogKeywords arrays;
+    arrays.time_column = time_column;
+    return {option, read_log(r, source, arrays, option)};
+}
+
+// identify's `log`: one log, or a list of logs identified together (--in a --in b): a list whose items are logs
+// themselves (paths, (t, q, tau) tuples, simulate()'s dicts), where a list of three arrays is one (t, q, tau) log.
+bool several_logs(const py::handle& value) {
+    if (!py::isinstance<py::list>(value) && !py::isinstance<py::tuple>(value)) return false;
+    const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
+    if (items.size() == 0) return true;
+    const py::handle first = items[0];
+    if (is_path(first) || py::isinstance<py::dict>(first)) return true;
+    // A (t, q, tau) log as the first of several: itself a sequence whose first item (t) is a sequence; the t of one
+    // log is a sequence of numbers.
+    if (!py::isinstance<py::tuple>(first) && !py::isinstance<py::list>(first)) return false;
+    const py::sequence log = py::reinterpret_borrow<py::sequence>(first);
+    return log.size() == 3 && py::hasattr(log[0], "__len__");
+}
 
 py::dict identify(const py::object& robot_value, const py::object& source, const py::object& validation, const py::object& truth,
                   const py::args& extra, const py::kwargs& keywords) {
     refuse_extra_positional("identify", extra, {"robot", "log", "validate", "truth"});
-    IdentifyKeywords o;
+    options::IdentifyOptions o;
     CLI::App app("", "identify");
-    cli::add_fit_options(&app, o);
-    add_log_keywords(app, o.log);
-    app.add_option("--method", o.method)->check(CLI::IsMember({"jacobi", "butterworth", "both"}));
-    app.add_option("--velocity", o.velocity)->check(CLI::IsMember({"measured", "jacobi", "butterworth"}));
+    options::add_identify_options(&app, o);
     parse_keywords(app, keywords, {"robot", "log", "validate", "truth"});
+    options::finish_identify_options(o);
     const Robot r = robot_of(robot_value);
-    o.pipeline.exact_discretization = o.discretization == "exact";
-    // One continuous log (--on-gap split, --period, --physical, --essential: the command line).
-    cli::refuse_split(o.log.log_format, "the Python module's identify");
     const robot::RobotModel& model = *r.model;
-    // Before the log is read: a wrong truth is refused at once.
+    o.robot = r.description.source;
+    // Before the logs are read: a wrong truth is refused at once.
     const std::map<std::string, double> truth_by_name = truth.is_none() ? std::map<std::string, double>{} : truth_values(truth, model.parameter_names());
-    const auto parse_start = std::chrono::steady_clock::now();
-    const io::CsvTable table = read_log(r, source, o.log, "--in");
-    const identify::LogColumns log = identify::log_columns(table, r.description, o.log.time_column, o.log.time_tolerance);
-    const double parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - parse_start).count();
-    std::unique_ptr<io::CsvTable> validation_table;
-    identify::LogColumns validation_log;
-    if (!validation.is_none()) {
-        validation_table = std::make_unique<io::CsvTable>(read_log(r, validation, o.log, "--validate"));
-        validation_log = identify::log_columns(*validation_table, r.description, o.log.time_column, o.log.time_tolerance);
+    std::vector<job::LogSource> logs;
+    if (several_logs(source)) {
+        const py::sequence items = py::reinterpret_borrow<py::sequence>(source);
+        if (items.size() == 0) throw InputError("log: an empty list; expected a log or a list of logs");
+        for (std::size_t k = 0; k < items.size(); ++k) logs.push_back(log_source(r, items[k], o.time_column, fmt::format("--in[{}]", k)));
+    } else {
+        logs.push_back(log_source(r, source, o.time_column, "--in"));
     }
-    identify::ReportContext ctx;
-    ctx.log_source = source_name(source, "--in");
-    ctx.model_name = model.model_name();
-    ctx.joint_names = joint_field(r, &robot::JointDescription::name);
-    if (!truth.is_none()) ctx.truth = truth_by_name;
-
-    std::vector<identify::MethodResult> results;
+    for (const job::LogSource& l : logs) o.inputs.push_back(l.name);
+    std::optional<job::LogSource> validation_log;
+    if (!validation.is_none()) {
+        validation_log = log_source(r, validation, o.time_column, "--validate");
+        o.validate = validation_log->name;
+    }
+    job::check_identify_files(o, r.description, {});
+    if (o.drive_gains.enabled) {
+        if (logs.size() != 1 || logs.front().table) throw InputError("drive_gains: give the unloaded run as log (one path) and the loaded one as loaded");
+        const std::vector<std::pair<std::string, bool>> given = {{"validate", !validation.is_none()}, {"report", !o.report.empty()},
+                                                                 {"truth", !truth.is_none()}, {"essential", o.essential_flag},
+                                                                 {"physical", o.physical || o.semi_physical}, {"can_config", !o.can_config.empty()},
+                                                                 {"velocity", !o.velocity.empty()}, {"export_urdf / export_robot", o.model_export.any()},
+                                                                 {"period", !o.period.empty()}};
+        std::string text;
+        {
+            py::gil_scoped_release unlocked;
+            job::resolve_threads(o);
+            text = options::run_drive_gains(r.description, model, o.drive_gains, o, o.method,
+                                            {o.first_input(), "json", o.time_column, o.time_tolerance, o.quiet, &o.log_format, given});
+        }
+        return to_python(nlohmann::json::parse(text));
+    }
+    nlohmann::json j;
     {
         py::gil_scoped_release unlocked;
-        for (const identify::Method m : cli::methods_of(o.method)) {
-            const identify::PipelineSettings settings = cli::method_pipeline(o.pipeline, m, o.velocity, o.method);
-            const identify::IdentifySettings resolved = cli::identify_settings(o, m);
-            identify::IdentifiedLog fit = identify::identify_log(r.description, model, log, {settings, resolved.solve, cli::given_torque_delay(o), resolved.estimator});
-            identify::MethodResult& result = fit.result;
-            if (!validation.is_none()) identify::validate_log(fit.smoothed.get(model), validation_log, settings, o.pipeline.min_joint_motion, result);
-            results.push_back(std::move(result));
-        }
+        j = job::to_json(job::run_identify(r.description, model, o, std::move(logs), std::move(validation_log), truth_by_name));
     }
-    for (const auto& result : results) identify::require_finite_solution(result.solution, ctx.log_source);
-    // The layout of `jacobid identify --format json`: the first method at the top level, every method under "methods".
-    nlohmann::json j = identify::to_json(results.front(), ctx);
-    for (const auto& result : results) j["methods"][identify::to_string(result.info.method)] = identify::to_json(result, ctx);
-    j["log"] = ctx.log_source;
-    j["model"] = model.model_name();
-    j["parse_seconds"] = parse_seconds;
     return to_python(j);
 }
 
@@ -287,15 +303,15 @@ py::dict diagnose(const py::object& robot_value, const py::object& source, const
     bool no_delay = false;
     LogKeywords o;
     CLI::App app("", "diagnose");
-    cli::add_diagnose_search_options(&app, settings, no_delay);
+    options::add_diagnose_search_options(&app, settings, no_delay);
     add_log_keywords(app, o);
     parse_keywords(app, keywords, {"robot", "log", "validate"});
     const Robot r = robot_of(robot_value);
-    cli::refuse_split(o.log_format, "diagnose");
+    options::refuse_split(o.log_format, "diagnose");
     const robot::RobotModel& model = *r.model;
     const io::CsvTable table = read_log(r, source, o, "--in");
     const identify::LogColumns log = identify::log_columns(table, r.description, o.time_column, o.time_tolerance);
-    cli::refuse_oversized_search(settings, log, model);
+    options::refuse_oversized_search(settings, log, model);
     std::unique_ptr<io::CsvTable> validation_table;
     identify::LogColumns validation_log;
     if (!validation.is_none()) {

@@ -9,9 +9,9 @@
 #include <memory>
 
 #include "cli/command.hpp"
-#include "cli/kernel_options.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
+#include "options/kernel_options.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
 #include "plot/gnuplot.hpp"
 #include "signal/baseline_response.hpp"

@@ -12,7 +12,12 @@ namespace CLI {
 class App;
 }
 
+namespace jacobid::options {}  // the option declarations the commands share (host-tools/src/options/)
+
 namespace jacobid::cli {
+
+// The commands are written in terms of the shared option declarations, which the Python module uses too.
+using namespace jacobid::options;
 
 void add_kernel_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);

@@ -10,10 +10,10 @@
 #include <utility>
 
 #include "cli/command.hpp"
-#include "cli/kernel_options.hpp"
-#include "cli/log_format_options.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
+#include "options/kernel_options.hpp"
+#include "options/log_format_options.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "jacobid/frequency_response.hpp"

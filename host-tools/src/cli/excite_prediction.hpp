@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/log_format_options.hpp"
+#include "options/log_format_options.hpp"
 #include "excite/information_criterion.hpp"
 #include "excite/motion_information.hpp"
 #include "robot/robot_description.hpp"

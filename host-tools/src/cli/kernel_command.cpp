@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
-#include "cli/kernel_description.hpp"
-#include "cli/kernel_options.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
+#include "options/kernel_description.hpp"
+#include "options/kernel_options.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
 
 namespace jacobid::cli {

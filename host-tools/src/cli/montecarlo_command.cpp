@@ -10,11 +10,11 @@
 #include <thread>
 
 #include "cli/command.hpp"
-#include "cli/fit_options.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
-#include "cli/robot_files.hpp"
-#include "cli/simulation_options.hpp"
+#include "options/fit_options.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
+#include "options/robot_files.hpp"
+#include "options/simulation_options.hpp"
 #include "montecarlo/study.hpp"
 #include "montecarlo/study_report.hpp"
 #include "robot/robot_description.hpp"

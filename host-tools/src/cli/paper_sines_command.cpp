@@ -13,9 +13,9 @@
 #include <random>
 
 #include "cli/command.hpp"
-#include "cli/kernel_options.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
+#include "options/kernel_options.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
 #include "jacobid/frequency_response.hpp"
 #include "jacobid/kernel_design.hpp"
 #include "plot/gnuplot.hpp"

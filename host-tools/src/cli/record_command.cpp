@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "cli/command.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
 #include "core/same_file.hpp"
 #include "stream/recorder.hpp"
 #include "stream/udp_receiver.hpp"

@@ -15,10 +15,10 @@
 #include <memory>
 
 #include "cli/command.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/simulation_options.hpp"
-#include "cli/output_file.hpp"
-#include "cli/robot_files.hpp"
+#include "options/option_checks.hpp"
+#include "options/simulation_options.hpp"
+#include "options/output_file.hpp"
+#include "options/robot_files.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/simulated_parameters.hpp"
 #include "io/candump_writer.hpp"

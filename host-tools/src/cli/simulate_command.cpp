@@ -11,11 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.hpp"
-#include "cli/log_format_options.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
-#include "cli/robot_files.hpp"
-#include "cli/simulation_options.hpp"
+#include "options/log_format_options.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
+#include "options/robot_files.hpp"
+#include "options/simulation_options.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/simulated_parameters.hpp"
 #include "sim/augmented_model.hpp"

@@ -14,4 +14,4 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/diagnose_log.cpp
 )
 target_sources(jacobid PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/diagnose_command.cpp)
-target_sources(jacobid_cli_support PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/diagnose_options.cpp)
+target_sources(jacobid_options PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../options/diagnose_options.cpp)

@@ -37,7 +37,7 @@ std::string meaning(const std::string& kind) {
 }
 
 // Whether it overwrites an input (the description's own files hold the prior) or the other export, and
-// whether its directory exists, is the output guard's (cli/output_file.hpp, check_outputs); here only what
+// whether its directory exists, is the output guard's (options/output_file.hpp, check_outputs); here only what
 // is particular to an export.
 void check_path(const char* option, const std::string& path) {
     if (path == "-") throw InputError(fmt::format("{} -: expected a file path (standard output carries the report)", option));

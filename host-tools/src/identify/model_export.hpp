@@ -28,7 +28,7 @@ struct ModelExportPaths {
 // Before identifying: InputError for a model without standard parameters (planar2r), --export-urdf with a
 // description that is not a URDF model, or '-'. A path over an input (the description's own YAML or URDF: the
 // prior would be lost; a log) or over the other export, or in a missing directory, is refused by the
-// command's output guard (cli/output_file.hpp, check_outputs).
+// command's output guard (options/output_file.hpp, check_outputs).
 void check_model_export(const ModelExportPaths& paths, const robot::RobotDescription& description);
 
 struct ExportedModel {

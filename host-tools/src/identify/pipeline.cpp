@@ -4,9 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <exception>
 #include <functional>
 #include <map>
 #include <cmath>
@@ -14,20 +12,18 @@
 
 #include "core/errors.hpp"
 #include "core/free_memory.hpp"
-#include "core/huge_pages.hpp"
 #include "core/parallel_for.hpp"
 #include "identify/bandwidth.hpp"
-#include "identify/running_qr.hpp"
+#include "identify/pipeline_fold.hpp"
 #include "identify/state_source.hpp"
 #include "identify/torque_smoothing.hpp"
 #include "jacobid/baseline/butterworth.hpp"
 #include "jacobid/baseline/euler_difference.hpp"
-#include "jacobid/baseline/filtfilt.hpp"
 #include "jacobid/frequency_response.hpp"
 #include "jacobid/kernel_design.hpp"
 #include "signal/baseline_response.hpp"
 #include "signal/fft_convolver.hpp"
-#include "signal/interleaved_filtfilt.hpp"
+#include "signal/kernel_design_checked.hpp"
 
 namespace jacobid::identify {
 namespace {
@@ -54,27 +50,16 @@ std::size_t odd_taps_for_window(double window, double ts) {
     return taps;
 }
 
-std::vector<double> design_or_throw(KernelParams p) {
-    std::vector<double> w(tap_count(p));
-    const KernelStatus status = design_kernel(p, Span<double>(w));
-    if (status != KernelStatus::Ok) throw InputError(fmt::format("Jacobi order-{} differentiator: {}", p.order, describe(status)));
-    return w;
+std::vector<double> design_or_throw(const KernelParams& p) {
+    return signal::design_kernel_or_throw(p, [&](KernelStatus) { return fmt::format("Jacobi order-{} differentiator", p.order); });
 }
 
-void filtfilt_or_throw(const Lowpass& sos, const double* x, double* y, std::size_t n, std::vector<double>& workspace) {
-    workspace.resize(sosfiltfilt_workspace_size(sos));
-    const FilterStatus status = sosfiltfilt(sos, Span<const double>(x, n), Span<double>(y, n), Span<double>(workspace));
-    if (status != FilterStatus::Ok) throw InputError(fmt::format("zero-phase filter on {} samples: {}", n, describe(status)));
-}
+// The largest window searched for a cutoff: the log's length, within 2 000 001 taps.
+std::size_t max_taps_for(std::size_t samples) { return std::max<std::size_t>(std::min<std::size_t>(samples, 2'000'001), 3); }
 
 // A Jacobi velocity kernel (the pipeline's kappa, mu, q) whose cutoff is closest to `cutoff`.
 std::vector<double> coulomb_velocity_kernel(const PipelineSettings& s, double ts, std::size_t n, double cutoff) {
-    std::vector<double> scratch(std::max<std::size_t>(std::min<std::size_t>(n, 2'000'001), 3));
-    KernelParams p = jacobi_params(s, 1, ts);
-    const WindowDesign d = window_for_cutoff(p, cutoff, true, Span<double>(scratch));
-    if (d.status != KernelStatus::Ok) throw InputError(fmt::format("Coulomb velocity window design: {}", describe(d.status)));
-    p.window = d.window;
-    return design_or_throw(p);
+    return signal::kernel_for_cutoff_or_throw(jacobi_params(s, 1, ts), cutoff, max_taps_for(n), "Coulomb velocity window design");
 }
 
 // s'_j(0): the slope at qd = 0 of joint j's Coulomb column s(alpha qd); 0 when the model has no FCj column or
@@ -140,7 +125,7 @@ double coulomb_noise_gain(const PipelineSettings& s, const PipelineInfo& info, d
     std::vector<double> x(2 * half + 1, 0.0), y(x.size()), d(x.size());
     x[half] = 1.0;
     std::vector<double> w;
-    filtfilt_or_throw(f, x.data(), y.data(), x.size(), w);
+    signal::filtfilt_or_throw(f, x.data(), y.data(), x.size(), w);
     euler_first_derivative(Span<const double>(y), ts, Span<double>(d));
     for (std::size_t k = 1; k + 1 < d.size(); ++k) sum += d[k] * d[k];
     return std::sqrt(sum);
@@ -237,8 +222,7 @@ PipelineInfo plan_pipeline(const LogColumns& log, const PipelineSettings& s) {
     info.differentiator_cutoff = std::min(info.differentiator_cutoff, 0.4 * fs);
     if (s.method == Method::Jacobi) {
         // Windows: explicit, or the odd tap count whose cutoff is closest to the wanted one.
-        const std::size_t max_taps = std::max<std::size_t>(std::min<std::size_t>(n, 2'000'001), 3);
-        std::vector<double> scratch(max_taps);
+        std::vector<double> scratch(max_taps_for(n));
         auto window_for = [&](int order, double explicit_window) {
             if (explicit_window > 0.0) return static_cast<double>(odd_taps_for_window(explicit_window, ts) - 1) * ts;
             const WindowDesign d = window_for_cutoff(jacobi_params(s, order, ts), info.differentiator_cutoff, true, Span<double>(scratch));
@@ -345,8 +329,8 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
         for (std::size_t j = 0; j < joints; ++j) {
             e.q[j].resize(n);
             e.tau[j].resize(n);
-            filtfilt_or_throw(fq, log.q[j]->data(), e.q[j].data(), n, workspace);
-            filtfilt_or_throw(fq, log.tau[j]->data(), e.tau[j].data(), n, workspace);
+            signal::filtfilt_or_throw(fq, log.q[j]->data(), e.q[j].data(), n, workspace);
+            signal::filtfilt_or_throw(fq, log.tau[j]->data(), e.tau[j].data(), n, workspace);
             euler_first_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qd[j]));
             euler_second_derivative(Span<const double>(e.q[j]), ts, Span<double>(e.qdd[j]));
         }
@@ -360,7 +344,7 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
                 const double cutoff = coulomb_cutoff(s, info, ts, ratios[j]);
                 const Lowpass fc = signal::design_butterworth_or_throw(s.butterworth_order, cutoff, ts, "Coulomb velocity prefilter");
                 info.coulomb_velocity_cutoffs[j] = cutoff;
-                filtfilt_or_throw(fc, log.q[j]->data(), qf.data(), n, workspace);
+                signal::filtfilt_or_throw(fc, log.q[j]->data(), qf.data(), n, workspace);
                 euler_first_derivative(Span<const double>(qf), ts, Span<double>(e.qd_coulomb[j]));
             }
         }
@@ -385,7 +369,7 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
                                              measured->size(), n));
             }
             if (s.method == Method::Butterworth) {
-                filtfilt_or_throw(fq, measured->data(), e.qd[j].data(), n, workspace);
+                signal::filtfilt_or_throw(fq, measured->data(), e.qd[j].data(), n, workspace);
                 continue;
             }
             std::vector<double> out(n - smoothing.size() + 1);
@@ -412,12 +396,6 @@ StateEstimates estimate_states(const LogColumns& log, const PipelineSettings& s,
     info.seconds_differentiate = seconds_since(start);
     return e;
 }
-
-namespace {
-// Steps 2-4 (regressor, F_p, decimation, factors) on the estimates `states` gives chunk by chunk.
-PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, PipelineInfo planned,
-                           const StateSource& states, RowSink* sink);
-}  // namespace
 
 PipelineOutput run_pipeline(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, RowSink* sink) {
     PipelineInfo info = plan_pipeline(log, s);
@@ -446,405 +424,5 @@ PipelineOutput fold_states(const robot::RobotModel& model, const LogColumns& log
                            const StateEstimates& e, RowSink* sink) {
     return fold_source(model, log, s, std::move(planned), HeldStates(e), sink);
 }
-
-namespace {
-
-// One chunk's columns (every joint's regressor columns and torque) in one block, `stride` samples apart:
-// 318 vectors of 0.3 MB for a 6-axis robot were each a separate mapping that glibc returned to the kernel
-// at the end of every identification, so every run faulted its 90 MB in again 4 KB at a time; one block
-// is reused by every chunk and can be backed by huge pages (core/huge_pages.hpp).
-// Only the columns that have held a nonzero value get a slot in the block: a serial robot's joint j row is
-// zero for the parameters of the links before j and for the other joints' friction, about half of the
-// PUMA 560's 318 columns (93 MB of an hour's 140 MB plateau above the log). A column without a slot reads
-// as zeros, which is what the regressor wrote into it before.
-class ChunkColumns {
-public:
-    static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
-    explicit ChunkColumns(std::size_t columns) : slot_(columns, kNoSlot) {}
-    // Gives `column` a slot; the block must be fitted again before the next write (its contents are lost).
-    void add(std::size_t column) {
-        if (slot_[column] == kNoSlot) slot_[column] = slots_++;
-    }
-    bool has(std::size_t column) const { return slot_[column] != kNoSlot; }
-    // Room for `samples` per slotted column; the contents are not kept (every chunk writes its columns whole).
-    void fit(std::size_t samples) {
-        if (samples <= stride_ && slots_ == fitted_slots_) return;
-        stride_ = std::max(stride_, samples);
-        fitted_slots_ = slots_;
-        storage_ = std::vector<double>();
-        storage_.reserve(slots_ * stride_);
-        advise_huge_pages(storage_);  // before the first write, which faults the pages in
-        storage_.resize(slots_ * stride_);
-    }
-    // The column's samples, nullptr without a slot.
-    double* operator[](std::size_t column) { return has(column) ? storage_.data() + slot_[column] * stride_ : nullptr; }
-    // Sample i of the column (0 without a slot).
-    double at(std::size_t column, std::size_t i) const { return has(column) ? storage_[slot_[column] * stride_ + i] : 0.0; }
-
-private:
-    std::vector<std::size_t> slot_;  // per column
-    std::size_t slots_ = 0, fitted_slots_ = 0, stride_ = 0;
-    std::vector<double> storage_;
-};
-
-PipelineOutput fold_source(const robot::RobotModel& model, const LogColumns& log, const PipelineSettings& s, PipelineInfo planned,
-                           const StateSource& states, RowSink* sink) {
-    PipelineOutput out;
-    out.info = std::move(planned);
-    PipelineInfo& info = out.info;
-    // Columns with memory (presliding friction): their state integrated once along the whole log's raw
-    // positions, then written into every row before F_p, so they are filtered and decimated like the rest.
-    const auto history_size = static_cast<std::size_t>(model.history_size());
-    std::vector<double> history;
-    model.integrate_history(log.q, history);
-
-    const int joints = model.joint_count();
-    const int c = model.parameter_count();
-    const double fs = 1.0 / log.sample_period;
-    const Lowpass fp = signal::design_butterworth_or_throw(s.decimation_order, info.decimation_cutoff, log.sample_period, "decimation filter F_p");
-    // Margin: F_p's impulse response decays as exp(-0.38 * 2 pi fc t) for order 4 (slowest pole); 16 / fc
-    // seconds bring a chunk boundary's transient below 1e-16 whatever the order up to 16.
-    const auto margin = static_cast<std::size_t>(std::ceil(16.0 * fs / info.decimation_cutoff * std::max(1.0, s.decimation_order / 4.0)));
-    const std::size_t a0 = info.first, a1 = info.last;
-    std::size_t keep0 = a0 + info.crop, keep1 = a1 - info.crop;
-    if (s.kept_to > s.kept_from) {
-        if (s.kept_from < keep0 || s.kept_to > keep1) {
-            throw InputError(fmt::format("{}: the samples to keep [{}, {}) reach into the differentiator and F_p transients (valid [{}, {}))",
-                                         log.source, s.kept_from, s.kept_to, keep0, keep1));
-        }
-        keep0 = s.kept_from;
-        keep1 = s.kept_to;
-    }
-    const std::size_t d = static_cast<std::size_t>(info.decimation);
-    const std::size_t chunk = std::max(s.chunk, 4 * margin);
-
-    std::vector<RunningQr> qr;
-    std::vector<LaggedProducts> lagged;  // residual autocorrelation, for the std (residual_correlation.hpp)
-    for (int j = 0; j < joints; ++j) {
-        qr.emplace_back(c + 1);
-        lagged.emplace_back(c + 1, s.residual_lags);
-    }
-    const std::size_t columns = static_cast<std::size_t>(joints) * static_cast<std::size_t>(c + 1);
-    return_freed_memory();  // the set-up's whole-log temporaries, before the fold's own buffers
-    ChunkColumns buffer(columns);
-    for (int j = 0; j < joints; ++j) buffer.add(static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(c));
-    // The columns that hold a value at a few arbitrary states get their slots now, so that the first chunk
-    // is not written twice (a short log is one or two chunks); a column found later gets its slot then.
-    {
-        Eigen::MatrixXd D(joints, c);
-        std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs), state(history_size, 0.5);
-        for (int probe = 0; probe < 3; ++probe) {
-            for (int j = 0; j < joints; ++j) {
-                qs[static_cast<std::size_t>(j)] = 0.37 + 1.13 * probe + 0.71 * j;
-                qds[static_cast<std::size_t>(j)] = 0.9 - 0.53 * probe + 0.29 * j;
-                qdds[static_cast<std::size_t>(j)] = -1.7 + 0.83 * probe + 0.47 * j;
-            }
-            model.regressor(qs.data(), qds.data(), qdds.data(), D);
-            if (history_size > 0) model.history_columns(state.data(), D);
-            for (int j = 0; j < joints; ++j) {
-                for (int p = 0; p < c; ++p) {
-                    if (D(j, p) != 0.0) buffer.add(static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(p));
-                }
-            }
-        }
-    }
-    // Work split over threads (settings.threads) in three stages per chunk: the regressor by sample ranges,
-    // F_p by columns, the running QR by joints. Each piece of arithmetic is the same whatever the thread
-    // count (no sum is split), so the result is identical bit for bit.
-    const int threads = std::max(1, s.threads);
-    ParallelForOptions pool;
-    pool.threads = threads;
-    std::vector<std::vector<double>> workspaces(static_cast<std::size_t>(threads));
-    std::vector<signal::InterleavedFiltfilt> lane_filters(static_cast<std::size_t>(threads), signal::InterleavedFiltfilt(fp));
-    std::vector<char> column_used(columns);
-    // Per regressor range: the columns without a slot that it found nonzero (ChunkColumns).
-    std::vector<std::vector<char>> unslotted_nonzero(static_cast<std::size_t>(threads), std::vector<char>(columns, 0));
-    std::vector<std::size_t> used_columns;
-    auto run_or_rethrow = [&](std::size_t jobs, const std::function<void(std::size_t)>& job) {
-        for (const auto& error : parallel_for(jobs, pool, job)) {
-            if (error) std::rethrow_exception(error);
-        }
-    };
-    // The estimates of the chunk's samples (and of the Coulomb filter's reach around them).
-    StateWindow window;
-    // One sample's state for a regressor call, with the velocity from `qd` (window.qd, or the Coulomb columns' own).
-    auto load_state = [&](std::size_t k, const std::vector<std::vector<double>>& qd, std::vector<double>& qs, std::vector<double>& qds,
-                          std::vector<double>& qdds) {
-        const std::size_t i = k - window.from;
-        for (std::size_t j = 0; j < qs.size(); ++j) {
-            qs[j] = window.q[j][i];
-            qds[j] = qd[j][i];
-            qdds[j] = window.qdd[j][i];
-        }
-    };
-    std::vector<int> coulomb_columns;  // RobotModel::coulomb_column_indices, when their velocity is given (StateEstimates::qd_coulomb)
-    std::vector<std::vector<double>> coulomb_raw;
-    const std::size_t full_length = states.samples();
-    const std::vector<double>& torque_fir = states.torque_fir();
-    Lowpass coulomb_fq{};
-    if (states.has_coulomb_velocity()) {
-        coulomb_columns = model.coulomb_column_indices();
-        coulomb_raw.resize(coulomb_columns.size() * static_cast<std::size_t>(joints));
-        if (torque_fir.empty()) {
-            coulomb_fq = signal::design_butterworth_or_throw(s.butterworth_order, info.prefilter_cutoff, log.sample_period, "Butterworth prefilter");
-        }
-    }
-    std::vector<double> row(static_cast<std::size_t>(c + 1));
-    out.plot.y.resize(static_cast<std::size_t>(joints));
-    out.plot.w.resize(static_cast<std::size_t>(joints));
-    DecimatedRow decimated;
-    std::vector<const double*> torque_piece(static_cast<std::size_t>(joints));
-    if (sink) {
-        decimated.w.resize(joints, c);
-        decimated.y.resize(joints);
-        decimated.q.resize(joints);
-        decimated.qd.resize(joints);
-        decimated.qdd.resize(joints);
-    }
-    double regressor_seconds = 0.0, ls_seconds = 0.0;
-    int reported_tenth = 0;
-    struct SlottedEntry {
-        std::size_t entry;  // in D's storage
-        double* column;     // the chunk's samples of its column
-    };
-    struct UnslottedEntry {
-        std::size_t entry, column;
-    };
-    std::vector<SlottedEntry> slotted;
-    std::vector<UnslottedEntry> unslotted;
-    // Decimated samples are k = a0 + m d; the first kept one is the first such k >= keep0.
-    for (std::size_t c0 = keep0; c0 < keep1; c0 += chunk) {
-        const std::size_t c1 = std::min(keep1, c0 + chunk);
-        const std::size_t e0 = c0 >= a0 + margin ? c0 - margin : a0;
-        const std::size_t e1 = std::min(a1, c1 + margin);
-        const std::size_t len = e1 - e0;
-        const auto t0 = Clock::now();
-        // The Coulomb columns are filtered like the torque: their estimates reach `reach` samples further.
-        const bool fir = !torque_fir.empty();
-        const std::size_t reach = coulomb_columns.empty() ? 0 : fir ? (torque_fir.size() - 1) / 2 : info.first;
-        const std::size_t x0 = e0 >= reach ? e0 - reach : 0, x1 = std::min(full_length, e1 + reach), xlen = x1 - x0;
-        states.load(x0, x1, window, pool);
-        const auto ranges = static_cast<std::size_t>(threads);
-        const std::size_t regressor_ranges = model.concurrent_regressor() ? ranges : 1;
-        // The chunk's columns are written again when one of them holds its first nonzero value (it then
-        // gets a slot): rarely, the probe above has given most of them theirs.
-        for (bool slots_added = true; slots_added;) {
-            buffer.fit(len);
-            // Where each entry of a sample's regressor D goes, worked out once per chunk rather than per entry
-            // (6 x 52 branches per sample; without them, 5.4 % fewer instructions for a PUMA log, callgrind): the
-            // columns with a slot are copied, the others only checked for a first nonzero value.
-            slotted.clear();
-            unslotted.clear();
-            for (int j = 0; j < joints; ++j) {
-                const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                for (int p = 0; p < c; ++p) {
-                    const std::size_t col = base + static_cast<std::size_t>(p);
-                    const auto entry = static_cast<std::size_t>(p) * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j);  // D is column-major
-                    if (double* x = buffer[col]) {
-                        slotted.push_back({entry, x});
-                    } else {
-                        unslotted.push_back({entry, col});
-                    }
-                }
-            }
-            run_or_rethrow(regressor_ranges, [&](std::size_t range) {
-                Eigen::MatrixXd D(joints, c);
-                std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
-                for (std::size_t i = len * range / regressor_ranges; i < len * (range + 1) / regressor_ranges; ++i) {
-                    const std::size_t k = e0 + i;
-                    load_state(k, window.qd, qs, qds, qdds);
-                    model.regressor(qs.data(), qds.data(), qdds.data(), D);
-                    if (history_size > 0) model.history_columns(history.data() + k * history_size, D);
-                    const double* entries = D.data();
-                    for (const SlottedEntry& e : slotted) e.column[i] = entries[e.entry];
-                    for (const UnslottedEntry& e : unslotted) {
-                        if (entries[e.entry] != 0.0) unslotted_nonzero[range][e.column] = 1;
-                    }
-                    for (int j = 0; j < joints; ++j) {
-                        const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                        buffer[base + static_cast<std::size_t>(c)][i] = window.tau[static_cast<std::size_t>(j)][k - window.from];
-                    }
-                }
-            });
-            if (!coulomb_columns.empty()) {
-                // The Coulomb columns s(alpha qd) on the wider velocity, then through the torque's own filter
-                // (StateEstimates::qd_coulomb), on [e0, e1) plus the filter's reach on each side.
-                // Storage only where the column has a slot (a Coulomb column is zero outside its own joint's row);
-                // a nonzero value elsewhere gives it one, as in the regressor above.
-                const auto coulomb_column_of = [&](std::size_t ci, std::size_t j) {
-                    return j * static_cast<std::size_t>(c + 1) + static_cast<std::size_t>(coulomb_columns[ci]);
-                };
-                for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
-                    for (std::size_t j = 0; j < static_cast<std::size_t>(joints); ++j) {
-                        auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + j];
-                        if (buffer.has(coulomb_column_of(ci, j))) {
-                            raw.resize(xlen);
-                        } else {
-                            std::vector<double>().swap(raw);
-                        }
-                    }
-                }
-                // The Coulomb columns evaluated again per sample (RobotModel::coulomb_columns: alone for the serial
-                // models, the whole regressor otherwise), split by sample ranges over the threads like the regressor.
-                run_or_rethrow(regressor_ranges, [&](std::size_t range) {
-                    Eigen::MatrixXd D(joints, c);
-                    std::vector<double> qs(static_cast<std::size_t>(joints)), qds(qs), qdds(qs);
-                    for (std::size_t k = x0 + xlen * range / regressor_ranges; k < x0 + xlen * (range + 1) / regressor_ranges; ++k) {
-                        load_state(k, window.qd_coulomb, qs, qds, qdds);
-                        model.coulomb_columns(qs.data(), qds.data(), qdds.data(), D);
-                        for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
-                            for (int j = 0; j < joints; ++j) {
-                                auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
-                                const double value = D(j, coulomb_columns[ci]);
-                                if (!raw.empty()) {
-                                    raw[k - x0] = value;
-                                } else if (value != 0.0) {
-                                    unslotted_nonzero[range][coulomb_column_of(ci, static_cast<std::size_t>(j))] = 1;
-                                }
-                            }
-                        }
-                    }
-                });
-                std::vector<double> filtered(xlen);
-                for (std::size_t ci = 0; ci < coulomb_columns.size(); ++ci) {
-                    for (int j = 0; j < joints; ++j) {
-                        const auto& raw = coulomb_raw[ci * static_cast<std::size_t>(joints) + static_cast<std::size_t>(j)];
-                        double* target = buffer[coulomb_column_of(ci, static_cast<std::size_t>(j))];
-                        // A filter of zeros is zeros (and a column without a slot has no raw values: it held none).
-                        if (std::all_of(raw.begin(), raw.end(), [](double v) { return v == 0.0; })) {
-                            if (target) std::fill(target, target + (e1 - e0), 0.0);
-                            continue;
-                        }
-                        std::size_t shift = 0;  // filtered[m] belongs to sample x0 + m + shift
-                        if (fir) {
-                            const BatchStatus status = signal::differentiate_batch(Span<const double>(torque_fir), Span<const double>(raw),
-                                                                                   Span<double>(filtered.data(), xlen - torque_fir.size() + 1));
-                            if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log.source, describe(status)));
-                            shift = reach;
-                        } else {
-                            filtfilt_or_throw(coulomb_fq, raw.data(), filtered.data(), xlen, workspaces[0]);
-                        }
-                        for (std::size_t k = e0; k < e1; ++k) target[k - e0] = filtered[k - x0 - shift];
-                    }
-                }
-            }
-            slots_added = false;
-            for (auto& found : unslotted_nonzero) {
-                for (std::size_t col = 0; col < columns; ++col) {
-                    if (!found[col]) continue;
-                    found[col] = 0;
-                    buffer.add(col);
-                    slots_added = true;
-                }
-            }
-        }
-        // F_p on every column that holds anything (a column of zeros, e.g. a link's parameter in an earlier
-        // joint's row, filters to zeros and stays as the regressor wrote it), kFiltfiltLanes columns at a
-        // time (interleaved_filtfilt.hpp: each column's numbers are sosfiltfilt's, whatever its block).
-        run_or_rethrow(ranges, [&](std::size_t t) {
-            for (std::size_t col = t; col < columns; col += ranges) {
-                const double* x = buffer[col];
-                column_used[col] = x != nullptr && std::any_of(x, x + len, [](double v) { return v != 0.0; });
-            }
-        });
-        used_columns.clear();
-        for (std::size_t col = 0; col < columns; ++col) {
-            if (column_used[col]) used_columns.push_back(col);
-        }
-        const std::size_t blocks = (used_columns.size() + signal::kFiltfiltLanes - 1) / signal::kFiltfiltLanes;
-        run_or_rethrow(ranges, [&](std::size_t t) {
-            std::array<double*, signal::kFiltfiltLanes> signals{};
-            for (std::size_t b = t; b < blocks; b += ranges) {
-                const std::size_t from = b * signal::kFiltfiltLanes;
-                const std::size_t count = std::min(signal::kFiltfiltLanes, used_columns.size() - from);
-                for (std::size_t l = 0; l < count; ++l) signals[l] = buffer[used_columns[from + l]];
-                lane_filters[t].filter_in_place(signals.data(), count, len);
-            }
-        });
-        const auto t1 = Clock::now();
-        regressor_seconds += std::chrono::duration<double>(t1 - t0).count();
-        if (sink) {
-            // Each chunk hands out its kept samples [c0, c1); the first chunk also its leading margin and the
-            // last its trailing one, which start at a0 and end at a1 (margin > crop), so the pieces tile
-            // [a0, a1) once, every sample taken where its chunk's transients have died out.
-            const std::size_t lo = c0 == keep0 ? e0 : c0, hi = c1 == keep1 ? e1 : c1;
-            for (int j = 0; j < joints; ++j) {
-                const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                torque_piece[static_cast<std::size_t>(j)] = buffer[base + static_cast<std::size_t>(c)] + (lo - e0);
-            }
-            sink->filtered_torque(lo, hi - lo, torque_piece);
-        }
-        const std::size_t first_kept = c0 + (d - (c0 - a0) % d) % d;
-        // Each joint's rows into its own running QR and lagged products (one joint per job, rows in order).
-        run_or_rethrow(static_cast<std::size_t>(joints), [&](std::size_t j) {
-            const std::size_t base = j * static_cast<std::size_t>(c + 1);
-            std::vector<double> joint_row(static_cast<std::size_t>(c + 1));
-            for (std::size_t k = first_kept; k < c1; k += d) {
-                for (int p = 0; p <= c; ++p) joint_row[static_cast<std::size_t>(p)] = buffer.at(base + static_cast<std::size_t>(p), k - e0);
-                qr[j].add_row(joint_row.data());
-                lagged[j].add_row(joint_row.data());
-            }
-        });
-        for (std::size_t k = first_kept; k < c1 && (sink || out.plot.t.size() < s.plot_rows); k += d) {
-            const std::size_t i = k - e0;
-            const bool keep_for_plot = out.plot.t.size() < s.plot_rows;
-            const double t = log.start_time + static_cast<double>(k) * log.sample_period;
-            if (keep_for_plot) out.plot.t.push_back(t);
-            for (int j = 0; j < joints; ++j) {
-                const std::size_t base = static_cast<std::size_t>(j) * static_cast<std::size_t>(c + 1);
-                for (int p = 0; p <= c; ++p) row[static_cast<std::size_t>(p)] = buffer.at(base + static_cast<std::size_t>(p), i);
-                if (keep_for_plot) {
-                    out.plot.y[static_cast<std::size_t>(j)].push_back(row[static_cast<std::size_t>(c)]);
-                    out.plot.w[static_cast<std::size_t>(j)].insert(out.plot.w[static_cast<std::size_t>(j)].end(), row.begin(), row.end() - 1);
-                }
-                if (sink) {
-                    const auto js = static_cast<std::size_t>(j);
-                    for (int p = 0; p < c; ++p) decimated.w(j, p) = row[static_cast<std::size_t>(p)];
-                    decimated.y[j] = row[static_cast<std::size_t>(c)];
-                    decimated.q[j] = window.q[js][k - window.from];
-                    decimated.qd[j] = window.qd[js][k - window.from];
-                    decimated.qdd[j] = window.qdd[js][k - window.from];
-                }
-            }
-            if (sink) {
-                decimated.sample = k;
-                decimated.t = t;
-                sink->row(decimated);
-            }
-        }
-        ls_seconds += seconds_since(t1);
-        if (s.progress && keep1 - keep0 > 10 * chunk) {
-            // One line per tenth: readable in a terminal and in a CI log alike.
-            const auto tenth = static_cast<int>(10 * (c1 - keep0) / (keep1 - keep0));
-            if (tenth > reported_tenth) {
-                reported_tenth = tenth;
-                fmt::print(stderr, "identify [{}]: regressor + F_p {} %\n", to_string(s.method), 10 * tenth);
-            }
-        }
-    }
-    const auto t2 = Clock::now();
-    for (auto& f : qr) {
-        out.factors.r.push_back(f.r());
-        out.factors.rows.push_back(f.rows());
-    }
-    if (s.residual_lags > 0) {
-        for (auto& l : lagged) out.factors.lagged.push_back(l.gamma());
-    }
-    ls_seconds += seconds_since(t2);
-    info.seconds_regressor_filter = regressor_seconds;
-    info.seconds_ls = ls_seconds;
-    std::size_t equations = 0;
-    for (auto r : out.factors.rows) equations += r;
-    if (s.require_own_equations && equations <= static_cast<std::size_t>(c)) {
-        throw InputError(fmt::format("{}: only {} equations after decimation for {} parameters: the log is too short", log.source, equations, c));
-    }
-    if (s.progress) {
-        fmt::print(stderr, "identify [{}]: regressor + F_p {:.2f} s, LS {:.2f} s, {} equations\n", to_string(s.method), regressor_seconds,
-                   ls_seconds, equations);
-    }
-    return out;
-}
-
-}  // namespace
 
 }  // namespace jacobid::identify

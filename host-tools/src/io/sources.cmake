@@ -11,4 +11,4 @@ target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/nonuniform_jacobi.cpp
 )
 target_link_libraries(jacobid_host_base PRIVATE $<BUILD_INTERFACE:jacobid_yaml>)
-target_sources(jacobid_cli_support PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/log_format_options.cpp)
+target_sources(jacobid_options PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../options/log_format_options.cpp)

@@ -166,7 +166,7 @@ TEST(DriveGains, BadInputIsRefusedWithOneLine) {
     for (const std::string mass : {"0", "-1"}) {
         const auto bad = run_command(base + " --loaded " + log + " --payload-mass " + mass);
         EXPECT_NE(bad.exit_code, 0);
-        // Checked where the option is parsed (cli/option_checks), naming the option and the value refused.
+        // Checked where the option is parsed (options/option_checks), naming the option and the value refused.
         EXPECT_NE(bad.err.find("--payload-mass: expected a finite number > 0, got '" + mass + "'"), std::string::npos) << bad.err;
     }
     const auto inertia = run_command(base + " --loaded " + log + " --payload-mass 1 --payload-inertia 1,0,0,1,0,1");

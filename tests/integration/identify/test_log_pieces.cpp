@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// identify on a CSV log longer than one piece (issue 18, cli/streamed_log.hpp): the log is read and identified
+// identify on a CSV log longer than one piece (issue 18, job/streamed_log.hpp): the log is read and identified
 // piece by piece, consecutive pieces sharing one row. Checked against the same rows written by the test as
 // separate files and given as several logs (identify --in a --in b --in c, test_several_logs.cpp checks
 // that path against stacked least squares), against the whole log (only the seams and the first piece's

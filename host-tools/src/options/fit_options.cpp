@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/fit_options.hpp"
+#include "options/fit_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "cli/option_checks.hpp"
+#include "options/option_checks.hpp"
 #include "core/errors.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 void add_fit_options(CLI::App* cmd, FitOptions& o) {
     add_pipeline_rate_options(cmd, o.pipeline);
@@ -154,4 +154,4 @@ identify::PipelineSettings method_pipeline(const identify::PipelineSettings& com
     return settings;
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/streamed_log.hpp"
+#include "job/streamed_log.hpp"
 
 #include <fmt/core.h>
 
@@ -9,7 +9,7 @@
 #include "core/errors.hpp"
 #include "identify/log_columns.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::job {
 
 PieceSize piece_size_for(std::size_t estimated_rows, std::uint64_t data_bytes, std::size_t kept, std::size_t given) {
     if (given > 0) return {given, 0};
@@ -103,4 +103,4 @@ identify::NextSegment StreamedLog::rest(double first_period, std::vector<identif
     };
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::job

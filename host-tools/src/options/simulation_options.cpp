@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: MIT
-#include "cli/simulation_options.hpp"
+#include "options/simulation_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <cmath>
 
-#include "cli/option_checks.hpp"
+#include "options/option_checks.hpp"
 #include "core/errors.hpp"
 #include "robot/robot_description.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 namespace {
 
 // Simulated logs beyond these sizes are typos (--duration 1e12), not experiments: a billion log samples is
@@ -138,4 +138,4 @@ sim::MeasurementSettings measurement_settings(const SimulationOptions& o, int jo
     return ms;
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
-#include "cli/diagnose_options.hpp"
+#include "options/diagnose_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <cmath>
 
-#include "cli/fit_options.hpp"
-#include "cli/option_checks.hpp"
+#include "options/fit_options.hpp"
+#include "options/option_checks.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 void add_diagnose_search_options(CLI::App* cmd, diagnose::DiagnoseSettings& settings, bool& no_delay) {
     cmd->add_option("--alpha", settings.selection.alpha, "significance level of each step (Bonferroni over all candidates tried)")
@@ -55,4 +55,4 @@ void refuse_oversized_search(const diagnose::DiagnoseSettings& settings, const i
                      "lower --max-cogging-order");
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

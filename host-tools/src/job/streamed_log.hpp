@@ -17,7 +17,7 @@
 #include "io/csv_pieces.hpp"
 #include "robot/robot_description.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::job {
 
 // The kept columns of one piece take at most this much (the automatic --piece-rows): with the six-axis
 // pipeline's own ~140 MB, an hour of 1 kHz PUMA 560 data in one piece and ten hours in ten stay under
@@ -75,4 +75,4 @@ private:
     bool several_ = false;
 };
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::job

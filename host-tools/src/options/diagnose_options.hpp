@@ -11,7 +11,7 @@ namespace CLI {
 class App;
 }
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 void add_diagnose_search_options(CLI::App* cmd, diagnose::DiagnoseSettings& settings, bool& no_delay);
 
@@ -21,4 +21,4 @@ void add_diagnose_search_options(CLI::App* cmd, diagnose::DiagnoseSettings& sett
 void refuse_oversized_search(const diagnose::DiagnoseSettings& settings, const identify::LogColumns& log, const robot::RobotModel& model,
                              std::size_t total_samples = 0);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

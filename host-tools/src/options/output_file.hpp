@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 // A file a command reads or writes, with the option that named it ("--in", "-o", ...).
 struct NamedPath {
@@ -23,6 +23,8 @@ struct NamedPath {
 void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_list<NamedPath> inputs = {});
 // The same with a list of inputs built at run time (identify --in a --in b ...).
 void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<NamedPath>& inputs);
+// And with a list of outputs built at run time (the identify job's files beside its caller's --output).
+void check_outputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs);
 
 // Checks, before any work is done, that an output folder (--report DIR) can be written: it is a directory
 // or can be created, and a file can be created in it. What the check created is removed again (the
@@ -36,4 +38,4 @@ void prepare_output_directory(const NamedPath& directory);
 // Writes `text`; a failed write, flush or close (a full disk, /dev/full) is an InputError.
 void write_output(const std::string& path, const std::string& text);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "cli/kernel_description.hpp"
+#include "options/kernel_description.hpp"
 
 #include "jacobid/frequency_response.hpp"
 #include "jacobid/kernel_design.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 nlohmann::json describe_kernel(const KernelParams& p, const std::vector<double>& w) {
     const Cutoff cutoff = find_cutoff(Span<const double>(w), p.sample_period, p.order);
@@ -27,4 +27,4 @@ nlohmann::json describe_kernel(const KernelParams& p, const std::vector<double>&
     return j;
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -15,7 +15,7 @@
 #include <CLI/Error.hpp>  // Validators.hpp needs it first
 #include <CLI/Validators.hpp>
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 // Any finite number.
 CLI::Validator finite_number();
@@ -46,4 +46,4 @@ void refuse_oversized(const std::string& request, double count, double limit, co
 // "1.5 GB", "340 MB", "12 kB": a byte count for messages.
 std::string describe_bytes(double bytes);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

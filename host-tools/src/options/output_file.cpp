@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/output_file.hpp"
+#include "options/output_file.hpp"
 
 #include <fmt/core.h>
 
@@ -10,10 +10,10 @@
 #include <fstream>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "core/errors.hpp"
 #include "core/same_file.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 namespace fs = std::filesystem;
 
@@ -46,6 +46,10 @@ void check_outputs(std::initializer_list<NamedPath> outputs, std::initializer_li
 }
 
 void check_outputs(std::initializer_list<NamedPath> outputs, const std::vector<NamedPath>& inputs) {
+    check_outputs(std::vector<NamedPath>(outputs), inputs);
+}
+
+void check_outputs(const std::vector<NamedPath>& outputs, const std::vector<NamedPath>& inputs) {
     for (auto out = outputs.begin(); out != outputs.end(); ++out) {
         if (!given(*out)) continue;
         for (const NamedPath& in : inputs) {
@@ -125,4 +129,4 @@ void write_output(const std::string& path, const std::string& text) {
     if (!out) throw InputError(fmt::format("{}: write failed (disk full?)", path));
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

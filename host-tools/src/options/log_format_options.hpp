@@ -14,7 +14,7 @@ namespace CLI {
 class App;
 }
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 struct LogFormatOptions {
     std::string file;  // --log-format; empty: a headered CSV
@@ -54,4 +54,4 @@ void refuse_split(const LogFormatOptions& o, const std::string& command);
 // The robot description's column names (position/torque columns, qd1.. for measured velocities).
 io::LogColumnNames robot_column_names(const robot::RobotDescription& robot, const std::string& time_column);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

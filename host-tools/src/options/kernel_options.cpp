@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/kernel_options.hpp"
+#include "options/kernel_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -7,11 +7,12 @@
 #include <cmath>
 #include <type_traits>
 
-#include "cli/command.hpp"
-#include "cli/option_checks.hpp"
+#include "core/errors.hpp"
+#include "options/option_checks.hpp"
 #include "jacobid/kernel_design.hpp"
+#include "signal/kernel_design_checked.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 namespace {
 // Host-side bound on kernel length: 10 million taps is far beyond any useful window and keeps a typo
@@ -145,10 +146,7 @@ std::string kernel_label(const KernelParams& p) {
 }
 
 std::vector<double> design_kernel_or_throw(const KernelParams& params) {
-    std::vector<double> weights(tap_count(params));
-    const KernelStatus s = design_kernel(params, Span<double>(weights));
-    if (s != KernelStatus::Ok) throw InputError(fmt::format("{}: {}", option_for(s), describe(s)));
-    return weights;
+    return signal::design_kernel_or_throw(params, [](KernelStatus s) { return option_for(s); });
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

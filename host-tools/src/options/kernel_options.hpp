@@ -11,7 +11,7 @@ class App;
 class Option;
 }
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 struct KernelOptions {
     int order = 1;
@@ -52,4 +52,4 @@ std::string kernel_label(const KernelParams& params);
 // Designs the kernel (any length the machine can hold) or throws InputError naming the option.
 std::vector<double> design_kernel_or_throw(const KernelParams& params);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -10,7 +10,7 @@ namespace CLI {
 class App;
 }
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 void add_model_export_options(CLI::App* command, identify::ModelExportPaths& paths);
 
@@ -19,4 +19,4 @@ void add_model_export_options(CLI::App* command, identify::ModelExportPaths& pat
 nlohmann::json write_model_export(const identify::ModelExportPaths& paths, const robot::RobotDescription& description,
                                   const identify::MethodResult& result, const std::string& log_source);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
-#include "cli/model_export_options.hpp"
+#include "options/model_export_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
-#include "cli/command.hpp"
-#include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
+#include "core/errors.hpp"
+#include "options/option_checks.hpp"
+#include "options/output_file.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 namespace {
 
 void write_file(const char* option, const std::string& path, const std::string& text) {
@@ -49,4 +49,4 @@ nlohmann::json write_model_export(const identify::ModelExportPaths& paths, const
     return exported.summary;
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

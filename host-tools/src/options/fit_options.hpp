@@ -15,7 +15,7 @@ class App;
 class Option;
 }  // namespace CLI
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 struct FitOptions {
     identify::PipelineSettings pipeline;
@@ -51,4 +51,4 @@ std::vector<identify::Method> methods_of(const std::string& method_option);
 identify::PipelineSettings method_pipeline(const identify::PipelineSettings& common, identify::Method method, const std::string& velocity,
                                            const std::string& method_option);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: MIT
-#include "cli/log_format_options.hpp"
+#include "options/log_format_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <unordered_map>
 
-#include "cli/option_checks.hpp"
+#include "options/option_checks.hpp"
 #include "core/errors.hpp"
 #include "identify/log_columns.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 void add_log_format_options(CLI::App* command, LogFormatOptions& o) {
     command->add_option("--log-format", o.file,
@@ -116,4 +116,4 @@ io::LogColumnNames robot_column_names(const robot::RobotDescription& robot, cons
     return names;
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

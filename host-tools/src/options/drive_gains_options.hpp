@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "cli/fit_options.hpp"
-#include "cli/log_format_options.hpp"
+#include "options/fit_options.hpp"
+#include "options/log_format_options.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/robot_model.hpp"
 
@@ -16,7 +16,7 @@ class App;
 class Option;
 }
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 struct DriveGainOptions {
     bool enabled = false;  // --drive-gains
@@ -44,4 +44,4 @@ struct DriveGainInputs {
 std::string run_drive_gains(const robot::RobotDescription& robot, const robot::RobotModel& model, const DriveGainOptions& o, const FitOptions& fit,
                             const std::string& method, const DriveGainInputs& inputs);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

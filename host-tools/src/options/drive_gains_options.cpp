@@ -1,20 +1,20 @@
 // SPDX-License-Identifier: MIT
-#include "cli/drive_gains_options.hpp"
+#include "options/drive_gains_options.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <cmath>
 
-#include "cli/command.hpp"
-#include "cli/option_checks.hpp"
+#include "core/errors.hpp"
+#include "options/option_checks.hpp"
 #include "core/same_file.hpp"
 #include "identify/drive_gains.hpp"
 #include "identify/drive_gains_report.hpp"
 #include "identify/log_columns.hpp"
 #include "io/log_format.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 void add_drive_gain_options(CLI::App* cmd, DriveGainOptions& o) {
     cmd->add_flag("--drive-gains", o.enabled,
@@ -138,4 +138,4 @@ std::string run_drive_gains(const robot::RobotDescription& robot, const robot::R
     return in.format == "json" ? identify::drive_gains_json(result, ctx).dump(2) + "\n" : identify::drive_gains_text(result, ctx);
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

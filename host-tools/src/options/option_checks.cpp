@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "cli/option_checks.hpp"
+#include "options/option_checks.hpp"
 
 #include <fmt/core.h>
 
@@ -10,7 +10,7 @@
 
 #include "core/errors.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 namespace {
 
 // The accepted values of one option: a finite number in a range whose ends may be excluded, whole or not.
@@ -140,4 +140,4 @@ void refuse_oversized(const std::string& request, double count, double limit, co
     throw InputError(fmt::format("{}: {:.3g} {}{}, more than the {:g} this command accepts; {}", request, count, unit, cost, limit, remedy));
 }
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

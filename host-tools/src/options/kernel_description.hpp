@@ -7,8 +7,8 @@
 
 #include "jacobid/kernel_params.hpp"
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 nlohmann::json describe_kernel(const KernelParams& params, const std::vector<double>& weights);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options

@@ -18,7 +18,7 @@ namespace jacobid::robot {
 struct RobotDescription;
 }
 
-namespace jacobid::cli {
+namespace jacobid::options {
 
 struct SimulationOptions {
     sim::SimulationSettings settings;
@@ -53,4 +53,4 @@ void apply_controller(const robot::RobotDescription& description, SimulationOpti
 sim::SimulationSettings simulation_settings(const SimulationOptions& o);
 sim::MeasurementSettings measurement_settings(const SimulationOptions& o, int joints);
 
-}  // namespace jacobid::cli
+}  // namespace jacobid::options
