@@ -1,0 +1,242 @@
+// SPDX-License-Identifier: MIT
+#include "payload/payload_estimate.hpp"
+
+#include <fmt/core.h>
+
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "identify/drive_gains.hpp"
+#include "identify/torque_delay.hpp"
+#include "identify/validation.hpp"
+#include "payload/payload_rows.hpp"
+
+namespace jacobid::payload {
+namespace {
+
+constexpr int kM = 9;
+
+// Moves parameter columns with known values to the right-hand side: rhs -= value * column, in every joint's
+// factor and lagged products (a linear map T of each row, so R -> R T and Gamma -> T^T Gamma T).
+void fix_columns(identify::JointFactors& f, const std::vector<std::pair<int, double>>& fixed) {
+    if (fixed.empty()) return;
+    const Eigen::Index n = f.r.front().cols();
+    Eigen::MatrixXd t = Eigen::MatrixXd::Identity(n, n);
+    for (const auto& [k, v] : fixed) t(k, n - 1) = -v;
+    for (std::size_t j = 0; j < f.r.size(); ++j) {
+        f.r[j] = f.r[j] * t;
+        if (j < f.lagged.size()) {
+            for (auto& g : f.lagged[j]) g = t.transpose() * g * t;
+        }
+    }
+}
+
+// The point-mass prior of parameter k given the mass m and first moments ms: inertia about the origin of a
+// point mass (zero about its centre of mass); a first moment the rows miss: 0 (the centre of mass on the frame).
+double point_mass_prior(int k, double m, const Eigen::Vector3d& ms) {
+    if (k >= 6) return 0.0;
+    const Eigen::Vector3d c = ms / m;
+    const Eigen::Matrix3d i = m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    static const int rows[6] = {0, 0, 0, 1, 1, 2}, cols[6] = {0, 1, 2, 1, 2, 2};
+    return i(rows[k], cols[k]);
+}
+
+identify::LsSolution solve(const identify::JointFactors& f, const std::vector<std::string>& names, const std::vector<bool>& free,
+                           const identify::SolveOptions& base) {
+    identify::SolveOptions o = base;
+    o.active.assign(names.size(), false);
+    for (int k = 0; k < 10; ++k) o.active[static_cast<std::size_t>(k)] = free[static_cast<std::size_t>(k)];
+    return identify::solve_least_squares(f, names, o);
+}
+
+Inertial10 std_of(const Eigen::Matrix<double, 10, 10>& jac, const Matrix10& cov) {
+    return (jac * cov * jac.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
+}
+
+}  // namespace
+
+const char* to_string(Status s) {
+    switch (s) {
+        case Status::Identified: return "identified";
+        case Status::Known: return "known";
+        case Status::Prior: return "prior";
+    }
+    return "?";
+}
+
+PayloadEstimate estimate_payload(const ArmModel& arm, const identify::LogColumns& loaded, const identify::LogColumns* unloaded,
+                                 const PayloadSettings& settings) {
+    const robot::RobotModel& model = *arm.model;
+    const int joints = model.joint_count();
+    if (static_cast<int>(loaded.q.size()) != joints) {
+        throw InputError(fmt::format("--in {}: {} joints, but the arm of --arm {} has {}", loaded.source, loaded.q.size(), arm.source, joints));
+    }
+    if (!settings.gain_std.empty() && static_cast<int>(settings.gain_std.size()) != joints) {
+        throw InputError(fmt::format("--gain-std: {} values given, expected one per joint ({})", settings.gain_std.size(), joints));
+    }
+    PayloadEstimate out;
+    out.loaded_source = loaded.source;
+    out.arm_source = arm.source;
+    out.frame_name = settings.frame_name;
+    out.tool = settings.tool;
+    const identify::IdentifySettings& s = settings.identify;
+
+    // The torque delay: given, the arm's identification's, else estimated on the run the arm model describes.
+    std::optional<double> given = s.torque_delay;
+    if (!given && arm.torque_delay) given = arm.torque_delay;
+    out.delay = identify::resolve_torque_delay(model, unloaded ? *unloaded : loaded, s.pipeline, s.solve, given);
+    const identify::ShiftedTorques shifted_loaded = identify::shift_torques(loaded, out.delay.applied());
+    identify::JointFactors factors;
+
+    const Eigen::MatrixXd& regrouping = arm.serial->base().regrouping;
+    const std::vector<int> link = identify::last_link_columns(*arm.serial);
+    Eigen::MatrixXd link_columns(regrouping.rows(), 10);
+    for (int k = 0; k < 10; ++k) link_columns.col(k) = regrouping.col(link[static_cast<std::size_t>(k)]);
+
+    std::optional<AlignedPair> pair;
+    StoredRows reference;
+    identify::PipelineOutput pipeline;
+    std::string rows_source = loaded.source;
+    if (unloaded) {
+        out.unloaded_source = unloaded->source;
+        rows_source = fmt::format("{} and {}", loaded.source, unloaded->source);
+        const identify::ShiftedTorques shifted_unloaded = identify::shift_torques(*unloaded, out.delay.applied());
+        out.alignment = align_runs(shifted_loaded.log, shifted_unloaded.log);
+        pair.emplace(aligned_pair(shifted_loaded.log, shifted_unloaded.log, *out.alignment));
+        // The unloaded run decides the automatic choices; the loaded one is read with the same plan, so that the
+        // rows fall on the same samples (as identify --drive-gains reads its pair).
+        const identify::PipelineOutput first = identify::run_pipeline(model, pair->unloaded.log, s.pipeline, &reference);
+        identify::PipelineSettings same = identify::validation_settings(s.pipeline, first.info);
+        same.decimation = first.info.decimation;
+        PayloadRows rows(joints, link_columns, arm.values, s.pipeline.residual_lags, &reference);
+        pipeline = identify::run_pipeline(model, pair->loaded.log, same, &rows);
+        factors = rows.factors();
+    } else {
+        PayloadRows rows(joints, link_columns, arm.values, s.pipeline.residual_lags);
+        pipeline = identify::run_pipeline(model, shifted_loaded.log, s.pipeline, &rows);
+        factors = rows.factors();
+    }
+    out.info = pipeline.info;
+
+    std::vector<std::string> names = standard_names();
+    const auto c = static_cast<int>(arm.values.size());
+    for (int k = 0; k < c; ++k) names.push_back(model.parameter_names()[static_cast<std::size_t>(k)]);
+    for (int j = 0; j < joints; ++j) names.push_back(fmt::format("Y{}", j + 1));
+
+    std::vector<bool> free(10, true);
+    std::vector<std::pair<int, double>> fixed;
+    for (auto& st : out.status) st = Status::Identified;
+    if (settings.mass) {
+        free[kM] = false;
+        out.status[kM] = Status::Known;
+        fixed.push_back({kM, *settings.mass});
+    }
+    identify::JointFactors solved = factors;
+    fix_columns(solved, fixed);
+    out.solution = solve(solved, names, free, s.solve);
+    out.unidentifiable = out.solution.unidentifiable;
+    std::vector<int> missing;
+    for (int k = 0; k < 10; ++k) {
+        if (free[static_cast<std::size_t>(k)] && !out.solution.identified[static_cast<std::size_t>(k)]) missing.push_back(k);
+    }
+    if (!missing.empty()) {
+        const double m = settings.mass ? *settings.mass : out.solution.x[kM];
+        if (!(std::isfinite(m) && m > 0.0)) {
+            throw InputError(fmt::format("payload: the mass is not identifiable from {} (rank {} of {}): does the motion load the joints with the "
+                                         "payload's weight? Give --mass KG",
+                                         rows_source, out.solution.rank, 10 - static_cast<int>(fixed.size())));
+        }
+        Eigen::Vector3d ms;
+        for (int a = 0; a < 3; ++a) ms[a] = out.solution.identified[static_cast<std::size_t>(6 + a)] ? out.solution.x[6 + a] : 0.0;
+        for (int k : missing) {
+            free[static_cast<std::size_t>(k)] = false;
+            out.status[k] = Status::Prior;
+            fixed.push_back({k, point_mass_prior(k, m, ms)});
+        }
+        solved = factors;
+        fix_columns(solved, fixed);
+        out.solution = solve(solved, names, free, s.solve);
+    }
+    identify::require_finite_solution(out.solution, rows_source);
+    for (const auto& [k, v] : fixed) out.standard[k] = v;
+    std::vector<int> f;  // the free payload parameters
+    for (int k = 0; k < 10; ++k) {
+        if (!free[static_cast<std::size_t>(k)]) continue;
+        out.standard[k] = out.solution.x[k];
+        f.push_back(k);
+    }
+    const auto nf = static_cast<Eigen::Index>(f.size());
+    for (Eigen::Index a = 0; a < nf; ++a) {
+        for (Eigen::Index b = 0; b < nf; ++b) out.cov_noise(f[a], f[b]) = out.solution.covariance(f[a], f[b]);
+    }
+
+    // Sensitivities through the weighted Gram matrix of the solved problem.
+    const Eigen::MatrixXd r = identify::stacked_factor(solved, out.solution.joint_weights);
+    const Eigen::MatrixXd gram = r.transpose() * r;
+    Eigen::MatrixXd h(nf, nf);
+    for (Eigen::Index a = 0; a < nf; ++a) {
+        for (Eigen::Index b = 0; b < nf; ++b) h(a, b) = gram(f[a], f[b]);
+    }
+    const Eigen::LDLT<Eigen::MatrixXd> hinv(h);
+    auto sensitivity = [&](Eigen::Index column) {
+        Eigen::VectorXd g(nf);
+        for (Eigen::Index a = 0; a < nf; ++a) g[a] = gram(f[a], column);
+        return Eigen::VectorXd(hinv.solve(g));
+    };
+    out.included.push_back(fmt::format("measurement noise ({} std of identify's least squares)", identify::to_string(out.solution.std_method)));
+    if (arm.std_dev.size() == c && arm.std_dev.cwiseAbs().maxCoeff() > 0.0) {
+        for (int p = 0; p < c; ++p) {
+            const Eigen::VectorXd d = -sensitivity(10 + p) * arm.std_dev[p];
+            for (Eigen::Index a = 0; a < nf; ++a) {
+                for (Eigen::Index b = 0; b < nf; ++b) out.cov_arm(f[a], f[b]) += d[a] * d[b];
+            }
+        }
+        out.included.push_back(fmt::format("the arm's parameter std from {} (independent: identify writes no correlations){}", arm.source,
+                                           unloaded ? "; in the difference of the runs only where their motions differ" : ""));
+    } else {
+        out.left_out.push_back(fmt::format("the arm's parameter uncertainty: --arm {} gives no std (identify's --format json output does)", arm.source));
+    }
+    out.mass_gain_sensitivity.assign(static_cast<std::size_t>(joints), 0.0);
+    for (int j = 0; j < joints; ++j) {
+        const Eigen::VectorXd d = sensitivity(10 + c + j);
+        for (Eigen::Index a = 0; a < nf; ++a) {
+            if (f[a] == kM) out.mass_gain_sensitivity[static_cast<std::size_t>(j)] = d[a];
+        }
+        if (settings.gain_std.empty()) continue;
+        const double g = settings.gain_std[static_cast<std::size_t>(j)];
+        for (Eigen::Index a = 0; a < nf; ++a) {
+            for (Eigen::Index b = 0; b < nf; ++b) out.cov_gain(f[a], f[b]) += d[a] * d[b] * g * g;
+        }
+    }
+    if (settings.gain_std.empty()) {
+        out.left_out.push_back("the drive gains' uncertainty (give --gain-std, relative per joint; the mass's sensitivity to each gain is listed)");
+    } else {
+        out.included.push_back("the drive gains' relative std of --gain-std");
+    }
+
+    out.inertial = to_inertial(out.standard, settings.tool);
+    const Eigen::Matrix<double, 10, 10> jac = inertial_jacobian(out.standard, settings.tool);
+    out.std_noise = std_of(jac, out.cov_noise);
+    out.std_arm = std_of(jac, out.cov_arm);
+    out.std_gain = std_of(jac, out.cov_gain);
+    out.std_total = std_of(jac, out.covariance());
+    out.violations = consistency_violations(out.inertial);
+    for (int k = 0; k < 10; ++k) {
+        if (out.status[k] == Status::Prior) {
+            out.warnings.push_back(fmt::format("{}: not determined by the motion; fixed to the point-mass prior ({:.4g})", standard_names()[static_cast<std::size_t>(k)],
+                                               out.standard[k]));
+        }
+    }
+    if (!out.violations.empty()) out.warnings.push_back("physically inconsistent: " + out.violations.front());
+    const double rel_mass = 100.0 * out.std_total[0] / std::abs(out.inertial.mass);
+    if (!settings.mass && rel_mass > 10.0) out.warnings.push_back(fmt::format("the mass is poorly determined (%sigma {:.1f})", rel_mass));
+    // A tenth of the motion: beyond the tracking error a load changes, the runs do not follow one trajectory.
+    if (out.alignment && out.alignment->position_rms > 0.1 * out.alignment->motion_rms) {
+        out.warnings.push_back(fmt::format("the runs' positions differ by {:.3g} rad RMS after the time shift, against a motion of {:.3g} rad RMS: "
+                                           "the same trajectory?",
+                                           out.alignment->position_rms, out.alignment->motion_rms));
+    }
+    return out;
+}
+
+}  // namespace jacobid::payload
