@@ -60,6 +60,8 @@ struct PayloadEstimate {
     std::string loaded_source, unloaded_source, arm_source;
     std::vector<std::string> included, left_out;  // the std's sources
     std::vector<std::string> violations;          // physical consistency (payload_inertia.hpp)
+    // The free fit's inertia (link frame's axes) when it was not determined and the six inertias were fixed to the prior.
+    std::optional<Inertial> inertia_free_fit;
     std::vector<std::string> warnings;
     std::string frame_name;
     Eigen::Isometry3d tool = Eigen::Isometry3d::Identity();

@@ -66,8 +66,10 @@ std::string payload_text(const PayloadEstimate& e) {
         for (std::size_t i = 0; i < u.parameters.size(); ++i) combo += fmt::format("{}{:+.3g} {}", i ? " " : "", u.coefficients[i], e.solution.names[static_cast<std::size_t>(u.parameters[i])]);
         t += "not identifiable: " + combo + "\n";
     }
-    t += e.violations.empty() ? "physical consistency: mass > 0, inertia about the centre of mass positive definite, triangle inequalities hold\n"
-                              : "physical consistency: FAILS\n";
+    const bool inertia_prior = std::string(inertial_status(e, 4)) == "prior";
+    t += !e.violations.empty() ? "physical consistency: FAILS\n"
+         : inertia_prior       ? "physical consistency: mass > 0 (the inertia is the point-mass prior, not checked)\n"
+                               : "physical consistency: mass > 0, inertia about the centre of mass positive definite, triangle inequalities hold\n";
     for (const auto& w : e.warnings) t += "warning: " + w + "\n";
     return t;
 }
