@@ -2,7 +2,7 @@
 #pragma once
 // A robot description whose last link carries a payload (mass, centre of mass and inertia about it, in the last
 // link's frame): the payload's ten standard parameters added to that link's (parallel axes), as a rigid payload
-// is part of the body (docs/method.md, "Standard and base parameters"). The simulated truth of the drive-gain
+// is part of the body (docs/method.md, "Payload identification"). The simulated truth of the drive-gain
 // and payload tests.
 #include <gtest/gtest.h>
 

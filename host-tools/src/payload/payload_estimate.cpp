@@ -104,7 +104,10 @@ PayloadEstimate estimate_payload(const ArmModel& arm, const identify::LogColumns
 
     // The torque delay: given, the arm's identification's, else estimated on the run the arm model describes.
     std::optional<double> given = s.torque_delay;
-    if (!given && arm.torque_delay) given = arm.torque_delay;
+    if (!given && arm.torque_delay) {
+        given = arm.torque_delay;
+        out.delay_from_arm = true;
+    }
     out.delay = identify::resolve_torque_delay(model, unloaded ? *unloaded : loaded, s.pipeline, s.solve, given);
     const identify::ShiftedTorques shifted_loaded = identify::shift_torques(loaded, out.delay.applied());
     identify::JointFactors factors;
@@ -246,7 +249,11 @@ PayloadEstimate estimate_payload(const ArmModel& arm, const identify::LogColumns
     if (settings.gain_std.empty()) {
         out.left_out.push_back("the drive gains' uncertainty (give --gain-std, relative per joint; the mass's sensitivity to each gain is listed)");
     } else {
-        out.included.push_back("the drive gains' relative std of --gain-std");
+        // Against the arm model alone the arm is held while a gain moves, but it was identified with the same gains and
+        // would move with them: there the gains' share is an upper bound (a common gain error scales arm and payload alike).
+        out.included.push_back(unloaded ? "the drive gains' relative std of --gain-std"
+                                        : "the drive gains' relative std of --gain-std, with the arm held (an upper bound: the arm, identified with the "
+                                          "same gains, would move with them)");
     }
 
     out.inertial = to_inertial(out.standard, settings.tool);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // `jacobid payload`: the ten inertial parameters of a payload on the last link with the arm held at its
-// identified values (docs/identify.md, "Payload"; docs/method.md, "Identification").
+// identified values (docs/identify.md, "Payload"; docs/method.md, "Payload identification").
 //
 // Rows: identify's pipeline (Jacobi differentiation, F_p, decimation) on the loaded run, or on the difference of
 // the loaded and unloaded runs of one trajectory after aligning them in time (time_alignment.hpp), folded by
@@ -56,6 +56,7 @@ struct PayloadEstimate {
     std::vector<identify::Unidentifiable> unidentifiable;  // of the first solve: which combinations the rows miss
     identify::PipelineInfo info;
     identify::TorqueDelayResult delay;
+    bool delay_from_arm = false;  // the delay the arm's identification applied (its JSON), not --torque-delay's
     std::optional<Alignment> alignment;
     std::string loaded_source, unloaded_source, arm_source;
     std::vector<std::string> included, left_out;  // the std's sources

@@ -4,7 +4,7 @@
 //   - a URDF fragment: a fixed <joint> from the last link to a `payload` <link> at the output frame, whose
 //     <inertial> holds the mass, centre of mass and inertia about it (to paste into the robot's URDF);
 //   - the arm's robot description with the payload's ten standard parameters added to the last link's (a payload
-//     fixed to the last link is part of that body: docs/method.md, "Standard and base parameters"), the YAML
+//     fixed to the last link is part of that body: docs/method.md, "Payload identification"), the YAML
 //     `simulate`, `excite` and `diagnose` load (as identify --export-robot writes the arm).
 #include <string>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// A payload's inertial description two ways (docs/method.md, "Standard and base parameters"; docs/identify.md,
+// A payload's inertial description two ways (docs/method.md, "Payload identification"; docs/identify.md,
 // "Payload"):
 //   - the ten standard parameters about the last link's frame origin, in its axes, XX XY XZ YY YZ ZZ MX MY MZ M
 //     (what the regressor sees: they add to the last link's own, identify/drive_gains.hpp);

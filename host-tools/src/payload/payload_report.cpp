@@ -39,7 +39,8 @@ std::string payload_text(const PayloadEstimate& e) {
                          e.alignment->last - e.alignment->first);
     }
     t += fmt::format("pipeline: bandwidth {:.3g} Hz, F_p {:.3g} Hz, decimation {}, {} equations, {}; {}\n", e.info.bandwidth, e.info.decimation_cutoff,
-                     e.info.decimation, e.solution.equations, e.solution.weighted ? "wls" : "ols", identify::describe(e.delay));
+                     e.info.decimation, e.solution.equations, e.solution.weighted ? "wls" : "ols",
+                     e.delay_from_arm ? fmt::format("torque delay {:+.3f} ms (the arm's identification's)", 1e3 * e.delay.applied()) : identify::describe(e.delay));
     t += fmt::format("frame: {}\n\n", e.frame_name);
     t += fmt::format("{:<8} {:>12} {:>11} {:>8} {:>11} {:>11} {:>11}  {}\n", "", "value", "std", "%sigma", "noise std", "arm std", "gain std", "status");
     const char* units[10] = {"kg", "m", "m", "m", "kg.m^2", "kg.m^2", "kg.m^2", "kg.m^2", "kg.m^2", "kg.m^2"};
@@ -119,7 +120,7 @@ json payload_json(const PayloadEstimate& e) {
     j["std_method"] = identify::to_string(e.solution.std_method);
     j["relative_error_norm"] = finite(e.solution.relative_error_norm);
     j["settings"] = {{"bandwidth_hz", e.info.bandwidth}, {"decimation_cutoff_hz", e.info.decimation_cutoff}, {"decimation", e.info.decimation},
-                     {"torque_delay_applied_seconds", e.delay.applied()}};
+                     {"torque_delay_applied_seconds", e.delay.applied()}, {"torque_delay_from_arm", e.delay_from_arm}};
     if (e.alignment) {
         j["alignment"] = {{"shift_seconds", e.alignment->shift},
                           {"resolution_seconds", e.alignment->resolution},
