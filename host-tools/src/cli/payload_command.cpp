@@ -101,7 +101,10 @@ void run(const PayloadOptions& o) {
     const payload::PayloadEstimate e = payload::estimate_payload(arm, loaded, unloaded ? &*unloaded : nullptr, settings);
     if (!o.export_urdf.empty()) write_output(o.export_urdf, payload::urdf_fragment(e, arm.description));
     if (!o.export_robot.empty()) {
-        write_output(o.export_robot, fmt::format("# {} with the payload estimated by jacobid payload from {} on its last link\n", arm.source, o.in) +
+        // identify's JSON holds base parameters only: the file then carries --robot's own standard values.
+        const std::string arm_text = arm.base_only ? fmt::format("{} (its standard parameters; {} holds base parameters only)", o.robot, arm.source)
+                                                        : arm.source;
+        write_output(o.export_robot, fmt::format("# {} with the payload estimated by jacobid payload from {} on its last link\n", arm_text, o.in) +
                                          robot::to_yaml(payload::with_payload(arm, e.standard)));
     }
     write_output(o.output, o.json ? payload::payload_json(e).dump(2) + "\n" : payload::payload_text(e));

@@ -43,6 +43,7 @@ ArmModel from_json(const std::string& path, const robot::RobotDescription& robot
     }
     ArmModel arm;
     arm.source = path;
+    arm.base_only = true;
     arm.description = robot;
     const std::size_t n = robot.joints.size();
     // The smoothing the arm was identified with: its parameters belong to those FCj columns.

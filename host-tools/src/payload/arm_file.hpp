@@ -27,6 +27,7 @@ struct ArmModel {
     Eigen::VectorXd std_dev;                       // per base parameter; empty: none in the file
     std::vector<std::string> fallbacks;            // not identified in the JSON: the description's value kept (std 0)
     std::optional<double> torque_delay;            // s, applied by that identification (JSON only)
+    bool base_only = false;                        // JSON: base parameters only (the description's standard values stay)
 };
 
 // InputError naming the file and key for an unreadable file, a parameter the model has and the file lacks, a

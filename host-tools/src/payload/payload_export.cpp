@@ -24,8 +24,10 @@ std::string urdf_fragment(const PayloadEstimate& e, const robot::RobotDescriptio
     const Eigen::Vector3d ypr = e.tool.linear().eulerAngles(2, 1, 0);
     const Inertial& i = e.inertial;
     std::string t;
-    t += fmt::format("<!-- payload estimated by jacobid payload from {}{} (frame: {}); mass std {:.3g} kg -->\n", e.loaded_source,
-                     e.unloaded_source.empty() ? "" : " and " + e.unloaded_source, e.frame_name, e.std_total[0]);
+    const bool prior = e.status[0] == Status::Prior;
+    t += fmt::format("<!-- payload estimated by jacobid payload from {}{} (frame: {}); mass std {:.3g} kg{} -->\n", e.loaded_source,
+                     e.unloaded_source.empty() ? "" : " and " + e.unloaded_source, e.frame_name, e.std_total[0],
+                     prior ? "; inertia: the point-mass prior (the motion did not determine it)" : "");
     t += fmt::format("<joint name=\"payload_joint\" type=\"fixed\">\n  <parent link=\"{}\"/>\n  <child link=\"payload\"/>\n", last_link_name(description));
     t += fmt::format("  <origin xyz=\"{:.9g} {:.9g} {:.9g}\" rpy=\"{:.9g} {:.9g} {:.9g}\"/>\n</joint>\n", p.x(), p.y(), p.z(), ypr[2], ypr[1], ypr[0]);
     t += "<link name=\"payload\">\n  <inertial>\n";
