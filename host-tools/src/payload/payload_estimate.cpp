@@ -7,10 +7,8 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "identify/drive_gains.hpp"
-#include "identify/torque_delay.hpp"
-#include "identify/validation.hpp"
-#include "payload/payload_rows.hpp"
+#include "payload/payload_equations.hpp"
+#include "payload/payload_uncertainty.hpp"
 
 namespace jacobid::payload {
 namespace {
@@ -102,50 +100,15 @@ PayloadEstimate estimate_payload(const ArmModel& arm, const identify::LogColumns
     out.tool = settings.tool;
     const identify::IdentifySettings& s = settings.identify;
 
-    // The torque delay: given, the arm's identification's, else estimated on the run the arm model describes.
-    std::optional<double> given = s.torque_delay;
-    if (!given && arm.torque_delay) {
-        given = arm.torque_delay;
-        out.delay_from_arm = true;
-    }
-    out.delay = identify::resolve_torque_delay(model, unloaded ? *unloaded : loaded, s.pipeline, s.solve, given);
-    const identify::ShiftedTorques shifted_loaded = identify::shift_torques(loaded, out.delay.applied());
-    identify::JointFactors factors;
-
-    const Eigen::MatrixXd& regrouping = arm.serial->base().regrouping;
-    const std::vector<int> link = identify::last_link_columns(*arm.serial);
-    Eigen::MatrixXd link_columns(regrouping.rows(), 10);
-    for (int k = 0; k < 10; ++k) link_columns.col(k) = regrouping.col(link[static_cast<std::size_t>(k)]);
-
-    std::optional<AlignedPair> pair;
-    StoredRows reference;
-    identify::PipelineOutput pipeline;
-    std::string rows_source = loaded.source;
-    if (unloaded) {
-        out.unloaded_source = unloaded->source;
-        rows_source = fmt::format("{} and {}", loaded.source, unloaded->source);
-        const identify::ShiftedTorques shifted_unloaded = identify::shift_torques(*unloaded, out.delay.applied());
-        out.alignment = align_runs(shifted_loaded.log, shifted_unloaded.log);
-        pair.emplace(aligned_pair(shifted_loaded.log, shifted_unloaded.log, *out.alignment));
-        // The unloaded run decides the automatic choices; the loaded one is read with the same plan, so that the
-        // rows fall on the same samples (as identify --drive-gains reads its pair).
-        const identify::PipelineOutput first = identify::run_pipeline(model, pair->unloaded.log, s.pipeline, &reference);
-        identify::PipelineSettings same = identify::validation_settings(s.pipeline, first.info);
-        same.decimation = first.info.decimation;
-        PayloadRows rows(joints, link_columns, arm.values, s.pipeline.residual_lags, &reference);
-        pipeline = identify::run_pipeline(model, pair->loaded.log, same, &rows);
-        factors = rows.factors();
-    } else {
-        PayloadRows rows(joints, link_columns, arm.values, s.pipeline.residual_lags);
-        pipeline = identify::run_pipeline(model, shifted_loaded.log, s.pipeline, &rows);
-        factors = rows.factors();
-    }
-    out.info = pipeline.info;
-
-    std::vector<std::string> names = standard_names();
-    const auto c = static_cast<int>(arm.values.size());
-    for (int k = 0; k < c; ++k) names.push_back(model.parameter_names()[static_cast<std::size_t>(k)]);
-    for (int j = 0; j < joints; ++j) names.push_back(fmt::format("Y{}", j + 1));
+    PayloadEquations eq = payload_equations(arm, loaded, unloaded, s);
+    out.delay = eq.delay;
+    out.delay_from_arm = eq.delay_from_arm;
+    out.alignment = eq.alignment;
+    out.info = eq.info;
+    if (unloaded) out.unloaded_source = unloaded->source;
+    const identify::JointFactors& factors = eq.factors;
+    const std::vector<std::string>& names = eq.names;
+    const std::string& rows_source = eq.source;
 
     std::vector<bool> free(10, true);
     std::vector<std::pair<int, double>> fixed;
@@ -204,57 +167,12 @@ PayloadEstimate estimate_payload(const ArmModel& arm, const identify::LogColumns
         f.push_back(k);
     }
     const auto nf = static_cast<Eigen::Index>(f.size());
+    out.included.push_back(fmt::format("measurement noise ({} std of identify's least squares)", identify::to_string(out.solution.std_method)));
     for (Eigen::Index a = 0; a < nf; ++a) {
         for (Eigen::Index b = 0; b < nf; ++b) out.cov_noise(f[a], f[b]) = out.solution.covariance(f[a], f[b]);
     }
 
-    // Sensitivities through the weighted Gram matrix of the solved problem.
-    const Eigen::MatrixXd r = identify::stacked_factor(solved, out.solution.joint_weights);
-    const Eigen::MatrixXd gram = r.transpose() * r;
-    Eigen::MatrixXd h(nf, nf);
-    for (Eigen::Index a = 0; a < nf; ++a) {
-        for (Eigen::Index b = 0; b < nf; ++b) h(a, b) = gram(f[a], f[b]);
-    }
-    const Eigen::LDLT<Eigen::MatrixXd> hinv(h);
-    auto sensitivity = [&](Eigen::Index column) {
-        Eigen::VectorXd g(nf);
-        for (Eigen::Index a = 0; a < nf; ++a) g[a] = gram(f[a], column);
-        return Eigen::VectorXd(hinv.solve(g));
-    };
-    out.included.push_back(fmt::format("measurement noise ({} std of identify's least squares)", identify::to_string(out.solution.std_method)));
-    if (arm.std_dev.size() == c && arm.std_dev.cwiseAbs().maxCoeff() > 0.0) {
-        for (int p = 0; p < c; ++p) {
-            const Eigen::VectorXd d = -sensitivity(10 + p) * arm.std_dev[p];
-            for (Eigen::Index a = 0; a < nf; ++a) {
-                for (Eigen::Index b = 0; b < nf; ++b) out.cov_arm(f[a], f[b]) += d[a] * d[b];
-            }
-        }
-        out.included.push_back(fmt::format("the arm's parameter std from {} (independent: identify writes no correlations){}", arm.source,
-                                           unloaded ? "; in the difference of the runs only where their motions differ" : ""));
-    } else {
-        out.left_out.push_back(fmt::format("the arm's parameter uncertainty: --arm {} gives no std (identify's --format json output does)", arm.source));
-    }
-    out.mass_gain_sensitivity.assign(static_cast<std::size_t>(joints), 0.0);
-    for (int j = 0; j < joints; ++j) {
-        const Eigen::VectorXd d = sensitivity(10 + c + j);
-        for (Eigen::Index a = 0; a < nf; ++a) {
-            if (f[a] == kM) out.mass_gain_sensitivity[static_cast<std::size_t>(j)] = d[a];
-        }
-        if (settings.gain_std.empty()) continue;
-        const double g = settings.gain_std[static_cast<std::size_t>(j)];
-        for (Eigen::Index a = 0; a < nf; ++a) {
-            for (Eigen::Index b = 0; b < nf; ++b) out.cov_gain(f[a], f[b]) += d[a] * d[b] * g * g;
-        }
-    }
-    if (settings.gain_std.empty()) {
-        out.left_out.push_back("the drive gains' uncertainty (give --gain-std, relative per joint; the mass's sensitivity to each gain is listed)");
-    } else {
-        // Against the arm model alone the arm is held while a gain moves, but it was identified with the same gains and
-        // would move with them: there the gains' share is an upper bound (a common gain error scales arm and payload alike).
-        out.included.push_back(unloaded ? "the drive gains' relative std of --gain-std"
-                                        : "the drive gains' relative std of --gain-std, with the arm held (an upper bound: the arm, identified with the "
-                                          "same gains, would move with them)");
-    }
+    add_inherited_uncertainty(out, solved, f, arm, unloaded != nullptr, settings.gain_std);
 
     out.inertial = to_inertial(out.standard, settings.tool);
     const Eigen::Matrix<double, 10, 10> jac = inertial_jacobian(out.standard, settings.tool);
