@@ -3,6 +3,8 @@
 
 #include <fmt/core.h>
 
+#include <string>
+
 namespace jacobid::payload {
 
 void add_inherited_uncertainty(PayloadEstimate& out, const identify::JointFactors& solved, const std::vector<int>& free, const ArmModel& arm,
@@ -53,9 +55,12 @@ void add_inherited_uncertainty(PayloadEstimate& out, const identify::JointFactor
     } else {
         // Against the arm model alone the arm is held while a gain moves, but it was identified with the same gains and
         // would move with them: there the gains' share is an upper bound (a common gain error scales arm and payload alike).
-        out.included.push_back(difference ? "the drive gains' relative std of --gain-std"
-                                        : "the drive gains' relative std of --gain-std, with the arm held (an upper bound: the arm, identified with the "
-                                          "same gains, would move with them)");
+        // A std, not a bias: least-squares drive gains (identify --drive-gains' WLS/OLS) are pulled towards 0 by the
+        // effort column's noise and model error, which no std holds (the UR10e pair: -10 to -16 % of mass).
+        out.included.push_back(std::string(difference ? "the drive gains' relative std of --gain-std"
+                                                      : "the drive gains' relative std of --gain-std, with the arm held (an upper bound: the arm, "
+                                                        "identified with the same gains, would move with them)") +
+                               " (their std only: a least-squares gain's pull towards 0 is not in it; docs/method.md, \"Payload identification\")");
     }
 
 }
