@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# Sourced by the UR10e examples (03_identify_ur10e.sh, 05_drive_gains_ur10e.sh) with their arguments
+# Sourced by the UR10e examples (03_identify_ur10e.sh, 06_drive_gains_ur10e.sh) with their arguments
 # [BUILD_DIR or jacobid executable] [OUTPUT_DIR] [REALDATA_DIR] and $name, $default_out set: resolves
 # $jacobid, $out (created), $data (absolute) and writes the robot description $out/ur10e.yaml.
 here=$(cd "$(dirname "$0")" && pwd)

@@ -10,7 +10,7 @@ named, with the closest valid keyword). docs/python.md has the whole story.
 
 Core (the real-time library, lib/): :func:`kernel`, :func:`frequency_response`, :func:`differentiate`,
 :class:`Bank`, :func:`butterworth_euler`. Host (jacobid::host): :func:`load_robot`, :func:`simulate`,
-:func:`identify` (with ``validate=``), :func:`diagnose`.
+:func:`identify` (with ``validate=``), :func:`diagnose`, :func:`payload`.
 """
 from ._jacobid import (  # noqa: F401  (the public API)
     Bank,
@@ -29,7 +29,7 @@ from . import _jacobid
 
 __all__ = [
     "Bank", "Estimate", "InputError", "Robot", "butterworth_euler", "differentiate", "frequency_response",
-    "kernel", "load_robot", "simulate", "identify", "diagnose", "__version__",
+    "kernel", "load_robot", "simulate", "identify", "diagnose", "payload", "__version__",
 ]
 
 
@@ -62,3 +62,19 @@ def diagnose(robot=None, log=None, validate=None, *extra, **options):
     log_format ..., quiet=True). Returns the CLI's JSON as a dict (effects named, before/after errors, verdict).
     """
     return _jacobid._diagnose(robot, log, validate, *extra, **options)
+
+
+def payload(robot=None, arm=None, log=None, unloaded=None, *extra, **options):
+    """A payload's mass, centre of mass and inertia on the last link, as ``jacobid payload --json``.
+
+    robot: the path of the robot description. arm: identify's JSON output (values and std) or a robot
+    description (values only). log: the run with the payload; unloaded: the same trajectory without it (the
+    payload then comes from the difference of the runs, after aligning them in time). Paths only (str, bytes or
+    os.PathLike). options: the command's options as keywords (mass=2.8, frame="tool0", tool_frame=(0, 0, 0.1, 0,
+    0, 0), gain_std=(0.02,) * 6, log_format=..., bandwidth=..., weighting="ols" ...).
+
+    Returns the command's JSON as a dict: payload (mass, com_x .. I_zz: value, std, rel_std_percent, std_noise,
+    std_arm, std_gain, status), standard_parameters, unidentifiable, std_includes, std_leaves_out,
+    physically_consistent, violations, warnings, alignment (with unloaded) ... (docs/identify.md, "Payload").
+    """
+    return _jacobid._payload(robot, arm, log, unloaded, *extra, **options)

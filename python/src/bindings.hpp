@@ -9,5 +9,7 @@ namespace jacobid::python {
 void bind_core(pybind11::module_& m);
 // jacobid::host: robot descriptions, simulation, identification (+ validation), diagnosis.
 void bind_host(pybind11::module_& m);
+// jacobid payload (python/src/payload_bindings.cpp).
+void bind_payload(pybind11::module_& m);
 
 }  // namespace jacobid::python

@@ -225,6 +225,15 @@ LsSolution solve_least_squares(const JointFactors& factors, const std::vector<st
         for (int i : keep) cols.push_back(active[static_cast<std::size_t>(i)]);
         hac = joint_hac_covariance(factors, cols, x, s.joint_weights, s);
     }
+    s.covariance = Eigen::MatrixXd::Constant(all, all, kNaN);
+    const Eigen::MatrixXd pooled = k > 0 && !hac.size() ? Eigen::MatrixXd(s.sigma_rho * s.sigma_rho * rinv * rinv.transpose()) : Eigen::MatrixXd();
+    for (Eigen::Index i = 0; i < k; ++i) {
+        const auto pi = active[static_cast<std::size_t>(keep[static_cast<std::size_t>(i)])];
+        for (Eigen::Index l = 0; l < k; ++l) {
+            const auto pl = active[static_cast<std::size_t>(keep[static_cast<std::size_t>(l)])];
+            s.covariance(pi, pl) = hac.size() ? hac(i, l) : pooled(i, l);
+        }
+    }
     for (Eigen::Index i = 0; i < k; ++i) {
         const auto p = static_cast<std::size_t>(active[static_cast<std::size_t>(keep[static_cast<std::size_t>(i)])]);
         s.identified[p] = true;

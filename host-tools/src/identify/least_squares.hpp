@@ -48,6 +48,9 @@ struct LsSolution {
     Eigen::VectorXd x;                 // all parameters; NaN where not identified
     Eigen::VectorXd std_dev;           // sigma_X (NaN where not identified)
     Eigen::VectorXd rel_std_percent;   // %sigma_r
+    // C_XX over all parameters (the std's own method: pooled or joint-HAC); rows and columns of parameters not
+    // identified are NaN. What a derived quantity's std needs (the payload's centre of mass m c / m).
+    Eigen::MatrixXd covariance;
     std::vector<bool> identified;      // false: dropped (rank) or removed (essential)
     std::vector<bool> removed;         // removed as non-essential
     std::size_t equations = 0;

@@ -16,6 +16,7 @@
 #include "core/errors.hpp"
 #include "identify/drive_gains.hpp"
 #include "identify/log_columns.hpp"
+#include "loaded_robot.hpp"
 #include "realdata.hpp"
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
@@ -66,25 +67,7 @@ void scale_torques(const std::string& path, const std::vector<double>& factors) 
 // The UR5-like arm with a 2 kg payload on link 6: centre of mass (0.02, -0.01, 0.06) m, inertia about it
 // diag(4e-3, 5e-3, 3e-3) kg.m^2, added to link 6's standard parameters (parallel axes).
 std::string loaded_robot(const fs::path& dir) {
-    jacobid::robot::RobotDescription d = jacobid::robot::load_robot_description(kRobot);
-    const double cx = 0.02, cy = -0.01, cz = 0.06, m = kMass;
-    const std::map<std::string, double> add = {{"XX6", 4e-3 + m * (cy * cy + cz * cz)}, {"YY6", 5e-3 + m * (cx * cx + cz * cz)},
-                                               {"ZZ6", 3e-3 + m * (cx * cx + cy * cy)},  {"XY6", -m * cx * cy},
-                                               {"XZ6", -m * cx * cz},                     {"YZ6", -m * cy * cz},
-                                               {"MX6", m * cx},                           {"MY6", m * cy},
-                                               {"MZ6", m * cz},                           {"M6", m}};
-    std::size_t found = 0;
-    for (auto& [name, value] : d.parameters) {
-        const auto it = add.find(name);
-        if (it != add.end()) {
-            value += it->second;
-            ++found;
-        }
-    }
-    EXPECT_EQ(found, add.size()) << "ur5_like.yaml no longer lists link 6's ten inertial parameters";
-    const std::string path = (dir / "loaded.yaml").string();
-    std::ofstream(path) << jacobid::robot::to_yaml(d);
-    return path;
+    return jacobid::test::write_loaded_robot(kRobot, dir, 6, kMass, Eigen::Vector3d(0.02, -0.01, 0.06), Eigen::Vector3d(4e-3, 5e-3, 3e-3).asDiagonal());
 }
 
 struct Pair {

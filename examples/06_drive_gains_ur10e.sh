@@ -5,9 +5,9 @@
 # format's `gains:`, identification on 14harm50sec, validation on the six joint-at-a-time logs. Numbers in
 # docs/real-data.md, "Drive gains from the loaded run". The logs are read in place, never copied.
 #
-#   bash examples/05_drive_gains_ur10e.sh [BUILD_DIR or jacobid executable] [OUTPUT_DIR] [REALDATA_DIR]
+#   bash examples/06_drive_gains_ur10e.sh [BUILD_DIR or jacobid executable] [OUTPUT_DIR] [REALDATA_DIR]
 set -euo pipefail
-name=05_drive_gains_ur10e.sh default_out=out/05_drive_gains_ur10e
+name=06_drive_gains_ur10e.sh default_out=out/06_drive_gains_ur10e
 source "$(cd "$(dirname "$0")" && pwd)/ur10e_setup.sh"
 format="$here/formats/ur10e.yaml"   # currents x the source repository's gains: the prior
 ident="$data/ur10e/identification"
