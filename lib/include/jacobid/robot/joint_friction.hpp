@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// The identified friction of each joint as the external-torque estimator subtracts it (docs/method.md,
+// "External torque and contact detection"):
+//   moving:   f = FV qd + FC s(qd) + FOFF + FD z,
+//   standing: f = FOFF + FD z, and the joint's Coulomb band [-FC, FC] holds ANY torque inside it.
+// A joint at rest with a torque inside its band is friction doing its job, not a contact: the UR10e's wrists
+// hold several N.m after each stop. So at standstill the estimator leaves the Coulomb term out (the smoothed
+// sign of a velocity estimate that is noise would put an arbitrary fraction of FC into the estimate) and
+// reports the band instead, which the detector adds to its standing threshold (contact_detector.hpp).
+// z is the Dahl presliding state (presliding_friction.hpp) driven by the positions, when FD is identified.
+// Fixed-size, allocation-free.
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+
+#include "jacobid/robot/presliding_friction.hpp"
+#include "jacobid/robot/rnea_regressor.hpp"
+
+namespace jacobid::robot {
+
+struct JointFrictionParameters {
+    double viscous = 0.0;    // FV, N.m s/rad
+    double coulomb = 0.0;    // FC, N.m
+    double offset = 0.0;     // FOFF, N.m
+    double presliding = 0.0;  // FD, N.m (0: no presliding term)
+    double presliding_displacement = 3e-4;  // x_p, rad
+    double presliding_play = 2e-4;          // rad, total width of the play operator
+    CoulombSign sign{};
+    double standing_velocity = 0.02;  // rad/s: |qd| below this is standstill
+};
+
+template <int N>
+class JointFriction {
+public:
+    using Joints = JointVector<N>;
+
+    JointFriction() noexcept = default;
+    // The FV, FC, FOFF of standard parameters X in `regressor`'s layout, its Coulomb sign per joint.
+    JointFriction(const RneaRegressor<N>& regressor, const typename RneaRegressor<N>::Parameters& X) noexcept : joints_(regressor.joint_count()) {
+        const auto& layout = regressor.layout();
+        for (int j = 0; j < joints_; ++j) {
+            JointFrictionParameters& p = parameters_[static_cast<std::size_t>(j)];
+            p.viscous = X[layout.column(j, ParameterKind::FV)];
+            p.coulomb = std::abs(X[layout.column(j, ParameterKind::FC)]);
+            const int offset = layout.column(j, ParameterKind::FOFF);
+            p.offset = offset >= 0 ? X[offset] : 0.0;
+            p.sign = regressor.coulomb(j);
+        }
+        reset();
+    }
+
+    void set_joint(int j, const JointFrictionParameters& p) noexcept {
+        parameters_[static_cast<std::size_t>(j)] = p;
+        presliding_[static_cast<std::size_t>(j)] = PreslidingFriction(p.presliding_displacement, 0.5 * p.presliding_play);
+    }
+    const JointFrictionParameters& joint(int j) const noexcept { return parameters_[static_cast<std::size_t>(j)]; }
+    int joint_count() const noexcept { return joints_; }
+
+    // Forgets the presliding states (each starts at 0, the neutral value, at the next step).
+    void reset() noexcept {
+        for (int j = 0; j < joints_; ++j) {
+            const JointFrictionParameters& p = parameters_[static_cast<std::size_t>(j)];
+            presliding_[static_cast<std::size_t>(j)] = PreslidingFriction(p.presliding_displacement, 0.5 * p.presliding_play);
+        }
+    }
+
+    // One sample: advances the presliding states along q, then the friction f and, per joint, the Coulomb
+    // band left out of f (FC at standstill, 0 when moving) and whether the joint stands.
+    void step(const Joints& q, const Joints& qd, Joints& f, Joints& band, std::array<bool, N>& standing) noexcept {
+        f.setZero();
+        band.setZero();
+        for (int j = 0; j < joints_; ++j) {
+            const auto js = static_cast<std::size_t>(j);
+            const JointFrictionParameters& p = parameters_[js];
+            const double z = presliding_[js].step(q[j]);
+            standing[js] = std::abs(qd[j]) < p.standing_velocity;
+            f[j] = p.offset + p.presliding * z;
+            if (standing[js]) {
+                band[j] = p.coulomb;
+            } else {
+                f[j] += p.viscous * qd[j] + p.coulomb * p.sign(qd[j]);
+            }
+        }
+    }
+
+private:
+    int joints_ = 0;
+    std::array<JointFrictionParameters, N> parameters_{};
+    std::array<PreslidingFriction, N> presliding_{};
+};
+
+}  // namespace jacobid::robot
