@@ -149,23 +149,11 @@ void simulate(const Arm& arm, double duration, Sink&& sink) {
     }
 }
 
-// Every joint moving: the standstill band is switched off (velocity 0), so both estimators see the model's
-// whole friction, as the physics does.
-JointFriction<kN> moving_friction(const Arm& arm) {
-    JointFriction<kN> friction(arm.regressor, arm.X);
-    for (int j = 0; j < kN; ++j) {
-        JointFrictionParameters p = friction.joint(j);
-        p.standing_velocity = 0.0;
-        friction.set_joint(j, p);
-    }
-    return friction;
-}
-
 TEST(MomentumObserver, FollowsTheFirstOrderResponseOfTheTrueExternalTorque) {
     const Arm arm;
     const RigidBodyTerms<kN> terms(arm.regressor, arm.X);
     const double K = 100.0;
-    MomentumObserver<kN> observer(terms, moving_friction(arm), Joints::Constant(K), 1e-3);
+    MomentumObserver<kN> observer(terms, JointFriction<kN>(arm.regressor, arm.X), Joints::Constant(K), 1e-3);
     ExternalTorqueEstimate<kN> e;
     double worst = 0.0, worst_other = 0.0;
     simulate(arm, 2.5, [&](double t, const Joints& q, const Joints& qd, const Joints&, const Joints& tau) {
@@ -184,7 +172,7 @@ TEST(MomentumObserver, FollowsTheFirstOrderResponseOfTheTrueExternalTorque) {
 TEST(MomentumObserver, SettlesOnThePulseAmplitude) {
     const Arm arm;
     const RigidBodyTerms<kN> terms(arm.regressor, arm.X);
-    MomentumObserver<kN> observer(terms, moving_friction(arm), Joints::Constant(100.0), 1e-3);
+    MomentumObserver<kN> observer(terms, JointFriction<kN>(arm.regressor, arm.X), Joints::Constant(100.0), 1e-3);
     ExternalTorqueEstimate<kN> e;
     double at_end = 0.0;
     simulate(arm, 1.59, [&](double, const Joints& q, const Joints& qd, const Joints&, const Joints& tau) {
@@ -197,7 +185,7 @@ TEST(MomentumObserver, SettlesOnThePulseAmplitude) {
 TEST(DirectResidual, IsTheExternalTorqueWithTheTrueAcceleration) {
     const Arm arm;
     const RigidBodyTerms<kN> terms(arm.regressor, arm.X);
-    DirectResidual<kN> residual(terms, moving_friction(arm));
+    DirectResidual<kN> residual(terms, JointFriction<kN>(arm.regressor, arm.X));
     ExternalTorqueEstimate<kN> e;
     double worst = 0.0;
     simulate(arm, 2.0, [&](double t, const Joints& q, const Joints& qd, const Joints& qdd, const Joints& tau) {
