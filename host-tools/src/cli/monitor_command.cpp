@@ -68,12 +68,15 @@ void run_calibrate(CalibrateOptions o) {
         throw InputError(fmt::format("--false-alarm-rate {} must be in [0, 1) (a fraction of samples)", o.file.false_alarm_rate));
     }
     o.file.estimator.estimator = o.estimator == "observer" ? monitor::Estimator::Observer : monitor::Estimator::Residual;
-    const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, o.file.standing_velocity);
-    check_outputs({{"--out", o.out}}, input_files(o, model.description));
-    print_notes(model);
+    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
+    check_outputs({{"--out", o.out}}, input_files(o, robot));
     std::vector<monitor::Replay> replays;
     for (const auto& path : o.logs) {
-        replays.push_back(monitor::replay(model, o.file.estimator, read_monitor_log(o, path, model.description)));
+        const monitor::MonitorLog log = read_monitor_log(o, path, robot);
+        // The standstill is counted in samples of this log's period.
+        const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, o.file.standing_velocity, o.file.standing_time, log.sample_period);
+        if (replays.empty()) print_notes(model);
+        replays.push_back(monitor::replay(model, o.file.estimator, log));
         o.file.calibrated_from.push_back(path);
     }
     const auto joints = monitor::calibrate(replays, o.file.false_alarm_rate, o.file.margin);
@@ -83,7 +86,7 @@ void run_calibrate(CalibrateOptions o) {
     if (o.json) {
         fmt::print("{}\n", monitor::calibration_json(joints, o.file).dump(2));
     } else {
-        fmt::print("{}monitor file: {}\n", monitor::calibration_text(joints, o.file, model.description), o.out);
+        fmt::print("{}monitor file: {}\n", monitor::calibration_text(joints, o.file, robot), o.out);
     }
 }
 
@@ -97,9 +100,9 @@ void run_monitor(const MonitorOptions& o) {
     std::vector<NamedPath> inputs = input_files(o, robot);
     inputs.push_back({"--monitor", o.monitor});
     check_outputs({{"--plot", o.plot}, {"--estimates", o.estimates}}, inputs);
-    const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, file.standing_velocity);
+    const monitor::MonitorLog log = read_monitor_log(o, o.logs.front(), robot);
+    const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, file.standing_velocity, file.standing_time, log.sample_period);
     print_notes(model);
-    const monitor::MonitorLog log = read_monitor_log(o, o.logs.front(), model.description);
     const monitor::Replay replay = monitor::replay(model, file.estimator, log);
     const auto events = monitor::contact_events(replay, file.thresholds, file.hold);
     if (o.json) {
@@ -163,6 +166,9 @@ void add_monitor_command(CLI::App& app) {
                   "differentiate the positions even when the log has measured velocities (qd1..)");
     cal->add_option("--standing-velocity", c->file.standing_velocity, "rad/s below which a joint stands (its Coulomb band holds any torque inside it); one value or one per joint")
         ->delimiter(',')
+        ->check(non_negative_number())
+        ->capture_default_str();
+    cal->add_option("--standing-time", c->file.standing_time, "s below the standing velocity before a joint stands (a reversal in mid-motion does not)")
         ->check(non_negative_number())
         ->capture_default_str();
     cal->add_option("--hold", c->file.hold, "s: an event ends this long after its last sample in contact")->check(non_negative_number())->capture_default_str();

@@ -3,6 +3,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/errors.hpp"
 #include "robot/presliding_model.hpp"
 
@@ -18,7 +21,7 @@ double parameter_or(const robot::RobotDescription& d, const std::string& name, d
 
 }  // namespace
 
-MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity) {
+MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period) {
     MonitorModel m;
     m.description = robot::load_robot_description(path);
     const robot::RobotDescription& d = m.description;
@@ -49,6 +52,7 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
             p.presliding_play = presliding.play_width;
         }
         if (!standing_velocity.empty()) p.standing_velocity = standing_velocity[standing_velocity.size() == 1 ? 0 : static_cast<std::size_t>(j)];
+        p.standing_samples = std::max(1, static_cast<int>(std::lround(standing_time / sample_period)));
         if (!(p.standing_velocity >= 0.0)) throw InputError(fmt::format("--standing-velocity: {} rad/s must be >= 0", p.standing_velocity));
         m.friction.set_joint(j, p);
     }

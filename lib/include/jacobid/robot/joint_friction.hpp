@@ -12,6 +12,7 @@
 // z is the Dahl presliding state (presliding_friction.hpp) driven by the positions, when FD is identified.
 // Fixed-size, allocation-free.
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -28,7 +29,11 @@ struct JointFrictionParameters {
     double presliding_displacement = 3e-4;  // x_p, rad
     double presliding_play = 2e-4;          // rad, total width of the play operator
     CoulombSign sign{};
-    double standing_velocity = 0.02;  // rad/s: |qd| below this is standstill
+    double standing_velocity = 0.02;  // rad/s: |qd| below this ...
+    // ... for this many consecutive samples is standstill: a velocity reversal in the middle of a motion
+    // passes through 0 too, with the acceleration (and the model's error) at its largest, and friction holds
+    // nothing there.
+    int standing_samples = 1;
 };
 
 template <int N>
@@ -58,8 +63,9 @@ public:
     const JointFrictionParameters& joint(int j) const noexcept { return parameters_[static_cast<std::size_t>(j)]; }
     int joint_count() const noexcept { return joints_; }
 
-    // Forgets the presliding states (each starts at 0, the neutral value, at the next step).
+    // Forgets the presliding states (each starts at 0, the neutral value, at the next step) and the standstill.
     void reset() noexcept {
+        still_.fill(0);
         for (int j = 0; j < joints_; ++j) {
             const JointFrictionParameters& p = parameters_[static_cast<std::size_t>(j)];
             presliding_[static_cast<std::size_t>(j)] = PreslidingFriction(p.presliding_displacement, 0.5 * p.presliding_play);
@@ -75,7 +81,9 @@ public:
             const auto js = static_cast<std::size_t>(j);
             const JointFrictionParameters& p = parameters_[js];
             const double z = presliding_[js].step(q[j]);
-            standing[js] = std::abs(qd[j]) < p.standing_velocity;
+            int& still = still_[js];
+            still = std::abs(qd[j]) < p.standing_velocity ? std::min(still + 1, p.standing_samples) : 0;
+            standing[js] = still >= p.standing_samples;
             f[j] = p.offset + p.presliding * z + p.viscous * qd[j] + p.coulomb * p.sign(qd[j]);
             if (standing[js]) band[j] = p.coulomb;
         }
@@ -85,6 +93,7 @@ private:
     int joints_ = 0;
     std::array<JointFrictionParameters, N> parameters_{};
     std::array<PreslidingFriction, N> presliding_{};
+    std::array<int, N> still_{};  // consecutive samples below the standing velocity (up to standing_samples)
 };
 
 }  // namespace jacobid::robot
