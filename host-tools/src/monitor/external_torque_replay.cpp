@@ -16,7 +16,7 @@ constexpr std::size_t kCapacity = 512;  // taps per kernel, as the firmware's (c
 using Bank = DifferentiatorBank<double, kJoints, kCapacity>;
 
 // Windows and evaluation point as given; kappa = mu = 2 weights both ends alike, a compromise between noise
-// and delay (docs/method.md, "Kernel weights").
+// and delay (docs/method.md, "Conventions").
 std::unique_ptr<Bank> make_bank(const EstimatorSettings& s, double period, bool residual) {
     auto bank = std::make_unique<Bank>();
     std::array<JointFilterConfig, kJoints> filters{};
