@@ -29,7 +29,7 @@ calibrate() {  # calibrate OUT.yaml LOG... (the options of every calibration her
   "$jacobid" monitor calibrate --robot "$out/identified.yaml" --log-format "$format" "${ins[@]}" --out "$file" "${MONITOR_OPTIONS[@]}" 2>> "$out/messages.txt"
 }
 # MONITOR_CALIBRATION="--false-alarm-rate 0" (say) changes the calibration of every step.
-read -r -a MONITOR_OPTIONS <<< "${MONITOR_CALIBRATION:---false-alarm-rate 1e-4 --margin 0.25}"
+read -r -a MONITOR_OPTIONS <<< "${MONITOR_CALIBRATION:---false-alarm-rate 1e-4 --margin 0.5 --confirm 2}"
 
 echo "leave one out: alarms on each contact-free log, thresholds calibrated on the $(( ${#free[@]} - 1 )) others"
 total=0

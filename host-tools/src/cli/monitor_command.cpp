@@ -104,7 +104,7 @@ void run_monitor(const MonitorOptions& o) {
     const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, file.standing_velocity, file.standing_time, log.sample_period);
     print_notes(model);
     const monitor::Replay replay = monitor::replay(model, file.estimator, log);
-    const auto events = monitor::contact_events(replay, file.thresholds, file.hold);
+    const auto events = monitor::contact_events(replay, file.thresholds, file.hold, file.confirm);
     if (o.json) {
         fmt::print("{}\n", monitor::events_json(events, replay, file, robot, o.logs.front()).dump(2));
     } else {
@@ -170,6 +170,9 @@ void add_monitor_command(CLI::App& app) {
         ->capture_default_str();
     cal->add_option("--standing-time", c->file.standing_time, "s below the standing velocity before a joint stands (a reversal in mid-motion does not)")
         ->check(non_negative_number())
+        ->capture_default_str();
+    cal->add_option("--confirm", c->file.confirm, "consecutive samples in contact before an event starts (1: at once; more rejects one-sample glitches)")
+        ->check(whole_number_in(1, 1000))
         ->capture_default_str();
     cal->add_option("--hold", c->file.hold, "s: an event ends this long after its last sample in contact")->check(non_negative_number())->capture_default_str();
     cal->callback([c] { run_calibrate(*c); });

@@ -28,9 +28,10 @@ std::vector<double> applied_threshold(const Replay& replay, const robot::JointTh
     return out;
 }
 
-std::vector<ContactEvent> contact_events(const Replay& r, const std::vector<robot::JointThresholds>& thresholds, double hold) {
+std::vector<ContactEvent> contact_events(const Replay& r, const std::vector<robot::JointThresholds>& thresholds, double hold, int confirm) {
     const int n = static_cast<int>(r.external.size());
     robot::ContactDetector<kJoints> detector;
+    detector.set_confirm(confirm);
     for (int j = 0; j < n; ++j) detector.set_joint(j, thresholds[static_cast<std::size_t>(j)]);
     std::vector<ContactEvent> events;
     bool open = false;
@@ -63,8 +64,9 @@ std::vector<ContactEvent> contact_events(const Replay& r, const std::vector<robo
     };
     for (std::size_t i = 0; i < r.t.size(); ++i) {
         const std::uint32_t mask = detector.detect(estimate_at(r, i), n);
+        const bool confirmed = detector.confirmed(mask);
         if (open && mask == 0 && r.t[i] - events.back().end >= hold) close();
-        if (mask == 0) continue;
+        if (mask == 0 || (!open && !confirmed)) continue;
         if (!open) {
             events.push_back({});
             events.back().start = r.t[i];

@@ -3,7 +3,8 @@
 // Contact events from a replayed log (docs/monitor.md): each sample is judged by the lib's ContactDetector
 // (contact_detector.hpp: moving threshold, or the Coulomb band plus the standing threshold); an event starts
 // at the first sample in contact and ends at the last one before `hold` seconds without any joint in
-// contact, so that one push that dips under its threshold for a sample is one event.
+// contact, so that one push that dips under its threshold for a sample is one event. An event starts once the
+// contact is confirmed (`confirm` consecutive samples).
 #include <vector>
 
 #include "jacobid/robot/contact_detector.hpp"
@@ -21,7 +22,9 @@ struct ContactEvent {
     std::vector<double> median;
 };
 
-std::vector<ContactEvent> contact_events(const Replay& replay, const std::vector<robot::JointThresholds>& thresholds, double hold);
+// `confirm`: consecutive samples in contact before an event starts (ContactDetector::set_confirm); the
+// event's start is the confirming sample, when a controller would act.
+std::vector<ContactEvent> contact_events(const Replay& replay, const std::vector<robot::JointThresholds>& thresholds, double hold, int confirm = 1);
 
 // The threshold each sample of joint j was compared with (for plots).
 std::vector<double> applied_threshold(const Replay& replay, const robot::JointThresholds& thresholds, std::size_t joint);

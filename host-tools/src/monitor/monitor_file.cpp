@@ -56,6 +56,7 @@ MonitorFile parse_monitor_file(const std::string& text, const std::string& sourc
     if (!(f.margin >= 0.0)) s.fail("margin", "must be >= 0");
     f.hold = s.number("hold", f.hold, "s");
     if (!(f.hold >= 0.0)) s.fail("hold", "must be >= 0 s");
+    f.confirm = static_cast<int>(s.integer("confirm", f.confirm, 1, 1000));
     const YAML::Node list = s.list("joints", joints, joints, "maps {moving: N.m, standing: N.m}, one per joint of the robot");
     for (std::size_t j = 0; j < joints; ++j) {
         Section js(source, list[j], fmt::format("joints[{}]", j));
@@ -103,6 +104,7 @@ std::string to_yaml(const MonitorFile& f) {
     out << YAML::Key << "false_alarm_rate" << YAML::Value << f.false_alarm_rate;
     out << YAML::Key << "margin" << YAML::Value << f.margin;
     out << YAML::Key << "hold" << YAML::Value << f.hold;
+    out << YAML::Key << "confirm" << YAML::Value << f.confirm;
     out << YAML::Key << "joints" << YAML::Value << YAML::BeginSeq;
     for (const auto& t : f.thresholds) {
         out << YAML::Flow << YAML::BeginMap << YAML::Key << "moving" << YAML::Value << t.moving << YAML::Key << "standing" << YAML::Value

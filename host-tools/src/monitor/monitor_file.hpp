@@ -9,6 +9,7 @@
 //   false_alarm_rate: 1e-4          # per sample, the calibration's (1 - a) quantile
 //   margin: 0.25                    # thresholds = (1 + margin) x quantile
 //   hold: 0.05                      # s: an event ends this long after its last sample in contact
+//   confirm: 1                      # consecutive samples in contact before an event starts
 //   joints:                         # N.m: moving, and beyond the Coulomb band when standing
 //     - {moving: 1.2, standing: 0.4}
 //   calibrated_from: [a.csv, b.csv]
@@ -30,6 +31,7 @@ struct MonitorFile {
     double false_alarm_rate = 1e-4;
     double margin = 0.25;
     double hold = 0.05;
+    int confirm = 1;  // consecutive samples in contact before an event starts
     std::vector<robot::JointThresholds> thresholds;
     std::vector<std::string> calibrated_from;
 };

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // jacobid monitor on the real UR10e (issue 40; docs/real-data.md, "Contact monitoring"): the model identified
 // from 14harm50sec (identify --export-robot), thresholds from the shared contact-free logs (not the 2.805 kg
-// payload run, whose load the model does not know).
+// payload run, whose load the model does not know) as examples/06_monitor_ur10e.sh calibrates them.
 //  - The push log: a person pushes the standing arm; the reference is the raw log itself, no model: a push
 //    is where a joint's torque (current x the README's drive gain) leaves its resting value (the median of
 //    the first 1.5 s) by more than 20 N.m. Every such push is reported, starting no later than 50 ms after
@@ -64,7 +64,7 @@ const Ur10eFiles& setup() {
 std::string calibrate(const std::vector<fs::path>& logs, const std::string& name) {
     const Ur10eFiles& s = setup();
     std::string cmd = kJacobid + " monitor calibrate --robot " + s.robot.string() + " --log-format " + s.format.string() + " --out " +
-                      jacobid::test::scratch_file("monitor_ur10e", name).string();
+                      jacobid::test::scratch_file("monitor_ur10e", name).string() + " --false-alarm-rate 1e-4 --margin 0.5 --confirm 2";
     for (const auto& log : logs) cmd += " --in " + log.string();
     const auto r = run_command(cmd);
     EXPECT_EQ(r.exit_code, 0) << r.err;

@@ -251,6 +251,16 @@ TEST(ContactDetector, TorqueInsideTheCoulombBandAtStandstillIsNoContact) {
     EXPECT_DOUBLE_EQ(detector.threshold(e, 1), 0.5);
 }
 
+TEST(ContactDetector, ConfirmsAContactAfterTheGivenNumberOfConsecutiveSamples) {
+    ContactDetector<kN> detector;
+    detector.set_confirm(3);
+    const std::uint32_t contact = 1u << 2;
+    // One sample and two samples over the threshold (glitches), then a contact of four samples.
+    const std::uint32_t masks[] = {contact, 0, contact, contact, 0, contact, contact, contact, contact, 0};
+    const bool expected[] = {false, false, false, false, false, false, false, true, true, false};
+    for (std::size_t k = 0; k < std::size(masks); ++k) EXPECT_EQ(detector.confirmed(masks[k]), expected[k]) << k;
+}
+
 TEST(ExternalTorque, NonFiniteSamplesAndInvalidGainsAreRefused) {
     const Arm arm;
     const RigidBodyTerms<kN> terms(arm.regressor, arm.X);

@@ -41,8 +41,22 @@ public:
         return mask;
     }
 
+    // Persistence: a contact counts once some joint has been over its threshold for `samples` consecutive
+    // samples (1: at once). A glitch of one sample in the log (a resampled timing jump) is no contact, at the
+    // price of samples - 1 periods of delay.
+    void set_confirm(int samples) noexcept { confirm_ = samples < 1 ? 1 : samples; }
+    int confirm() const noexcept { return confirm_; }
+    // Feeds one sample's detect() mask; true once the contact is confirmed (and while it lasts).
+    bool confirmed(std::uint32_t mask) noexcept {
+        run_ = mask != 0 ? (run_ < confirm_ ? run_ + 1 : confirm_) : 0;
+        return run_ >= confirm_;
+    }
+    void reset() noexcept { run_ = 0; }
+
 private:
     std::array<JointThresholds, N> thresholds_{};
+    int confirm_ = 1;
+    int run_ = 0;
 };
 
 }  // namespace jacobid::robot
