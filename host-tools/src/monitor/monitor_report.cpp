@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "plot/gnuplot.hpp"
 
@@ -60,9 +61,10 @@ void plot_events(const std::string& png, const std::vector<ContactEvent>& events
         shading += fmt::format("set object rect from {:.6f}, graph 0 to {:.6f}, graph 1 fc rgb '#ffd0d0' fs solid 0.5 noborder behind\n", e.start,
                                std::max(e.end, e.start + 0.002));
     }
+    const std::string name = std::filesystem::path(title).filename().string();
     for (std::size_t j = 0; j < robot.joints.size(); ++j) {
         plot::Panel p;
-        p.title = fmt::format("{}: joint {} ({})", title, j + 1, robot.joints[j].name);
+        p.title = fmt::format("{}: joint {} ({})", name, j + 1, robot.joints[j].name);
         p.xlabel = "t (s)";
         p.ylabel = "external torque (N.m)";
         p.series.push_back({"estimate", replay.t, replay.external[j], "lines lw 1.5 lc rgb '#1f77b4'"});
@@ -70,7 +72,8 @@ void plot_events(const std::string& png, const std::vector<ContactEvent>& events
         for (std::size_t i = 0; i < threshold.size(); ++i) negative[i] = -threshold[i];
         p.series.push_back({"threshold", replay.t, threshold, "lines lw 1 dt 2 lc rgb '#d62728'"});
         p.series.push_back({"", replay.t, negative, "lines lw 1 dt 2 lc rgb '#d62728'"});
-        p.extra = shading + "set key top left\n";
+        // File and joint names are shown as written (gnuplot's enhanced text makes '_' a subscript).
+        p.extra = shading + "set key top left\nset termoption noenhanced\n";
         panels.push_back(p);
     }
     plot::render_png(png, panels, 1100, 240);
