@@ -4,181 +4,52 @@
 //       per-joint thresholds (moving, standing) from contact-free logs at a stated false-alarm rate;
 //   jacobid monitor --robot identified.yaml --monitor monitor.yaml --in log.csv [--json] [--plot events.png]
 //       replays a log through the controller's estimator and reports the contact events.
+// Options and runs: cli/monitor_options.hpp (shared with the Python module).
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <memory>
 
 #include "cli/command.hpp"
-#include "cli/log_format_options.hpp"
+#include "cli/monitor_options.hpp"
 #include "cli/option_checks.hpp"
-#include "cli/output_file.hpp"
-#include "cli/robot_files.hpp"
-#include "io/time_axis.hpp"
-#include "monitor/calibration.hpp"
-#include "monitor/contact_events.hpp"
-#include "monitor/monitor_file.hpp"
-#include "monitor/monitor_model.hpp"
-#include "monitor/monitor_report.hpp"
 
 namespace jacobid::cli {
 namespace {
 
-// What both forms read: the robot, the logs and how they are laid out.
-struct LogInputs {
-    std::string robot;
-    std::vector<std::string> logs;
-    std::string time_column = "t";
-    double time_tolerance = io::kDefaultTimeTolerance;
-    LogFormatOptions log_format;
-    bool json = false;
-};
-
-struct CalibrateOptions : LogInputs {
-    std::string out;
-    std::string estimator = "observer";
-    monitor::MonitorFile file;
-};
-
-struct MonitorOptions : LogInputs {
-    std::string monitor;
-    std::string plot;
-    std::string estimates;
-};
-
-std::vector<NamedPath> input_files(const LogInputs& o, const robot::RobotDescription& robot) {
-    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
-    for (const auto& log : o.logs) inputs.push_back({"--in", log});
-    inputs.push_back({"--log-format", o.log_format.file});
-    return inputs;
-}
-
-monitor::MonitorLog read_monitor_log(const LogInputs& o, const std::string& path, const robot::RobotDescription& robot) {
-    refuse_split(o.log_format, "monitor");
-    const io::CsvTable table = read_log_table(path, o.log_format, robot_column_names(robot, o.time_column), true);
-    return monitor::monitor_log(table, robot, o.time_column, o.time_tolerance);
-}
-
-void print_notes(const monitor::MonitorModel& model) {
-    for (const auto& note : model.notes) fmt::print(stderr, "jacobid monitor: note: {}\n", note);
-}
-
-void run_calibrate(CalibrateOptions o) {
-    if (!(o.file.false_alarm_rate >= 0.0 && o.file.false_alarm_rate < 1.0)) {
-        throw InputError(fmt::format("--false-alarm-rate {} must be in [0, 1) (a fraction of samples)", o.file.false_alarm_rate));
-    }
-    o.file.estimator.estimator = o.estimator == "observer" ? monitor::Estimator::Observer : monitor::Estimator::Residual;
-    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
-    check_outputs({{"--out", o.out}}, input_files(o, robot));
-    std::vector<monitor::Replay> replays;
-    for (const auto& path : o.logs) {
-        const monitor::MonitorLog log = read_monitor_log(o, path, robot);
-        // The standstill is counted in samples of this log's period.
-        const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, o.file.standing_velocity, o.file.standing_time, log.sample_period);
-        if (replays.empty()) print_notes(model);
-        replays.push_back(monitor::replay(model, o.file.estimator, log));
-        o.file.calibrated_from.push_back(path);
-    }
-    const auto joints = monitor::calibrate(replays, o.file.false_alarm_rate, o.file.margin);
-    o.file.robot = o.robot;
-    for (const auto& c : joints) o.file.thresholds.push_back(c.thresholds);
-    write_output(o.out, monitor::to_yaml(o.file));
-    if (o.json) {
-        fmt::print("{}\n", monitor::calibration_json(joints, o.file).dump(2));
-    } else {
-        fmt::print("{}monitor file: {}\n", monitor::calibration_text(joints, o.file, robot), o.out);
-    }
-}
-
-void run_monitor(const MonitorOptions& o) {
-    if (o.robot.empty() || o.monitor.empty() || o.logs.empty()) {
-        throw InputError("monitor needs --robot, --monitor and --in (or the subcommand calibrate; see jacobid monitor --help)");
-    }
-    if (o.logs.size() != 1) throw InputError(fmt::format("--in: monitor replays one log, got {}", o.logs.size()));
-    const robot::RobotDescription robot = robot::load_robot_description(o.robot);
-    const monitor::MonitorFile file = monitor::load_monitor_file(o.monitor, robot.joints.size());
-    std::vector<NamedPath> inputs = input_files(o, robot);
-    inputs.push_back({"--monitor", o.monitor});
-    check_outputs({{"--plot", o.plot}, {"--estimates", o.estimates}}, inputs);
-    const monitor::MonitorLog log = read_monitor_log(o, o.logs.front(), robot);
-    const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, file.standing_velocity, file.standing_time, log.sample_period);
-    print_notes(model);
-    const monitor::Replay replay = monitor::replay(model, file.estimator, log);
-    const auto events = monitor::contact_events(replay, file.thresholds, file.hold, file.confirm);
-    if (o.json) {
-        fmt::print("{}\n", monitor::events_json(events, replay, file, robot, o.logs.front()).dump(2));
-    } else {
-        fmt::print("{}", monitor::events_text(events, replay, robot));
-    }
-    if (!o.estimates.empty()) write_output(o.estimates, monitor::estimates_csv(replay, file));
-    if (!o.plot.empty()) monitor::plot_events(o.plot, events, replay, file, robot, o.logs.front());
-}
-
-void add_log_inputs(CLI::App* cmd, LogInputs& o, bool several) {
+void add_robot_and_logs(CLI::App* cmd, MonitorInputs& o, bool several, bool& json) {
     cmd->add_option("--robot", o.robot, "robot description (YAML) with the identified parameters, e.g. from identify --export-robot")->check(file_path());
     cmd->add_option("--in,-i", o.logs, several ? "contact-free log (CSV; repeatable)" : "log to replay (CSV)")->check(file_path());
-    cmd->add_option("--time-column", o.time_column, "name of the time column (seconds)")->capture_default_str();
-    add_time_tolerance_option(cmd, o.time_tolerance);
-    add_log_format_options(cmd, o.log_format);
-    cmd->add_flag("--json", o.json, "JSON on standard output instead of the table");
+    add_monitor_log_options(cmd, o);
+    cmd->add_flag("--json", json, "JSON on standard output instead of the table");
 }
+
+void print(const MonitorRun& run, bool json) { fmt::print("{}", json ? run.json.dump(2) + "\n" : run.text); }
 
 }  // namespace
 
 void add_monitor_command(CLI::App& app) {
-    auto m = std::make_shared<MonitorOptions>();
+    auto m = std::make_shared<MonitorReplayOptions>();
+    auto m_json = std::make_shared<bool>(false);
     CLI::App* cmd = app.add_subcommand("monitor",
                                        "contact detection with the identified model: replay a log through the controller's external-torque estimator and "
                                        "report the contact events (start, end, joints, peak external torque); thresholds from `monitor calibrate`");
-    add_log_inputs(cmd, *m, false);
-    cmd->add_option("--monitor", m->monitor, "monitor file (YAML) written by jacobid monitor calibrate")->check(file_path());
-    cmd->add_option("--plot", m->plot, "PNG of each joint's external torque, its threshold and the events")->check(file_path());
-    cmd->add_option("--estimates", m->estimates, "CSV of the estimates: t, tau_ext1.., threshold1.. ('-': standard output)")->check(file_path(true));
+    add_robot_and_logs(cmd, *m, false, *m_json);
+    add_monitor_replay_options(cmd, *m);
     cmd->require_subcommand(0, 1);
 
-    auto c = std::make_shared<CalibrateOptions>();
+    auto c = std::make_shared<MonitorCalibrateOptions>();
+    auto c_json = std::make_shared<bool>(false);
     CLI::App* cal = cmd->add_subcommand("calibrate", "per-joint thresholds (moving and standing) from contact-free logs at a stated false-alarm rate");
-    add_log_inputs(cal, *c, true);
+    add_robot_and_logs(cal, *c, true, *c_json);
+    add_monitor_calibrate_options(cal, *c);
     cal->get_option("--robot")->required();
     cal->get_option("--in")->required();
-    cal->add_option("--out,-o", c->out, "monitor file to write (YAML)")->required()->check(file_path());
-    cal->add_option("--false-alarm-rate", c->file.false_alarm_rate,
-                    "per-sample false-alarm rate a: each threshold is the (1 - a) quantile of the contact-free estimates (the largest with fewer than 1/a samples)")
-        ->check(number_in(0.0, 1.0))
-        ->capture_default_str();
-    cal->add_option("--margin", c->file.margin, "thresholds = (1 + margin) x quantile, for the logs not seen")->check(non_negative_number())->capture_default_str();
-    cal->add_option("--estimator", c->estimator, "observer (generalized momentum, no acceleration) or residual (tau - model from the Jacobi bank)")
-        ->check(CLI::IsMember({"observer", "residual"}))
-        ->capture_default_str();
-    cal->add_option("--gain", c->file.estimator.gain, "observer gain K (1/s): the estimate follows the external torque with time constant 1/K")
-        ->check(positive_number())
-        ->capture_default_str();
-    cal->add_option("--velocity-window", c->file.estimator.velocity_window, "Jacobi window (s) of the position and velocity estimates")
-        ->check(positive_number())
-        ->capture_default_str();
-    cal->add_option("--acceleration-window", c->file.estimator.acceleration_window, "Jacobi window (s) of the acceleration (residual estimator)")
-        ->check(positive_number())
-        ->capture_default_str();
-    cal->add_option("--xi", c->file.estimator.xi, "kernel evaluation point: 0 central (delay half the window), towards 1 causal (shorter delay, more noise)")
-        ->check(number_in(-1.0, 1.0))
-        ->capture_default_str();
-    cal->add_flag("--no-measured-velocity{false}", c->file.estimator.measured_velocity,
-                  "differentiate the positions even when the log has measured velocities (qd1..)");
-    cal->add_option("--standing-velocity", c->file.standing_velocity, "rad/s below which a joint stands (its Coulomb band holds any torque inside it); one value or one per joint")
-        ->delimiter(',')
-        ->check(non_negative_number())
-        ->capture_default_str();
-    cal->add_option("--standing-time", c->file.standing_time, "s below the standing velocity before a joint stands (a reversal in mid-motion does not)")
-        ->check(non_negative_number())
-        ->capture_default_str();
-    cal->add_option("--confirm", c->file.confirm, "consecutive samples in contact before an event starts (1: at once; more rejects one-sample glitches)")
-        ->check(whole_number_in(1, 1000))
-        ->capture_default_str();
-    cal->add_option("--hold", c->file.hold, "s: an event ends this long after its last sample in contact")->check(non_negative_number())->capture_default_str();
-    cal->callback([c] { run_calibrate(*c); });
-    cmd->callback([m, cmd, cal] {
+    cal->get_option("--out")->required();
+    cal->callback([c, c_json] { print(run_monitor_calibrate(*c), *c_json); });
+    cmd->callback([m, m_json, cmd, cal] {
         if (cmd->got_subcommand(cal)) return;
-        run_monitor(*m);
+        print(run_monitor_replay(*m), *m_json);
     });
 }
 
