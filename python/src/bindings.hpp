@@ -9,5 +9,7 @@ namespace jacobid::python {
 void bind_core(pybind11::module_& m);
 // jacobid::host: robot descriptions, simulation, identification (+ validation), diagnosis.
 void bind_host(pybind11::module_& m);
+// Contact detection with the identified model: monitor, monitor_calibrate (monitor_bindings.cpp).
+void bind_monitor(pybind11::module_& m);
 
 }  // namespace jacobid::python

@@ -35,6 +35,7 @@ void add_monitor_command(CLI::App& app) {
                                        "contact detection with the identified model: replay a log through the controller's external-torque estimator and "
                                        "report the contact events (start, end, joints, peak external torque); thresholds from `monitor calibrate`");
     add_robot_and_logs(cmd, *m, false, *m_json);
+    cmd->add_option("--monitor", m->monitor, "monitor file (YAML) written by jacobid monitor calibrate")->check(file_path());
     add_monitor_replay_options(cmd, *m);
     cmd->require_subcommand(0, 1);
 

@@ -79,7 +79,6 @@ void add_monitor_calibrate_options(CLI::App* cal, MonitorCalibrateOptions& c) {
 }
 
 void add_monitor_replay_options(CLI::App* cmd, MonitorReplayOptions& m) {
-    cmd->add_option("--monitor", m.monitor, "monitor file (YAML) written by jacobid monitor calibrate")->check(file_path());
     cmd->add_option("--plot", m.plot, "PNG of each joint's external torque, its threshold and the events")->check(file_path());
     cmd->add_option("--estimates", m.estimates, "CSV of the estimates: t, tau_ext1.., threshold1.. ('-': standard output)")->check(file_path(true));
 }

@@ -44,7 +44,7 @@ void add_monitor_log_options(CLI::App* cmd, MonitorInputs& o);
 // calibrate's own: --out, --false-alarm-rate, --margin, --estimator, --gain, the windows, --xi, --standing-*,
 // --confirm, --hold, --no-measured-velocity.
 void add_monitor_calibrate_options(CLI::App* cmd, MonitorCalibrateOptions& o);
-// monitor's own: --monitor, --plot, --estimates.
+// monitor's own: --plot, --estimates (not --monitor: an argument of the Python function).
 void add_monitor_replay_options(CLI::App* cmd, MonitorReplayOptions& o);
 
 struct MonitorRun {
