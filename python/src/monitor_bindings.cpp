@@ -29,40 +29,46 @@ std::vector<std::string> paths_of(const py::handle& value, const std::string& wh
     return {path_text(value, what)};
 }
 
-py::object monitor(const py::object& robot, const py::object& log, const py::object& monitor_file, const py::args& extra, const py::kwargs& keywords) {
-    refuse_extra_positional("monitor", extra, {"robot", "log", "monitor"});
-    cli::MonitorReplayOptions o;
-    CLI::App app("", "monitor");
+// Both functions: the arguments checked, the keywords parsed by the command's options (`add` registers the
+// function's own beside the log options), `fill` sets the arguments, `run` computes without the GIL.
+template <typename Options, typename Add, typename Fill, typename Run>
+py::object run_monitor_function(const std::string& name, const std::vector<std::string>& arguments, const py::args& extra,
+                                const py::kwargs& keywords, Add add, Fill fill, Run run) {
+    refuse_extra_positional(name, extra, arguments);
+    Options o;
+    CLI::App app("", name);
     cli::add_monitor_log_options(&app, o);
-    cli::add_monitor_replay_options(&app, o);
-    parse_keywords(app, keywords, {"robot", "log", "monitor"});
-    o.robot = path_text(robot, "robot");
-    o.logs = {path_text(log, "log")};
-    o.monitor = path_text(monitor_file, "monitor");
+    add(&app, o);
+    parse_keywords(app, keywords, arguments);
+    fill(o);
     nlohmann::json j;
     {
         py::gil_scoped_release unlocked;
-        j = cli::run_monitor_replay(o).json;
+        j = run(o).json;
     }
     return to_python(j);
 }
 
+py::object monitor(const py::object& robot, const py::object& log, const py::object& monitor_file, const py::args& extra, const py::kwargs& keywords) {
+    return run_monitor_function<cli::MonitorReplayOptions>(
+        "monitor", {"robot", "log", "monitor"}, extra, keywords, cli::add_monitor_replay_options,
+        [&](cli::MonitorReplayOptions& o) {
+            o.robot = path_text(robot, "robot");
+            o.logs = {path_text(log, "log")};
+            o.monitor = path_text(monitor_file, "monitor");
+        },
+        cli::run_monitor_replay);
+}
+
 py::object monitor_calibrate(const py::object& robot, const py::object& logs, const py::object& out, const py::args& extra, const py::kwargs& keywords) {
-    refuse_extra_positional("monitor_calibrate", extra, {"robot", "logs", "out"});
-    cli::MonitorCalibrateOptions o;
-    CLI::App app("", "monitor_calibrate");
-    cli::add_monitor_log_options(&app, o);
-    cli::add_monitor_calibrate_options(&app, o);
-    parse_keywords(app, keywords, {"robot", "logs", "out"});
-    o.robot = path_text(robot, "robot");
-    o.logs = paths_of(logs, "logs");
-    o.out = path_text(out, "out");
-    nlohmann::json j;
-    {
-        py::gil_scoped_release unlocked;
-        j = cli::run_monitor_calibrate(o).json;
-    }
-    return to_python(j);
+    return run_monitor_function<cli::MonitorCalibrateOptions>(
+        "monitor_calibrate", {"robot", "logs", "out"}, extra, keywords, cli::add_monitor_calibrate_options,
+        [&](cli::MonitorCalibrateOptions& o) {
+            o.robot = path_text(robot, "robot");
+            o.logs = paths_of(logs, "logs");
+            o.out = path_text(out, "out");
+        },
+        cli::run_monitor_calibrate);
 }
 
 }  // namespace
