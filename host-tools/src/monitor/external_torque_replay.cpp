@@ -52,15 +52,13 @@ MonitorLog monitor_log(const io::CsvTable& table, const robot::RobotDescription&
     log.sample_period = io::check_uniform_time(table, time_column, time_tolerance).sample_period;
     log.t = table.column(time_column);
     const std::size_t n = robot.joints.size();
-    bool velocities = true, truth = true;
+    bool velocities = true;
     for (std::size_t j = 0; j < n; ++j) {
         log.q.push_back(table.column(robot.joints[j].position_column));
         log.tau.push_back(table.column(robot.joints[j].torque_column));
         velocities = velocities && table.has_column(fmt::format("qd{}", j + 1));
-        truth = truth && table.has_column(fmt::format("tau_ext{}", j + 1));
     }
     for (std::size_t j = 0; j < n && velocities; ++j) log.qd.push_back(table.column(fmt::format("qd{}", j + 1)));
-    for (std::size_t j = 0; j < n && truth; ++j) log.truth.push_back(table.column(fmt::format("tau_ext{}", j + 1)));
     return log;
 }
 

@@ -35,12 +35,10 @@ struct MonitorLog {
     double sample_period = 0.0;
     std::vector<double> t;
     std::vector<std::vector<double>> q, qd, tau;  // per joint; qd empty when not logged
-    // Truth of simulated contacts (simulate --effect external:...: tau_ext1..), empty otherwise.
-    std::vector<std::vector<double>> truth;
 };
 
-// The log's columns (time_column, then the description's position and torque columns, qd1.. and tau_ext1..
-// when present) from a table already read; InputError naming the file for a non-uniform time column.
+// The log's columns (time_column, then the description's position and torque columns, qd1.. when present)
+// from a table already read; InputError naming the file for a non-uniform time column.
 MonitorLog monitor_log(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column, double time_tolerance);
 
 struct Replay {
