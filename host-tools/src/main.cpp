@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     jacobid::cli::add_diagnose_command(app);
     jacobid::cli::add_montecarlo_command(app);
     jacobid::cli::add_payload_command(app);
+    jacobid::cli::add_monitor_command(app);
 #if JACOBID_WITH_NLOPT
     jacobid::cli::add_excite_command(app);
 #endif

@@ -10,7 +10,8 @@ named, with the closest valid keyword). docs/python.md has the whole story.
 
 Core (the real-time library, lib/): :func:`kernel`, :func:`frequency_response`, :func:`differentiate`,
 :class:`Bank`, :func:`butterworth_euler`. Host (jacobid::host): :func:`load_robot`, :func:`simulate`,
-:func:`identify` (with ``validate=``), :func:`diagnose`, :func:`payload`.
+:func:`identify` (with ``validate=``), :func:`diagnose`, :func:`payload`, :func:`monitor_calibrate` and :func:`monitor`
+(contact detection with the identified model, docs/monitor.md).
 """
 from ._jacobid import (  # noqa: F401  (the public API)
     Bank,
@@ -23,13 +24,15 @@ from ._jacobid import (  # noqa: F401  (the public API)
     frequency_response,
     kernel,
     load_robot,
+    monitor,
+    monitor_calibrate,
     simulate,
 )
 from . import _jacobid
 
 __all__ = [
     "Bank", "Estimate", "InputError", "Robot", "butterworth_euler", "differentiate", "frequency_response",
-    "kernel", "load_robot", "simulate", "identify", "diagnose", "payload", "__version__",
+    "kernel", "load_robot", "simulate", "identify", "diagnose", "payload", "monitor", "monitor_calibrate", "__version__",
 ]
 
 

@@ -11,5 +11,7 @@ void bind_core(pybind11::module_& m);
 void bind_host(pybind11::module_& m);
 // jacobid payload (python/src/payload_bindings.cpp).
 void bind_payload(pybind11::module_& m);
+// Contact detection with the identified model: monitor, monitor_calibrate (monitor_bindings.cpp).
+void bind_monitor(pybind11::module_& m);
 
 }  // namespace jacobid::python

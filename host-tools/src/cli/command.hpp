@@ -30,6 +30,7 @@ void add_sim_can_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
 void add_montecarlo_command(CLI::App& app);
 void add_payload_command(CLI::App& app);
+void add_monitor_command(CLI::App& app);
 // Built only with NLopt (JACOBID_WITH_NLOPT).
 void add_excite_command(CLI::App& app);
 

@@ -20,6 +20,7 @@
 #include "robot/simulated_parameters.hpp"
 #include "sim/augmented_model.hpp"
 #include "sim/effect_spec.hpp"
+#include "sim/external_torque.hpp"
 #include "sim/simulator.hpp"
 #include "sim/tabulated_trajectory.hpp"
 #include "io/partial_output.hpp"
@@ -131,7 +132,18 @@ void run(SimulateOptions o) {
     // coefficients; a torque delay acts in the measurement instead.
     std::vector<sim::EffectSpec> effects;
     if (!o.effects_file.empty()) effects = sim::load_effects_file(o.effects_file, n);
-    for (const auto& token : o.effects) effects.push_back(sim::parse_effect(token, n));
+    // Contacts (external:...) act on the physics as a function of time, not as model columns.
+    std::vector<sim::ExternalTorque> contacts;
+    for (const auto& token : o.effects) {
+        if (sim::is_external_torque(token)) {
+            contacts.push_back(sim::parse_external_torque(token, n));
+        } else {
+            effects.push_back(sim::parse_effect(token, n));
+        }
+    }
+    if (!contacts.empty()) {
+        o.settings.external_torque = [contacts, n](double t, Eigen::VectorXd& out) { sim::external_torque_at(contacts, t, n, out); };
+    }
     std::vector<sim::EffectTerm> terms;
     std::vector<Eigen::VectorXd> coefficients;
     sim::EffectContext context{model->model_name(), n, robot.coulomb, robot::joint_coulomb_signs(robot)};
@@ -180,6 +192,12 @@ void run(SimulateOptions o) {
     for (const char* prefix : {"q_ref", "qd_ref"}) {
         for (int j = 1; j <= n; ++j) header += fmt::format(",{}{}", prefix, j);
     }
+    // With contacts, their truth last (tau_ext1..): what `jacobid monitor` is checked against; logs without
+    // contacts keep their columns.
+    const bool external = !contacts.empty();
+    if (external) {
+        for (int j = 1; j <= n; ++j) header += fmt::format(",tau_ext{}", j);
+    }
     header += "\n";
     CsvWriter log(o.out, header);
     std::unique_ptr<CsvWriter> states;
@@ -187,6 +205,9 @@ void run(SimulateOptions o) {
         std::string h = "t";
         for (const char* prefix : {"q", "qd", "qdd", "tau"}) {
             for (int j = 1; j <= n; ++j) h += fmt::format(",{}{}", prefix, j);
+        }
+        if (external) {
+            for (int j = 1; j <= n; ++j) h += fmt::format(",tau_ext{}", j);
         }
         states = std::make_unique<CsvWriter>(o.states, h + "\n");
     }
@@ -206,6 +227,9 @@ void run(SimulateOptions o) {
         for (const Eigen::VectorXd* v : {&s.q_ref, &s.qd_ref}) {
             for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.15g}", (*v)[j]);
         }
+        if (external) {
+            for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.15g}", s.tau_external[j]);
+        }
         b.push_back('\n');
         log.row_done();
         if (states) {
@@ -213,6 +237,9 @@ void run(SimulateOptions o) {
             fmt::format_to(std::back_inserter(sb), "{:.6f}", t);
             for (const Eigen::VectorXd* v : {&s.q, &s.qd, &s.qdd, &s.tau}) {
                 for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(sb), ",{:.15g}", (*v)[j]);
+            }
+            if (external) {
+                for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(sb), ",{:.15g}", s.tau_external[j]);
             }
             sb.push_back('\n');
             states->row_done();
@@ -248,6 +275,7 @@ void run(SimulateOptions o) {
                             {"torque_delay", ms.torque_delay}};
     truth["effects"] = nlohmann::json::array();
     for (const auto& e : effects) truth["effects"].push_back(sim::to_json(e));
+    for (const auto& c : contacts) truth["effects"].push_back(sim::to_json(c));
     write_output(o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth, truth.dump(2) + "\n");
 }
 
@@ -270,7 +298,9 @@ void add_simulate_command(CLI::App& app) {
                     "coulomb_offset:joint=1,value=0.3 | coulomb_asymmetry:joint=1,value=0.1 | "
                     "stribeck:joint=1,value=0.3,velocity=0.1 | viscous_nonlinear:joint=2,value=0.05 | "
                     "gravity:tilt=3,direction=0,mx1=1.5 | cogging:joint=2,amplitude=0.2,order=6,phase=0 | "
-                    "rotor_inertia:joint=2,value=0.1 | torque_delay:value=0.003 (joints 1-based, SI units, "
+                    "rotor_inertia:joint=2,value=0.1 | torque_delay:value=0.003 | "
+                    "external:joint=2,start=1.5,duration=0.2,value=10[,shape=pulse|sine|ramp] (a contact: a torque on the joint, "
+                    "its truth logged as tau_ext1.. columns; docs/monitor.md) (joints 1-based, SI units, "
                     "angles in degrees; see docs/diagnose.md)")
         ->take_all();
     cmd->add_option("--effects", o->effects_file, "YAML file of effects to inject: effects: [{name: cogging, joint: 2, amplitude: 0.2, order: 6}, ...]")->check(file_path());

@@ -77,9 +77,14 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
     }
     Eigen::VectorXd q_stage(n), qd_stage(n), tau_stage(n), tau(n), qdd(n), q_before(n);
     Eigen::VectorXd held = Eigen::VectorXd::Zero(n);  // friction with memory, over the current step
+    Eigen::VectorXd external = Eigen::VectorXd::Zero(n), external_stage = Eigen::VectorXd::Zero(n);
     auto derivative = [&](double t, const Eigen::VectorXd& qs, const Eigen::VectorXd& qds, Eigen::VectorXd& dq, Eigen::VectorXd& dqd) {
         torque_at(t, tau_stage);
         tau_stage -= held;
+        if (settings.external) {
+            settings.external(t, external_stage);
+            tau_stage += external_stage;
+        }
         dq = qds;
         accelerations(t, qs, qds, tau_stage, dqd);
     };
@@ -90,6 +95,7 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
     sample.qdd = &qdd;
     sample.tau = &tau;
     sample.reference = &ref;
+    sample.external = &external;
     for (std::size_t step = 0;; ++step) {
         const double t = static_cast<double>(step) * h;
         if (step % static_cast<std::size_t>(settings.substeps) == 0) {
@@ -103,7 +109,8 @@ void run_closed_loop(robot::ForwardDynamics& dynamics, const Eigen::VectorXd& q0
         }
         if (step % settings.steps_per_output == 0) {
             torque_at(t, tau);
-            accelerations(t, q, qd, tau - held, qdd);
+            if (settings.external) settings.external(t, external);
+            accelerations(t, q, qd, tau - held + external, qdd);
             sample.index = step / settings.steps_per_output;
             sample.t = t;
             sink(sample);

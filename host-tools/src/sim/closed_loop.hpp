@@ -44,6 +44,9 @@ struct ClosedLoopSettings {
     int substeps = 5;                  // RK4 steps per control period
     std::size_t steps_per_output = 5;  // RK4 steps between two output samples
     std::size_t samples = 0;           // output samples, the first at t = 0
+    // A torque acting on the joints besides the motor's (simulated contacts, sim/external_torque.hpp): out at
+    // time t, already sized; empty: none.
+    std::function<void(double t, Eigen::VectorXd& out)> external;
 };
 
 // One output sample of the loop (valid during the sink call only).
@@ -55,6 +58,7 @@ struct ClosedLoopSample {
     const Eigen::VectorXd* qdd = nullptr;
     const Eigen::VectorXd* tau = nullptr;  // motor torque acting at t
     const ReferenceSample* reference = nullptr;  // the reference of the last control instant
+    const Eigen::VectorXd* external = nullptr;   // the external torque acting at t (zero without settings.external)
 };
 
 // A friction torque with memory (presliding, docs/method.md "Presliding friction (Dahl)"): held over each

@@ -36,6 +36,8 @@ std::string join(const std::vector<std::string>& v) {
     return s;
 }
 
+}  // namespace
+
 double number_or_throw(const std::string& text, const std::string& where) {
     double v = 0.0;
     const auto r = fast_float::from_chars(text.data(), text.data() + text.size(), v);
@@ -44,6 +46,8 @@ double number_or_throw(const std::string& text, const std::string& where) {
     }
     return v;
 }
+
+namespace {
 
 // Builds a spec from key/value text pairs; `where(key)` names the place of a key in errors.
 template <class Where>
@@ -134,11 +138,11 @@ EffectSpec build(const std::string& name, const std::vector<std::pair<std::strin
 
 }  // namespace
 
-EffectSpec parse_effect(const std::string& token, int joints) {
-    const std::string where = fmt::format("--effect '{}'", token);
+EffectToken split_effect_token(const std::string& token) {
+    EffectToken t;
+    t.where = fmt::format("--effect '{}'", token);
     const auto colon = token.find(':');
-    const std::string name = token.substr(0, colon);
-    std::vector<std::pair<std::string, std::string>> pairs;
+    t.name = token.substr(0, colon);
     if (colon != std::string::npos) {
         const std::string rest = token.substr(colon + 1);
         std::size_t start = 0;
@@ -147,14 +151,19 @@ EffectSpec parse_effect(const std::string& token, int joints) {
             const std::string item = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
             const auto eq = item.find('=');
             if (eq == std::string::npos || eq == 0) {
-                throw InputError(fmt::format("{}: '{}' is not key=value", where, item));
+                throw InputError(fmt::format("{}: '{}' is not key=value", t.where, item));
             }
-            pairs.emplace_back(item.substr(0, eq), item.substr(eq + 1));
+            t.pairs.emplace_back(item.substr(0, eq), item.substr(eq + 1));
             if (comma == std::string::npos) break;
             start = comma + 1;
         }
     }
-    return build(name, pairs, joints, [&](const std::string& key) { return key.empty() ? where : where + " key '" + key + "'"; });
+    return t;
+}
+
+EffectSpec parse_effect(const std::string& token, int joints) {
+    const EffectToken t = split_effect_token(token);
+    return build(t.name, t.pairs, joints, [&](const std::string& key) { return key.empty() ? t.where : t.where + " key '" + key + "'"; });
 }
 
 std::vector<EffectSpec> parse_effects_yaml(const std::string& text, const std::string& source, int joints) {

@@ -47,6 +47,17 @@ struct EffectSpec {
 
 constexpr double kGravity = 9.80665;  // m/s^2
 
+// One --effect token split at its colon and commas: NAME, then key=value pairs (InputError naming the token
+// for an item that is not key=value); `where` names the token in later errors.
+struct EffectToken {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> pairs;
+    std::string where;
+};
+EffectToken split_effect_token(const std::string& token);
+// The finite number `text` is, or InputError "<where>: '<text>' is not a finite number".
+double number_or_throw(const std::string& text, const std::string& where);
+
 // Parses one --effect token for a robot with `joints` joints.
 EffectSpec parse_effect(const std::string& token, int joints);
 // Parses an effects YAML file ("effects:" list of maps with a "name" key and the keys above).

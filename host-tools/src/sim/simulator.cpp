@@ -91,6 +91,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
     loop.substeps = settings.substeps;
     loop.steps_per_output = steps_per_output(settings);
     loop.samples = simulated_sample_count(settings);
+    loop.external = settings.external_torque;
 
     const double delay = measurement.settings().torque_delay;
     TorqueDelayLine delay_line(delay, 1.0 / settings.output_rate);
@@ -110,6 +111,7 @@ void simulate(const robot::RobotModel& model, const Eigen::VectorXd& parameters,
             sample.qd = *s.qd;
             sample.qdd = *s.qdd;
             sample.tau = *s.tau;
+            sample.tau_external = *s.external;
             const Eigen::VectorXd& logged_tau = delay > 0.0 ? delay_line.push(*s.tau) : *s.tau;
             for (int j = 0; j < n; ++j) {
                 const auto js = static_cast<std::size_t>(j);

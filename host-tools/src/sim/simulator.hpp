@@ -40,6 +40,9 @@ struct SimulationSettings {
     // starts there at rest); empty: the random moves.
     std::function<void(double t, ReferenceSample& out)> reference;
     std::vector<double> reference_start;
+    // Simulated contacts (sim/external_torque.hpp): the torque acting on the joints besides the motor's at t;
+    // empty: none.
+    std::function<void(double t, Eigen::VectorXd& out)> external_torque;
 };
 
 // One logged sample: truth and measurement.
@@ -48,6 +51,7 @@ struct SimulatedSample {
     Eigen::VectorXd q, qd, qdd, tau;  // truth (tau = motor torque acting at t)
     Eigen::VectorXd q_measured, tau_measured;
     Eigen::VectorXd q_ref, qd_ref;  // the reference the controller tracked (at the last control instant)
+    Eigen::VectorXd tau_external;   // truth: the external torque acting at t (zero without contacts)
 };
 
 // Number of samples simulate() will emit: floor(duration * output_rate) + 1 (t = 0 included).

@@ -12,6 +12,7 @@ target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/command_follower.cpp
   ${CMAKE_CURRENT_LIST_DIR}/effect_terms.cpp
   ${CMAKE_CURRENT_LIST_DIR}/effect_spec.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/external_torque.cpp
   ${CMAKE_CURRENT_LIST_DIR}/augmented_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/torque_delay_line.cpp
 )

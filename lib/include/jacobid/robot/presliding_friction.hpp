@@ -67,6 +67,8 @@ private:
 // The Dahl state driven by positions through a play operator: step(q) per sample.
 class PreslidingFriction {
 public:
+    // The description's defaults (robot_description.hpp), so that a fixed-size array of them can be built.
+    PreslidingFriction() noexcept : PreslidingFriction(3e-4, 1e-4) {}
     PreslidingFriction(double presliding_displacement, double play_half_width, double initial = 0.0) noexcept
         : play_(play_half_width), dahl_(presliding_displacement, initial) {}
     double step(double q) noexcept {

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+#include "monitor/monitor_model.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "robot/presliding_model.hpp"
+
+namespace jacobid::monitor {
+namespace {
+
+double parameter_or(const robot::RobotDescription& d, const std::string& name, double fallback) {
+    for (const auto& [key, value] : d.parameters) {
+        if (key == name) return value;
+    }
+    return fallback;
+}
+
+}  // namespace
+
+MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period) {
+    MonitorModel m;
+    m.description = robot::load_robot_description(path);
+    const robot::RobotDescription& d = m.description;
+    if (d.model != "mdh" && d.model != "urdf") {
+        throw InputError(fmt::format("{}: model '{}': the monitor needs a serial robot (model mdh or urdf)", path, d.model));
+    }
+    const auto model = robot::make_robot_model(d);
+    const auto* serial = dynamic_cast<const robot::SerialRobotModel*>(&robot::rigid_body(*model));
+    if (!serial) throw InputError(fmt::format("{}: not a serial robot model", path));
+    const int n = serial->joint_count();
+    if (!standing_velocity.empty() && standing_velocity.size() != 1 && static_cast<int>(standing_velocity.size()) != n) {
+        throw InputError(fmt::format("--standing-velocity: {} values for {} joints (expected 1 or {})", standing_velocity.size(), n, n));
+    }
+    const auto regressor = robot::make_rnea_regressor<kJoints>(serial->config());
+    const Eigen::VectorXd standard = robot::standard_values(d, *serial);
+    robot::RneaRegressor<kJoints>::Parameters X = robot::RneaRegressor<kJoints>::Parameters::Zero();
+    // The host's standard order is the lib layout's (serial_robot_model.hpp builds one from the other).
+    if (standard.size() != regressor.parameter_count()) throw std::logic_error("monitor: standard parameter count differs from the lib layout");
+    X.head(standard.size()) = standard;
+    m.terms = std::make_unique<robot::RigidBodyTerms<kJoints>>(regressor, X);
+    m.friction = robot::JointFriction<kJoints>(regressor, X);
+    const robot::PreslidingSettings presliding = robot::presliding_settings(d);
+    for (int j = 0; j < n; ++j) {
+        robot::JointFrictionParameters p = m.friction.joint(j);
+        if (d.presliding) {
+            p.presliding = parameter_or(d, fmt::format("FD{}", j + 1), 0.0);
+            p.presliding_displacement = presliding.displacement[static_cast<std::size_t>(j)];
+            p.presliding_play = presliding.play_width;
+        }
+        if (!standing_velocity.empty()) p.standing_velocity = standing_velocity[standing_velocity.size() == 1 ? 0 : static_cast<std::size_t>(j)];
+        p.standing_samples = std::max(1, static_cast<int>(std::lround(standing_time / sample_period)));
+        if (!(p.standing_velocity >= 0.0)) throw InputError(fmt::format("--standing-velocity: {} rad/s must be >= 0", p.standing_velocity));
+        m.friction.set_joint(j, p);
+    }
+    if (d.coulomb_load != robot::CoulombLoad::none) {
+        m.notes.push_back("friction.coulomb_load: the load-dependent Coulomb terms FCLj are not in the monitor's model (left in its estimate)");
+    }
+    return m;
+}
+
+}  // namespace jacobid::monitor
