@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "io/csv_table.hpp"
+#include "command_cache.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -29,37 +30,42 @@ const std::string kCalibration = " --velocity-window 0.04 --xi 0.5 --standing-ve
 
 std::string scratch(const std::string& name) { return jacobid::test::scratch_file("monitor", name).string(); }
 
+std::string simulate_command(const std::string& out, int seed, const std::string& effects = "", double duration = 20.0) {
+    return kJacobid + " simulate --robot " + kRobot + " --out " + out + " --duration " + std::to_string(duration) + " --seed " + std::to_string(seed) +
+           " --noise-seed " + std::to_string(seed + 100) + " --torque-noise 0.5,0.5,0.3,0.1,0.1,0.1 --quiet" + effects;
+}
+
 void simulate(const std::string& out, int seed, const std::string& effects = "", double duration = 20.0) {
-    const auto r = run_command(kJacobid + " simulate --robot " + kRobot + " --out " + out + " --duration " + std::to_string(duration) + " --seed " + std::to_string(seed) +
-                               " --noise-seed " + std::to_string(seed + 100) + " --torque-noise 0.5,0.5,0.3,0.1,0.1,0.1 --quiet" + effects);
+    const auto r = run_command(simulate_command(out, seed, effects, duration));
     ASSERT_EQ(r.exit_code, 0) << r.err;
 }
 
-// The model the monitor runs: identified from a 60 s simulated run, as identify --export-robot writes it.
+// The model the monitor runs: identified from a 60 s simulated run, as identify --export-robot writes it. Made
+// once for every test process (tests/support/command_cache.hpp): each case runs in a process of its own.
 const std::string& identified_robot() {
     static const std::string robot = [] {
-        const std::string train = scratch("train.csv"), exported = scratch("identified.yaml");
-        simulate(train, 21, "", 60.0);
-        const auto r = run_command(kJacobid + " identify --robot " + kRobot + " --in " + train + " --export-robot " + exported + " --quiet");
-        EXPECT_EQ(r.exit_code, 0) << r.err;
-        return exported;
+        const auto c = jacobid::test::cached_command(simulate_command("{dir}/train.csv", 21, "", 60.0) + " && " + kJacobid + " identify --robot " + kRobot +
+                                                         " --in {dir}/train.csv --export-robot {dir}/identified.yaml --quiet",
+                                                     kJacobid, {kRobot});
+        EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
+        return (c.dir / "identified.yaml").string();
     }();
     return robot;
 }
 
-// Contact-free calibration runs, shared by the tests of this program (simulated once).
+// Contact-free calibration runs, shared by the tests of this program (simulated once for every test process).
 const std::string& calibrated_monitor() {
     static const std::string monitor = [] {
-        std::string ins;
+        std::string command, ins;
         for (int seed = 1; seed <= 5; ++seed) {
-            const std::string log = scratch("free" + std::to_string(seed) + ".csv");
-            simulate(log, seed);
+            const std::string log = "{dir}/free" + std::to_string(seed) + ".csv";
+            command += simulate_command(log, seed) + " && ";
             ins += " --in " + log;
         }
-        const std::string file = scratch("monitor.yaml");
-        const auto r = run_command(kJacobid + " monitor calibrate --robot " + identified_robot() + ins + " --out " + file + kCalibration);
-        EXPECT_EQ(r.exit_code, 0) << r.err;
-        return file;
+        command += kJacobid + " monitor calibrate --robot " + identified_robot() + ins + " --out {dir}/monitor.yaml" + kCalibration;
+        const auto c = jacobid::test::cached_command(command, kJacobid, {kRobot, identified_robot()});
+        EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
+        return (c.dir / "monitor.yaml").string();
     }();
     return monitor;
 }

@@ -19,6 +19,7 @@
 #include "loaded_robot.hpp"
 #include "realdata.hpp"
 #include "robot/robot_description.hpp"
+#include "command_cache.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -62,18 +63,21 @@ struct Runs {
     std::string dir, unloaded, loaded, arm;
 };
 
-// One excitation (seed 3), run without and with the payload; the arm identified on the unloaded run.
+// One excitation (seed 3), run without and with the payload; the arm identified on the unloaded run. The
+// simulations and the arm's identification are made once for every test process (tests/support/command_cache.hpp).
 Runs simulate_runs(const std::string& name, int noise_seed) {
     const fs::path dir = jacobid::test::scratch_directory() / name;
     fs::create_directories(dir);
-    Runs r{dir.string(), (dir / "unloaded.csv").string(), (dir / "loaded.csv").string(), (dir / "arm.json").string()};
     const std::string common = " simulate --quiet --duration 30 --seed 3 --torque-noise 0.3";
-    EXPECT_EQ(run_command(kJacobid + common + " --noise-seed " + std::to_string(noise_seed) + " --robot " + kRobot + " -o " + r.unloaded).exit_code, 0);
-    const std::string full = (dir / "loaded_full.csv").string();
-    EXPECT_EQ(run_command(kJacobid + common + " --noise-seed " + std::to_string(noise_seed + 1) + " --robot " + loaded_robot(dir) + " -o " + full).exit_code, 0);
-    desynchronize(full, r.loaded);
-    const auto id = run_command(kJacobid + " identify --quiet --format json --robot " + kRobot + " --in " + r.unloaded + " -o " + r.arm);
-    EXPECT_EQ(id.exit_code, 0) << id.err;
+    const std::string robot = loaded_robot(dir);
+    const auto c = jacobid::test::cached_command(
+        kJacobid + common + " --noise-seed " + std::to_string(noise_seed) + " --robot " + kRobot + " -o {dir}/unloaded.csv && " + kJacobid + common +
+            " --noise-seed " + std::to_string(noise_seed + 1) + " --robot " + robot + " -o {dir}/loaded_full.csv && " + kJacobid +
+            " identify --quiet --format json --robot " + kRobot + " --in {dir}/unloaded.csv -o {dir}/arm.json",
+        kJacobid, {kRobot, robot});
+    EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
+    Runs r{dir.string(), (c.dir / "unloaded.csv").string(), (dir / "loaded.csv").string(), (c.dir / "arm.json").string()};
+    desynchronize((c.dir / "loaded_full.csv").string(), r.loaded);
     return r;
 }
 
