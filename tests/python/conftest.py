@@ -44,6 +44,24 @@ def cli_json(cli):
     return run
 
 
+def assert_same_json(mine, reference, rel, abs=1e-300, where="$", ignored=lambda key: False):
+    """`mine` (a function's dict) against the command line's JSON `reference`: the same keys but the `ignored` ones,
+    the same values, floats to `rel` relative (or `abs`)."""
+    if isinstance(reference, dict):
+        keys = {k for k in reference if not ignored(k)}
+        assert {k for k in mine if not ignored(k)} == keys, where
+        for k in keys:
+            assert_same_json(mine[k], reference[k], rel, abs, f"{where}.{k}", ignored)
+    elif isinstance(reference, list):
+        assert len(mine) == len(reference), where
+        for i, (a, b) in enumerate(zip(mine, reference)):
+            assert_same_json(a, b, rel, abs, f"{where}[{i}]", ignored)
+    elif isinstance(reference, float) and not isinstance(mine, bool):
+        assert mine == pytest.approx(reference, rel=rel, abs=abs), where
+    else:
+        assert mine == reference, where
+
+
 def cli_error(cli, *args):
     """The one-line message of a refused `jacobid COMMAND ...`, without its 'jacobid COMMAND: error: ' prefix."""
     status, _, err = cli(*args)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import jacobid
-from conftest import ROBOT, cli_error
+from conftest import ROBOT, assert_same_json, cli_error
 
 RTOL = 1e-12
 
@@ -40,20 +40,10 @@ def test_identify_a_file_gives_the_cli_parameters(cli_identification, main_job_l
         # validate: the second log's torques predicted, as --validate reports them.
         a, b = mine["methods"][method]["validation"], cli_identification["methods"][method]["validation"]
         assert a.keys() == b.keys()
-        assert json.dumps(a, sort_keys=True) == json.dumps(b, sort_keys=True) or _close(a, b)
+        assert_same_json(a, b, rel=RTOL, where="validation")
     assert mine["log"] == str(main_job_logs / "log.csv") and mine["model"] == cli_identification["model"]
     # The truth beside each value, as --truth adds it.
     assert mine["parameters"]["ZZ1R"]["truth"] == cli_identification["parameters"]["ZZ1R"]["truth"]
-
-
-def _close(a, b):
-    if isinstance(b, dict):
-        return a.keys() == b.keys() and all(_close(a[k], b[k]) for k in b)
-    if isinstance(b, list):
-        return len(a) == len(b) and all(_close(x, y) for x, y in zip(a, b))
-    if isinstance(b, float):
-        return a == pytest.approx(b, rel=RTOL, abs=1e-300)
-    return a == b
 
 
 def read_log(path):
@@ -133,4 +123,4 @@ def test_diagnose_is_the_cli_diagnosis(cli_json, cli, main_job_logs, tmp_path):
                          "--format", "json", "--quiet", "--no-delay")
     mine = jacobid.diagnose(ROBOT, tmp_path / "hidden.csv", validate=main_job_logs / "validation.csv", quiet=True, no_delay=True)
     mine.pop("seconds", None), reference.pop("seconds", None)
-    assert _close(mine, reference)
+    assert_same_json(mine, reference, rel=RTOL)

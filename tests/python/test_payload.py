@@ -6,7 +6,7 @@ import re
 import pytest
 
 import jacobid
-from conftest import SOURCE_DIR, cli_error
+from conftest import SOURCE_DIR, assert_same_json, cli_error
 
 UR5 = SOURCE_DIR / "examples" / "robots" / "ur5_like.yaml"
 
@@ -34,21 +34,10 @@ def runs(cli, tmp_path_factory):
     return out
 
 
-def assert_same(mine, reference, where="payload"):
+def assert_same(mine, reference):
     """Equal, numbers to 1e-9 relative: the module's library is compiled position independent, the command
     line's is not, and the last bits differ through the solves (sensitivities of rank-near columns amplify them)."""
-    if isinstance(reference, dict):
-        assert mine.keys() == reference.keys(), where
-        for k in reference:
-            assert_same(mine[k], reference[k], f"{where}.{k}")
-    elif isinstance(reference, list):
-        assert len(mine) == len(reference), where
-        for i, (a, b) in enumerate(zip(mine, reference)):
-            assert_same(a, b, f"{where}[{i}]")
-    elif isinstance(reference, float):
-        assert mine == pytest.approx(reference, rel=1e-9, abs=1e-15), where
-    else:
-        assert mine == reference, where
+    assert_same_json(mine, reference, rel=1e-9, abs=1e-15, where="payload")
 
 
 def test_payload_is_the_cli_payload(cli_json, runs):
