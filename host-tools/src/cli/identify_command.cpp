@@ -84,8 +84,8 @@ void run(IdentifyCommandOptions o) {
         return;
     }
     if (o.inputs.empty()) throw InputError("--in is required (a log to identify from), unless --print-base");
-    job::resolve_threads(o);
     if (o.drive_gains.enabled) {
+        job::resolve_threads(o);  // run_identify resolves them itself
         if (o.inputs.size() > 1) {
             throw InputError(fmt::format("--drive-gains with {} --in logs: give the unloaded run as --in and the loaded one as --loaded", o.inputs.size()));
         }

@@ -44,6 +44,7 @@ private:
     // reach around that [x0, x1).
     struct Chunk {
         std::size_t c0 = 0, c1 = 0, e0 = 0, e1 = 0, x0 = 0, x1 = 0;
+        std::size_t reach = 0;  // the Coulomb columns' filter half-width: x0 = e0 - reach, x1 = e1 + reach (within the log)
         std::size_t len() const { return e1 - e0; }
         std::size_t xlen() const { return x1 - x0; }
     };
@@ -222,9 +223,9 @@ PipelineFold::Chunk PipelineFold::chunk_at(std::size_t c0) const {
     k.e1 = std::min(a1_, k.c1 + margin_);
     // The Coulomb columns are filtered like the torque: their estimates reach `reach` samples further.
     const std::vector<double>& torque_fir = states_.torque_fir();
-    const std::size_t reach = coulomb_columns_.empty() ? 0 : !torque_fir.empty() ? (torque_fir.size() - 1) / 2 : info_.first;
-    k.x0 = k.e0 >= reach ? k.e0 - reach : 0;
-    k.x1 = std::min(full_length_, k.e1 + reach);
+    k.reach = coulomb_columns_.empty() ? 0 : !torque_fir.empty() ? (torque_fir.size() - 1) / 2 : info_.first;
+    k.x0 = k.e0 >= k.reach ? k.e0 - k.reach : 0;
+    k.x1 = std::min(full_length_, k.e1 + k.reach);
     return k;
 }
 
@@ -351,7 +352,6 @@ void PipelineFold::write_coulomb_columns(const Chunk& k, std::size_t ranges) {
     });
     const std::vector<double>& torque_fir = states_.torque_fir();
     const bool fir = !torque_fir.empty();
-    const std::size_t reach = fir ? (torque_fir.size() - 1) / 2 : info_.first;
     std::vector<double> filtered(xlen);
     for (std::size_t ci = 0; ci < coulomb_columns_.size(); ++ci) {
         for (int j = 0; j < joints_; ++j) {
@@ -367,7 +367,7 @@ void PipelineFold::write_coulomb_columns(const Chunk& k, std::size_t ranges) {
                 const BatchStatus status = signal::differentiate_batch(Span<const double>(torque_fir), Span<const double>(raw),
                                                                        Span<double>(filtered.data(), xlen - torque_fir.size() + 1));
                 if (status != BatchStatus::Ok) throw InputError(fmt::format("{}: {}", log_.source, describe(status)));
-                shift = reach;
+                shift = k.reach;
             } else {
                 signal::filtfilt_or_throw(coulomb_fq_, raw.data(), filtered.data(), xlen, workspaces_[0]);
             }
