@@ -19,7 +19,7 @@ packages=(
 # The rest, for the test command (scripts/run-tests.sh); `install-deps.sh --main` leaves them out.
 if [ "${1:-}" != "--main" ]; then
   packages+=(
-    clang libclang-rt-14-dev                      # sanitizer build and libFuzzer targets (scripts/sanitize-test.sh, fuzz/)
+    clang libclang-rt-14-dev lld                  # sanitizer build and libFuzzer targets (scripts/sanitize-test.sh, fuzz/), linked by lld
     valgrind python3-scipy python3-numpy python3-can python3-pytest  # tests, references, tests/python
   )
 fi

@@ -61,6 +61,8 @@ struct JointDescription {
 struct RobotDescription {
     std::string source = "<default>";
     std::string model = "planar2r";
+    // A serial chain (mdh, urdf): gravity and the standard parameters apply.
+    bool serial() const { return model == "mdh" || model == "urdf"; }
     double L1 = 0.5;
     std::vector<JointDescription> joints;
     CoulombSign coulomb{CoulombModel::SmoothAtan, 100.0};

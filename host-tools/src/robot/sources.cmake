@@ -5,6 +5,7 @@ target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/robot_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/planar2r_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/robot_description.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/robot_description_yaml.cpp
   ${CMAKE_CURRENT_LIST_DIR}/controller_description.cpp
   ${CMAKE_CURRENT_LIST_DIR}/base_parameters.cpp
   ${CMAKE_CURRENT_LIST_DIR}/serial_robot_model.cpp
