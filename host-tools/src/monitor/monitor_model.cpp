@@ -41,6 +41,8 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
     // The host's standard order is the lib layout's (serial_robot_model.hpp builds one from the other).
     if (standard.size() != regressor.parameter_count()) throw std::logic_error("monitor: standard parameter count differs from the lib layout");
     X.head(standard.size()) = standard;
+    m.config = serial->config();
+    m.standard = standard;
     m.terms = std::make_unique<robot::RigidBodyTerms<kJoints>>(regressor, X);
     m.friction = robot::JointFriction<kJoints>(regressor, X);
     const robot::PreslidingSettings presliding = robot::presliding_settings(d);
