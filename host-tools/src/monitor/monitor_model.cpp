@@ -20,8 +20,7 @@ double parameter_or(const robot::RobotDescription& d, const std::string& name, d
 }
 
 // The serial chain's own description: without the friction extensions' parameters (FCLj of coulomb_load, FDj of
-// presliding), which are no standard parameters of the chain; the monitor reads FDj from the full description and
-// leaves the FCLj out (a note).
+// presliding), which are no standard parameters of the chain; the monitor reads them from the full description.
 robot::RobotDescription chain_description(robot::RobotDescription d) {
     d.coulomb_load = robot::CoulombLoad::none;
     d.presliding = false;
@@ -68,13 +67,16 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
             p.presliding_displacement = presliding.displacement[static_cast<std::size_t>(j)];
             p.presliding_play = presliding.play_width;
         }
+        // FCLj of coulomb_load: its reference gravity is the description's own parameters (with_load_friction),
+        // i.e. the model's g(q) the observer computes anyway.
+        if (d.coulomb_load != robot::CoulombLoad::none) {
+            p.load = parameter_or(d, fmt::format("FCL{}", j + 1), 0.0);
+            p.load_square = d.coulomb_load == robot::CoulombLoad::square;
+        }
         if (!standing_velocity.empty()) p.standing_velocity = standing_velocity[standing_velocity.size() == 1 ? 0 : static_cast<std::size_t>(j)];
         p.standing_samples = std::max(1, static_cast<int>(std::lround(standing_time / sample_period)));
         if (!(p.standing_velocity >= 0.0)) throw InputError(fmt::format("--standing-velocity: {} rad/s must be >= 0", p.standing_velocity));
         m.friction.set_joint(j, p);
-    }
-    if (d.coulomb_load != robot::CoulombLoad::none) {
-        m.notes.push_back("friction.coulomb_load: the load-dependent Coulomb terms FCLj are not in the monitor's model (left in its estimate)");
     }
     return m;
 }
