@@ -15,6 +15,11 @@
 #include "jacobid/firmware/firmware_cycle.hpp"
 #include "jacobid/firmware/runtime.hpp"
 #include "jacobid/hal/virtual_can_bus.hpp"
+#ifdef JACOBID_FW_MONITOR
+#include <cstdio>
+
+#include "monitor/firmware_monitor_model.hpp"
+#endif
 
 namespace {
 
@@ -53,7 +58,8 @@ struct Rig {
     std::int64_t now = 0;
     std::size_t k = 0;
 
-    explicit Rig(firmware::Publisher& p) : cycle(std::make_unique<firmware::FirmwareCycle>(*fw, p, &safety)) {
+    explicit Rig(firmware::Publisher& p, bool monitored = false) : cycle(std::make_unique<firmware::FirmwareCycle>(*fw, p, &safety)) {
+        if (monitored) add_monitor();
         if (!cycle->configure(config).empty()) std::abort();
         cycle->reset_estop();
         frames.resize(1000);
@@ -64,6 +70,27 @@ struct Rig {
                                        6.0 * std::cos(6.0 * t), 10.0 * std::cos(3.0 * t), frames[i][j]);
             }
         }
+    }
+    // fw.yaml monitor: the UR5-like arm's description (6 joints, rotor inertias, smoothed Coulomb) and
+    // thresholds no motion here reaches (action flag): the estimate, the detection and the stream fields run
+    // every cycle, nothing stops.
+    void add_monitor() {
+#ifdef JACOBID_FW_MONITOR
+        const std::string thresholds = "/tmp/jacobid-bench-monitor.yaml";
+        std::string y = "estimator: {type: observer, gain: 100, velocity_window: 0.05}\njoints:\n";
+        for (int j = 0; j < 6; ++j) y += "  - {moving: 1000, standing: 1000}\n";
+        std::FILE* f = std::fopen(thresholds.c_str(), "w");
+        if (f == nullptr) std::abort();
+        std::fputs(y.c_str(), f);
+        std::fclose(f);
+        config.monitor.enabled = true;
+        config.monitor.robot = std::string(JACOBID_EXAMPLES_DIR) + "/robots/ur5_like.yaml";
+        config.monitor.thresholds = thresholds;
+        config.monitor.action = firmware::MonitorAction::Flag;
+        config.monitor.model = monitor::load_firmware_monitor(config).model;
+#else
+        std::abort();
+#endif
     }
     void send() {
         for (const auto& f : frames[k % frames.size()]) sim->send(f);
@@ -86,10 +113,11 @@ void BM_SimSend6Frames(benchmark::State& state) {
 }
 BENCHMARK(BM_SimSend6Frames);
 
-void BM_FirmwareCycle6Joints(benchmark::State& state) {
+// The cycle past its warm-up (full windows, datagrams every cycle), `monitored`: with the contact monitor.
+void run_cycles(benchmark::State& state, bool monitored) {
     NullPublisher p;
-    Rig rig(p);
-    for (int i = 0; i < 200; ++i) {  // past the warm-up: full windows, datagrams every cycle
+    Rig rig(p, monitored);
+    for (int i = 0; i < 200; ++i) {
         rig.send();
         rig.cycle->step(rig.now += 1'000'000);
     }
@@ -99,8 +127,19 @@ void BM_FirmwareCycle6Joints(benchmark::State& state) {
     }
     benchmark::DoNotOptimize(p.bytes);
     if (rig.cycle->counters().decode.decoded != 6 * rig.cycle->counters().cycles) state.SkipWithError("frames not decoded");
+    const std::uint16_t version = monitored ? stream::kDatagramVersionMonitor : stream::kDatagramVersion;
+    if (rig.cycle->last_datagram().version != version) state.SkipWithError("not the stream version asked for");
 }
+
+void BM_FirmwareCycle6Joints(benchmark::State& state) { run_cycles(state, false); }
 BENCHMARK(BM_FirmwareCycle6Joints);
+
+#ifdef JACOBID_FW_MONITOR
+// The same with the contact monitor (fw.yaml monitor:): the momentum observer on the UR5-like arm's model
+// (six Newton-Euler passes at the lib's 8-joint capacity), its detector and the version-2 datagram.
+void BM_FirmwareCycle6JointsMonitor(benchmark::State& state) { run_cycles(state, true); }
+BENCHMARK(BM_FirmwareCycle6JointsMonitor);
+#endif
 
 void BM_FirmwareCycle6JointsUdp(benchmark::State& state) {
     const int rx = ::socket(AF_INET, SOCK_DGRAM, 0);

@@ -101,6 +101,19 @@ std::string relative_to(const std::string& source, const std::string& path) {
     return slash == std::string::npos ? path : source.substr(0, slash + 1) + path;
 }
 
+// monitor: {robot, thresholds, action, stream} (docs/firmware.md, "Contact monitor"). The two files are read
+// at start-up by the host's own readers (jacobid-fw's main; tests call the same loader), not here: this library
+// stays free of the robot description's reader.
+void read_monitor(Section& s, FirmwareConfig& c) {
+    MonitorConfig& m = c.monitor;
+    m.robot = relative_to(c.source, s.required_text("robot"));
+    m.thresholds = relative_to(c.source, s.required_text("thresholds"));
+    m.action = s.choice("action", "stop", {"stop", "flag"}) == "stop" ? MonitorAction::Stop : MonitorAction::Flag;
+    m.stream = s.boolean("stream", true);
+    s.reject_unknown();
+    m.enabled = true;
+}
+
 // trajectory: {file, mode, ramp_time, repeat, max_stale_cycles, joints: [{position, velocity, acceleration, torque,
 // following_error, kp, kd}, ...]} (docs/firmware.md, "Trajectory playback"). Every limit is required: a
 // robot is never moved within limits the file did not state.
@@ -242,11 +255,18 @@ FirmwareConfig read_config(const YAML::Node& root, const std::string& source) {
         Section t(source, top.get("trajectory"), "trajectory");
         read_trajectory(t, top.get("trajectory"), c);
     }
+    top.mark_used("monitor");
+    if (top.has("monitor")) {
+        Section m(source, top.get("monitor"), "monitor");
+        read_monitor(m, c);
+    }
     top.reject_unknown();
     // Before anything is opened for writing: no output over an input or over another output.
-    const YAML::Node stream = top.get("stream"), trajectory = top.get("trajectory");
+    const YAML::Node stream = top.get("stream"), trajectory = top.get("trajectory"), monitor = top.get("monitor");
     require_outputs_apart(source,
-                          {{"this configuration file", source, YAML::Node()}, {"trajectory.file", c.trajectory.file, c.playback ? trajectory["file"] : YAML::Node()}},
+                          {{"this configuration file", source, YAML::Node()}, {"trajectory.file", c.trajectory.file, c.playback ? trajectory["file"] : YAML::Node()},
+                           {"monitor.robot", c.monitor.robot, c.monitor.enabled ? monitor["robot"] : YAML::Node()},
+                           {"monitor.thresholds", c.monitor.thresholds, c.monitor.enabled ? monitor["thresholds"] : YAML::Node()}},
                           {{"stream.log", c.stream.log, stream["log"]}, {"trajectory.log", c.trajectory.log, c.playback ? trajectory["log"] : YAML::Node()}});
     return c;
 }

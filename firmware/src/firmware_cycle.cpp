@@ -59,6 +59,13 @@ std::string FirmwareCycle::configure(const FirmwareConfig& config) {
         // The player's reasons name the table (file:line) themselves.
         if (std::string why = player_.configure(config.trajectory, joint_count_, sample_period_); !why.empty()) return why;
     }
+    monitor_.disable();
+    monitor_action_ = config.monitor.action;
+    monitor_contact_ = false;
+    contact_joint_ = -1;
+    if (config.monitor.enabled) {
+        if (std::string why = monitor_.configure(config.monitor.model, joint_count_, sample_period_); !why.empty()) return why;
+    }
     if (config.sync_id > static_cast<std::int32_t>(hal::kCanStandardIdMask)) return "can.sync_id must be a standard (11-bit) id";
     send_sync_ = config.sync_id >= 0;
     sync_frame_ = hal::CanFrame{};
@@ -74,6 +81,8 @@ std::string FirmwareCycle::configure(const FirmwareConfig& config) {
     counters_ = CycleCounters{};
     datagram_ = Datagram{};
     datagram_.joint_count = joint_count_;
+    // Version 2 only when the monitor streams: without it the stream stays what version-1 receivers read.
+    datagram_.version = config.monitor.enabled && config.monitor.stream ? stream::kDatagramVersionMonitor : stream::kDatagramVersion;
     datagram_.sample_period = sample_period_;
     datagram_.delay_samples = static_cast<std::uint32_t>(bank_.delay_samples());
     encoded_size_ = 0;
@@ -127,6 +136,7 @@ bool FirmwareCycle::reset_estop() noexcept {
     if (cleared) {
         enable_request_ = false;
         was_stopped_ = false;
+        contact_joint_ = -1;  // the operator's reset also acknowledges a contact's stop
     }
     return cleared;
 }
@@ -160,10 +170,6 @@ void FirmwareCycle::step(std::int64_t now_ns) noexcept {
         if (can_.send(sync_frame_) == hal::CanStatus::Ok) ++counters_.sync_sent;
         else ++counters_.sync_failures;
     }
-    if (playback_) run_playback(now_ns);
-    counters_.decode = decoders_.counters();
-    counters_.can = can_.counters();
-
     ++ticks_;
     SampleRecord& rec = delay_line_[ticks_ % delay_line_.size()];
     rec.time_ns = now_ns;
@@ -184,8 +190,48 @@ void FirmwareCycle::step(std::int64_t now_ns) noexcept {
         rec.flags[j] = flags;
     }
     bank_.step(position_, torque_, out_);
-    // The first row is the first cycle whose aligned sample exists (tick d + 1).
-    if (ticks_ > bank_.delay_samples()) publish_row(out_);
+    // The first row is the first cycle whose aligned sample exists (tick d + 1). The monitor runs on it
+    // before the playback, so that a contact's stop is this cycle's command.
+    const bool aligned = ticks_ > bank_.delay_samples();
+    if (aligned) {
+        build_row(out_);
+        run_monitor(out_);
+    }
+    if (playback_) run_playback(now_ns);
+    counters_.decode = decoders_.counters();
+    counters_.can = can_.counters();
+    if (aligned) publish_row();
+}
+
+// The external torque of the row's instant, its contact flags and, on a confirmed contact with
+// monitor.action stop, the action: the drive enable dropped now (the e-stop line) and the playback's hold
+// sent by run_playback in this same cycle.
+void FirmwareCycle::run_monitor(const Bank::Output& out) noexcept {
+    if (!monitor_.enabled()) return;
+    Datagram& d = datagram_;
+    bool trusted = true;
+    for (std::size_t j = 0; j < joint_count_; ++j) trusted = trusted && d.joints[j].flags == 0;
+    const MonitorRow& row = monitor_.step(out.position, out.velocity, out.torque, out.valid, trusted);
+    const bool streamed = d.version == stream::kDatagramVersionMonitor;
+    for (std::size_t j = 0; j < joint_count_; ++j) {
+        d.joints[j].tau_ext = row.external[j];
+        if (streamed && (row.over >> j & 1u) != 0) d.joints[j].flags |= stream::kJointContact;
+    }
+    if (row.contact) {
+        if (streamed) d.flags |= stream::kStreamContact;
+        ++counters_.contact_rows;
+        if (!monitor_contact_) ++counters_.contact_events;
+    }
+    monitor_contact_ = row.contact;
+    if (!row.contact || monitor_action_ != MonitorAction::Stop) return;
+    ++counters_.contact_stops;
+    if (contact_joint_ < 0) {
+        for (std::size_t j = 0; j < joint_count_ && contact_joint_ < 0; ++j) {
+            if ((row.over >> j & 1u) != 0) contact_joint_ = static_cast<int>(j);
+        }
+    }
+    if (safety_ != nullptr && !safety_->stopped()) safety_->stop(hal::StopCause::Contact);
+    if (safety_ != nullptr) d.flags |= stream::kStreamEstop;
 }
 
 void FirmwareCycle::send_command(std::size_t joint, const hal::JointCommand& command) noexcept {
@@ -238,6 +284,7 @@ void FirmwareCycle::run_playback(std::int64_t now_ns) noexcept {
         in.fault[j] = s.device_error != 0;
     }
     in.estop = safety_ != nullptr && safety_->stopped();
+    in.contact_joint = contact_joint_;
     in.deadline_missed = deadline_missed_;
     deadline_missed_ = false;
     player_.step(in);
@@ -259,7 +306,7 @@ void FirmwareCycle::run_playback(std::int64_t now_ns) noexcept {
     log_commands(now_ns, in, player_.commands());
 }
 
-void FirmwareCycle::publish_row(const Bank::Output& out) noexcept {
+void FirmwareCycle::build_row(const Bank::Output& out) noexcept {
     const std::uint64_t aligned_tick = ticks_ - bank_.delay_samples();
     const SampleRecord& rec = delay_line_[aligned_tick % delay_line_.size()];
     // Every sample the bank's windows read is among the newest warmup_samples() ticks.
@@ -285,8 +332,13 @@ void FirmwareCycle::publish_row(const Bank::Output& out) noexcept {
             e.flags |= stream::kJointWindowStale;
             ++counters_.joints[j].window_stale_rows;
         }
+        e.tau_ext = 0.0;
     }
     if (!out.valid) ++counters_.warmup_rows;
+}
+
+void FirmwareCycle::publish_row() noexcept {
+    Datagram& d = datagram_;
     if (d.flags & stream::kStreamEstop) ++counters_.estop_rows;
     const stream::DatagramStatus st = stream::encode(d, Span<std::uint8_t>(encoded_.data(), encoded_.size()), encoded_size_);
     ++sequence_;

@@ -24,6 +24,10 @@
 #include "jacobid/hal/gpiod_lines.hpp"
 #include "jacobid/hal/socketcan_transport.hpp"
 #include "jacobid/hal/virtual_can_bus.hpp"
+#ifdef JACOBID_FW_MONITOR
+#include "core/errors.hpp"
+#include "monitor/firmware_monitor_model.hpp"
+#endif
 
 namespace {
 
@@ -60,6 +64,28 @@ struct SafetyLines {
     std::optional<hal::SafetyIo> io;
 };
 
+// fw.yaml `monitor:`: the robot description and the monitor YAML, read by the host's readers (the code that
+// wrote them); a build without the host tools has no reader and refuses the section.
+bool load_monitor(firmware::FirmwareConfig& config) {
+#ifdef JACOBID_FW_MONITOR
+    try {
+        monitor::FirmwareMonitorLoad load = monitor::load_firmware_monitor(config);
+        config.monitor.model = std::move(load.model);
+        for (const std::string& n : load.notes) std::fprintf(stderr, "jacobid-fw: warning: monitor: %s\n", n.c_str());
+        return true;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "jacobid-fw: error: %s: monitor: %s\n", config.source.c_str(), e.what());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "jacobid-fw: error: %s: monitor: %s\n", config.source.c_str(), e.what());
+    }
+    return false;
+#else
+    std::fprintf(stderr, "jacobid-fw: error: %s: monitor: this jacobid-fw was built without the host tools, which read the monitor's files\n",
+                 config.source.c_str());
+    return false;
+#endif
+}
+
 int run(const std::string& config_path, double duration, bool no_realtime) {
     firmware::FirmwareConfig config;
     try {
@@ -69,6 +95,7 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
         return kExitConfig;
     }
 
+    if (config.monitor.enabled && !load_monitor(config)) return kExitConfig;
     // Without a gpio: section the e-stop input and the drive enable do not exist: a playback on real drives
     // then stops only by its own checks and the hold command. Allowed (the drives may have their own safe
     // torque off), but said before anything moves.
@@ -223,6 +250,7 @@ int run(const std::string& config_path, double duration, bool no_realtime) {
                  static_cast<double>(max_cost) / 1e3);
     std::fprintf(stderr, "jacobid-fw: %s\n", firmware::format_counters(cycle->counters(), cycle->joint_count(), line, sizeof line));
     if (cycle->playback()) std::fprintf(stderr, "jacobid-fw: %s\n", firmware::format_playback(cycle->player(), cycle->counters(), line, sizeof line));
+    if (cycle->monitor().enabled()) std::fprintf(stderr, "jacobid-fw: %s\n", firmware::format_monitor(*cycle, line, sizeof line));
     return cycle->playback() && cycle->player().phase() == firmware::PlaybackPhase::Stopped ? kExitPlaybackStopped : 0;
 }
 
@@ -253,7 +281,7 @@ int main(int argc, char** argv) {
     app.add_flag("--no-realtime", no_realtime, "do not ask for SCHED_FIFO, mlockall or CPU affinity");
     app.footer("Signals: SIGINT/SIGTERM stop cleanly (drive enable dropped, summary printed); SIGUSR1 resets a released e-stop.\n"
                "Exit codes: 0 ok, 1 device (CAN, GPIO, UDP) could not be opened, 2 configuration error, 4 trajectory playback stopped on "
-               "a fault (e-stop, missed deadline, drive fault, stale joint, following error, limit).");
+               "a fault (e-stop, contact, missed deadline, drive fault, stale joint, following error, limit).");
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

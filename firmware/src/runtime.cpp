@@ -187,4 +187,14 @@ const char* format_playback(const TrajectoryPlayer& p, const CycleCounters& c, c
     return buffer;
 }
 
+const char* format_monitor(const FirmwareCycle& cycle, char* buffer, std::size_t size) noexcept {
+    const CycleCounters& c = cycle.counters();
+    auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+    char joint[32] = "";
+    if (cycle.contact_joint() >= 0) std::snprintf(joint, sizeof joint, ", first on joint %d", cycle.contact_joint() + 1);
+    std::snprintf(buffer, size, "monitor: %llu contact events (%llu rows), acted on %llu rows%s", u(c.contact_events), u(c.contact_rows),
+                  u(c.contact_stops), joint);
+    return buffer;
+}
+
 }  // namespace jacobid::firmware

@@ -44,6 +44,7 @@ const char* to_string(StopReason reason) noexcept {
         case StopReason::VelocityLimit: return "velocity limit";
         case StopReason::AccelerationLimit: return "acceleration limit";
         case StopReason::TorqueLimit: return "torque limit";
+        case StopReason::Contact: return "contact";
     }
     return "?";
 }
@@ -116,6 +117,8 @@ void TrajectoryPlayer::stop(StopReason reason, int joint) noexcept {
 }
 
 bool TrajectoryPlayer::check_input(const PlayerInput& in) noexcept {
+    // A contact first: its action also trips the e-stop line in the same cycle, and the stop's reason is the contact.
+    if (in.contact_joint >= 0) return stop(StopReason::Contact, in.contact_joint), false;
     if (in.estop) return stop(StopReason::EStop, -1), false;
     if (in.deadline_missed) return stop(StopReason::MissedDeadline, -1), false;
     for (std::size_t j = 0; j < joints_; ++j) {

@@ -23,7 +23,7 @@ void decode_and_reencode(const std::uint8_t* data, std::size_t size) {
     stream::EstimateDatagram<MaxJoints> d;
     if (stream::decode(Span<const std::uint8_t>(bytes.data(), bytes.size()), d) != stream::DatagramStatus::Ok) return;
     JACOBID_FUZZ_CHECK(d.joint_count >= 1 && d.joint_count <= MaxJoints, "accepted joint count outside 1..MaxJoints");
-    std::vector<std::uint8_t> again(stream::datagram_size(d.joint_count));
+    std::vector<std::uint8_t> again(stream::datagram_size(d.joint_count, d.version));
     std::size_t written = 0;
     const stream::DatagramStatus status = stream::encode(d, Span<std::uint8_t>(again.data(), again.size()), written);
     JACOBID_FUZZ_CHECK(status == stream::DatagramStatus::Ok, "encode rejects a datagram that decode accepted");

@@ -45,7 +45,7 @@ std::vector<std::uint8_t> well_formed(FuzzedDataProvider& in, std::uint64_t& seq
         e.qd_hat = in.ConsumeFloatingPoint<double>();
         e.qdd_hat = in.ConsumeFloatingPoint<double>();
     }
-    std::vector<std::uint8_t> bytes(stream::datagram_size(d.joint_count));
+    std::vector<std::uint8_t> bytes(stream::datagram_size(d.joint_count, d.version));
     std::size_t written = 0;
     // Values encode() refuses go out as raw bytes anyway: a buggy or foreign sender could send them.
     if (stream::encode(d, Span<std::uint8_t>(bytes.data(), bytes.size()), written) != stream::DatagramStatus::Ok) {

@@ -3,6 +3,7 @@
 // missing, and how much the gap shrinks on held-out data once it is added (docs/diagnose.md).
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <memory>
@@ -21,6 +22,7 @@
 #include "diagnose/diagnose_log.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/diagnosis_report.hpp"
+#include "diagnose/robot_export.hpp"
 #include "io/csv_table.hpp"
 #include "io/distinct_inputs.hpp"
 #include "io/time_axis.hpp"
@@ -30,7 +32,7 @@ namespace jacobid::cli {
 namespace {
 
 struct DiagnoseOptions {
-    std::string robot, validate, report;
+    std::string robot, validate, report, export_robot;
     std::vector<std::string> inputs;  // --in, once per log
     std::string format = "table";
     std::string output = "-";
@@ -48,8 +50,9 @@ void run(DiagnoseOptions o) {
     std::vector<NamedPath> read_files = robot_files("--robot", o.robot, robot);
     read_files.insert(read_files.end(), {{"--validate", o.validate}, {"--log-format", o.log_format.file}});
     for (const std::string& in : o.inputs) read_files.push_back({"--in", in});
-    check_outputs({{"--output", o.output}}, read_files);
+    check_outputs({{"--output", o.output}, {"--export-robot", o.export_robot}}, read_files);
     read_files.push_back({"--output", o.output});
+    read_files.push_back({"--export-robot", o.export_robot});
     check_output_directory({"--report", o.report}, read_files);  // written after the work: checked before it
     // Its blocked cross-validation and horizon simulations read one continuous record (docs/log-format.md).
     refuse_split(o.log_format, "diagnose");
@@ -87,7 +90,17 @@ void run(DiagnoseOptions o) {
     o.settings.selection.search_delay = !o.no_delay;
     o.settings.catalogue.torque_delay = !o.no_delay;
     const diagnose::Diagnosis d = diagnose::diagnose_log(robot, *model, logs, o.validate.empty() ? nullptr : &vlog, o.settings, progress);
-    write_output(o.output, o.format == "json" ? diagnose::to_json(d).dump(2) + "\n" : diagnose::format_text(d));
+    nlohmann::json json = o.format == "json" ? diagnose::to_json(d) : nlohmann::json();
+    std::string text = o.format == "json" ? std::string() : diagnose::format_text(d);
+    if (!o.export_robot.empty()) {
+        const diagnose::ExportedDescription e = diagnose::export_diagnosed_robot(robot, d, o.export_robot);
+        write_output(o.export_robot, e.yaml);
+        json["export"] = e.summary;
+        text += fmt::format("exported: {} ({} added{}{})\n", o.export_robot, e.added.size(), e.added.empty() ? "" : ": ",
+                            fmt::join(e.added, "; "));
+        for (const std::string& n : e.not_in_description) text += fmt::format("  not in the description: {}\n", n);
+    }
+    write_output(o.output, o.format == "json" ? json.dump(2) + "\n" : text);
     if (!o.report.empty()) {
         diagnose::write_report(o.report, d);
         progress(fmt::format("report written to {}/report.md", o.report));
@@ -113,6 +126,10 @@ void add_diagnose_command(CLI::App& app) {
     cmd->add_option("--validate", o->validate, "held-out log for the selection and the before/after figures (default: blocked cross-validation)")->check(file_path());
     cmd->add_option("--format", o->format, "table (text) or json")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
     cmd->add_option("--output,-o", o->output, "output file, '-' for standard output")->capture_default_str()->check(file_path(true));
+    cmd->add_option("--export-robot", o->export_robot,
+                    "write the robot description with the named effects added as its model options (friction offset, presliding, "
+                    "coulomb_load, rotor inertia, Coulomb smoothing), for identify --robot FILE; effects it has no option for are listed")
+        ->check(file_path(true));
     cmd->add_option("--report", o->report, "also write DIR/report.md with PNG plots of the residual vs velocity and position, before and after")->check(file_path());
     cmd->add_option("--time-column", o->time_column, "name of the time column (s)")->capture_default_str();
     add_time_tolerance_option(cmd, o->time_tolerance);

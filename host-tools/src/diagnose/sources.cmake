@@ -12,6 +12,7 @@ target_sources(jacobid_host PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/diagnosis.cpp
   ${CMAKE_CURRENT_LIST_DIR}/diagnosis_report.cpp
   ${CMAKE_CURRENT_LIST_DIR}/diagnose_log.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/robot_export.cpp
 )
 target_sources(jacobid PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/diagnose_command.cpp)
 target_sources(jacobid_options PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../options/diagnose_options.cpp)

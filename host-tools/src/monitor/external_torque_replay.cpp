@@ -44,8 +44,6 @@ std::unique_ptr<Bank> make_bank(const EstimatorSettings& s, double period, bool 
 
 }  // namespace
 
-const char* to_string(Estimator e) { return e == Estimator::Observer ? "observer" : "residual"; }
-
 MonitorLog monitor_log(const io::CsvTable& table, const robot::RobotDescription& robot, const std::string& time_column, double time_tolerance) {
     MonitorLog log;
     log.source = table.source();

@@ -20,6 +20,8 @@ double non_negative(Section& s, const YAML::Node& n, const std::string& key, con
 
 }  // namespace
 
+const char* to_string(Estimator e) { return e == Estimator::Observer ? "observer" : "residual"; }
+
 MonitorFile parse_monitor_file(const std::string& text, const std::string& source, std::size_t joints) {
     const YAML::Node root = yaml::load<InputError>(text, source);
     Section s(source, root, "");

@@ -19,16 +19,30 @@ double parameter_or(const robot::RobotDescription& d, const std::string& name, d
     return fallback;
 }
 
+// The serial chain's own description: without the friction extensions' parameters (FCLj of coulomb_load, FDj of
+// presliding), which are no standard parameters of the chain; the monitor reads them from the full description.
+robot::RobotDescription chain_description(robot::RobotDescription d) {
+    d.coulomb_load = robot::CoulombLoad::none;
+    d.presliding = false;
+    std::vector<std::pair<std::string, double>> kept;
+    for (const auto& p : d.parameters) {
+        if (p.first.rfind("FCL", 0) != 0 && p.first.rfind("FD", 0) != 0) kept.push_back(p);
+    }
+    d.parameters = kept;
+    return d;
+}
+
 }  // namespace
 
 MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period) {
     MonitorModel m;
     m.description = robot::load_robot_description(path);
     const robot::RobotDescription& d = m.description;
+    const robot::RobotDescription chain = chain_description(d);
     if (d.model != "mdh" && d.model != "urdf") {
         throw InputError(fmt::format("{}: model '{}': the monitor needs a serial robot (model mdh or urdf)", path, d.model));
     }
-    const auto model = robot::make_robot_model(d);
+    const auto model = robot::make_robot_model(chain);
     const auto* serial = dynamic_cast<const robot::SerialRobotModel*>(&robot::rigid_body(*model));
     if (!serial) throw InputError(fmt::format("{}: not a serial robot model", path));
     const int n = serial->joint_count();
@@ -36,11 +50,13 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
         throw InputError(fmt::format("--standing-velocity: {} values for {} joints (expected 1 or {})", standing_velocity.size(), n, n));
     }
     const auto regressor = robot::make_rnea_regressor<kJoints>(serial->config());
-    const Eigen::VectorXd standard = robot::standard_values(d, *serial);
+    const Eigen::VectorXd standard = robot::standard_values(chain, *serial);
     robot::RneaRegressor<kJoints>::Parameters X = robot::RneaRegressor<kJoints>::Parameters::Zero();
     // The host's standard order is the lib layout's (serial_robot_model.hpp builds one from the other).
     if (standard.size() != regressor.parameter_count()) throw std::logic_error("monitor: standard parameter count differs from the lib layout");
     X.head(standard.size()) = standard;
+    m.config = serial->config();
+    m.standard = standard;
     m.terms = std::make_unique<robot::RigidBodyTerms<kJoints>>(regressor, X);
     m.friction = robot::JointFriction<kJoints>(regressor, X);
     const robot::PreslidingSettings presliding = robot::presliding_settings(d);
@@ -51,13 +67,16 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
             p.presliding_displacement = presliding.displacement[static_cast<std::size_t>(j)];
             p.presliding_play = presliding.play_width;
         }
+        // FCLj of coulomb_load: its reference gravity is the description's own parameters (with_load_friction),
+        // i.e. the model's g(q) the observer computes anyway.
+        if (d.coulomb_load != robot::CoulombLoad::none) {
+            p.load = parameter_or(d, fmt::format("FCL{}", j + 1), 0.0);
+            p.load_square = d.coulomb_load == robot::CoulombLoad::square;
+        }
         if (!standing_velocity.empty()) p.standing_velocity = standing_velocity[standing_velocity.size() == 1 ? 0 : static_cast<std::size_t>(j)];
         p.standing_samples = std::max(1, static_cast<int>(std::lround(standing_time / sample_period)));
         if (!(p.standing_velocity >= 0.0)) throw InputError(fmt::format("--standing-velocity: {} rad/s must be >= 0", p.standing_velocity));
         m.friction.set_joint(j, p);
-    }
-    if (d.coulomb_load != robot::CoulombLoad::none) {
-        m.notes.push_back("friction.coulomb_load: the load-dependent Coulomb terms FCLj are not in the monitor's model (left in its estimate)");
     }
     return m;
 }

@@ -18,6 +18,8 @@ using Joints = robot::JointVector<kJoints>;
 
 struct MonitorModel {
     robot::RobotDescription description;
+    robot::SerialRobotConfig config;  // the chain the terms were built from (the controller builds its own from it)
+    Eigen::VectorXd standard;         // standard parameters in the lib layout's order, friction included
     std::unique_ptr<robot::RigidBodyTerms<kJoints>> terms;
     robot::JointFriction<kJoints> friction;
     std::vector<std::string> notes;  // what the monitor leaves out of the description (printed once)

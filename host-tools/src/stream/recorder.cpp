@@ -98,6 +98,10 @@ void Recorder::datagram(const std::vector<std::uint8_t>& data, std::size_t full_
     } else if (described_ && d.joint_count != joint_count_) {
         reason = "inconsistent";
         detail = fmt::format("joint count {} differs from the stream's {}", d.joint_count, joint_count_);
+    } else if (described_ && d.version != version_) {
+        // The columns follow the version (tau_ext with 2): a file cannot change its columns mid-way.
+        reason = "inconsistent";
+        detail = fmt::format("version {} differs from the stream's {}", d.version, version_);
     } else if (described_ && d.sample_period != sample_period_) {
         reason = "inconsistent";
         detail = fmt::format("sample period {} s differs from the stream's {} s", d.sample_period, sample_period_);
@@ -106,7 +110,7 @@ void Recorder::datagram(const std::vector<std::uint8_t>& data, std::size_t full_
         // (io::beyond_log_range), so the row is not written.
         for (std::size_t j = 0; j < d.joint_count && reason.empty(); ++j) {
             const stream::JointEstimate& e = d.joints[j];
-            for (double v : {e.q, e.tau, e.q_hat, e.qd_hat, e.qdd_hat}) {
+            for (double v : {e.q, e.tau, e.q_hat, e.qd_hat, e.qdd_hat, e.tau_ext}) {
                 if (io::beyond_log_range(v)) {
                     reason = "out-of-range";
                     detail = fmt::format("joint {}: value {} beyond +-{} (no measurement is)", j + 1, v, io::kMaxLogValue);
@@ -126,6 +130,7 @@ void Recorder::datagram(const std::vector<std::uint8_t>& data, std::size_t full_
         joint_count_ = d.joint_count;
         sample_period_ = d.sample_period;
         delay_samples_ = d.delay_samples;
+        version_ = d.version;
     }
     tracker_.push(d, *this);
 }
@@ -160,6 +165,12 @@ void Recorder::open_segment(const HostDatagram& first) {
     header += ",seq,stream_flags";
     for (std::size_t j = 1; j <= n; ++j) header += fmt::format(",flags{}", j);
     header += ",t_wake";
+    // Version 2 (the controller's contact monitor): its external-torque estimates, after every version-1
+    // column so that a reader of version-1 files by position reads the same columns. Named _hat (an
+    // estimate), not tau_ext<j>, which is the simulator's logged truth (docs/monitor.md).
+    if (version_ == kDatagramVersionMonitor) {
+        for (std::size_t j = 1; j <= n; ++j) header += fmt::format(",tau_ext{}_hat", j);
+    }
     *out_ << header << '\n';
 }
 
@@ -184,6 +195,7 @@ void Recorder::row(const HostDatagram& d) {
     rows_warmup_ += warmup;
     rows_window_stale_ += window_stale;
     rows_estop_ += (d.flags & kStreamEstop) != 0;
+    rows_contact_ += (d.flags & kStreamContact) != 0;
     // Consecutive datagrams should describe consecutive controller samples; a jump means the controller
     // skipped cycles (overrun) or decimates the stream. The time column shows it too; this names it.
     if (have_previous_ && d.sequence == previous_sequence_ + 1 && d.sample_index != previous_sample_index_ + 1) ++sample_index_jumps_;
@@ -222,6 +234,9 @@ void Recorder::row(const HostDatagram& d) {
     line += fmt::format(",{},{}", d.sequence, d.flags);
     for (std::size_t j = 0; j < n; ++j) line += fmt::format(",{}", d.joints[j].flags);
     line += "," + relative_seconds(d.timestamp_ns, time_origin_ns_);
+    if (version_ == kDatagramVersionMonitor) {
+        for (std::size_t j = 0; j < n; ++j) line += fmt::format(",{:.17g}", d.joints[j].tau_ext);
+    }
     *out_ << line << '\n';
     ++rows_written_;
     ++files_.back().rows;
@@ -271,6 +286,7 @@ std::vector<std::string> Recorder::warnings() const {
     }
     if (tracker_.counts().duplicated > 0) w.push_back(fmt::format("{} duplicated datagram(s) ignored", tracker_.counts().duplicated));
     if (rows_estop_ > 0) w.push_back(fmt::format("{} row(s) recorded while the e-stop was active (stream_flags bit 0)", rows_estop_));
+    if (rows_contact_ > 0) w.push_back(fmt::format("{} row(s) with a contact detected by the controller's monitor (stream_flags bit 2)", rows_contact_));
     if (rows_warmup_ > 0) w.push_back(fmt::format("{} row(s) with estimates in warm-up (not valid)", rows_warmup_));
     if (rows_window_stale_ > 0) w.push_back(fmt::format("{} row(s) with a stale sample inside the estimator windows", rows_window_stale_));
     if (sample_index_jumps_ > 0) {
@@ -301,13 +317,13 @@ nlohmann::json Recorder::summary() const {
     j["policy"] = to_string(options_.policy);
     j["complete"] = holes().empty();
     j["stream"] = {{"joint_count", joint_count_}, {"sample_period", sample_period_}, {"delay_samples", delay_samples_},
-                   {"time_origin_ns", time_origin_ns_}};
+                   {"time_origin_ns", time_origin_ns_}, {"version", version_}};
     j["datagrams"] = {{"received", received_}, {"malformed", malformed_total_}, {"malformed_by_reason", reasons},
                       {"duplicated", c.duplicated}, {"reordered", c.reordered}, {"late", c.late}, {"late_sequences", tracker_.late()},
                       {"lost", tracker_.lost_count()}, {"lost_sequences", missing}, {"restarts", restarts_}};
     if (tracker_.started()) j["datagrams"]["highest_sequence"] = tracker_.highest_sequence();
     j["rows"] = {{"written", rows_written_}, {"stale", rows_stale_}, {"decode_error", rows_decode_error_},
-                 {"unmeasured_sequences", unmeasured}, {"estop", rows_estop_}, {"warmup", rows_warmup_},
+                 {"unmeasured_sequences", unmeasured}, {"estop", rows_estop_}, {"contact", rows_contact_}, {"warmup", rows_warmup_},
                  {"window_stale", rows_window_stale_}, {"sample_index_jumps", sample_index_jumps_}};
     j["files"] = files;
     return j;

@@ -87,6 +87,7 @@ private:
     std::size_t joint_count_ = 0;
     double sample_period_ = 0.0;
     std::uint32_t delay_samples_ = 0;
+    std::uint16_t version_ = kDatagramVersion;  // 2: the monitor's tau_ext columns are written too
     bool time_origin_set_ = false;
     std::int64_t time_origin_ns_ = 0;
     std::uint64_t time_origin_index_ = 0;  // controller sample index of the first row
@@ -102,6 +103,7 @@ private:
     std::uint64_t rows_warmup_ = 0;
     std::uint64_t rows_window_stale_ = 0;
     std::uint64_t rows_estop_ = 0;
+    std::uint64_t rows_contact_ = 0;  // stream flag kStreamContact (version 2)
     std::vector<SequenceRange> unmeasured_;  // rows without a fresh measurement of every joint
     std::vector<std::uint64_t> restarts_;    // sequence numbers where the controller restarted
     std::uint64_t sample_index_jumps_ = 0;

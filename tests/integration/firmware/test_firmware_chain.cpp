@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "firmware_chain_bench.hpp"
 #include "firmware_test_support.hpp"
 #include "identification_bars.hpp"
 #include "jacobid/firmware/runtime.hpp"
@@ -33,12 +34,6 @@ using nlohmann::json;
 
 std::string path(const std::string& name) { return (test::scratch_directory() / name).string(); }
 
-Eigen::VectorXd table2(const robot::RobotModel& model) {
-    const auto* planar = dynamic_cast<const robot::Planar2RModel*>(&model);
-    const auto t = robot::paper_table2_parameters(*planar);
-    return Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
-}
-
 struct ChainResult {
     std::uint64_t samples = 0;
     firmware::CycleCounters counters;
@@ -46,46 +41,10 @@ struct ChainResult {
     sim::CanPlayerCounters player;
 };
 
-// The chain's pieces on the virtual bus: the MIT 2R firmware (`config`, e.g. with a trajectory:), its GPIO
-// released, and the simulated drives' telemetry (CanPlayer, the core of `jacobid sim-can`) on the other end.
-struct ChainBench : test::BenchWiring {
-    std::unique_ptr<firmware::FirmwareCycle> cycle;
-    sim::CanPlayer player;
-    const robot::RobotDescription robot = robot::default_planar2r_description();
-    const std::unique_ptr<robot::RobotModel> model = robot::make_robot_model(robot);
-    std::uint64_t samples = 0;
-
-    ChainBench(firmware::Publisher& publisher, const firmware::FirmwareConfig& config)
-        : cycle(std::make_unique<firmware::FirmwareCycle>(*fw_end, publisher, &safety)), player(*sim_end, test::profiles_of(config)) {
-        EXPECT_EQ(cycle->configure(config), "");
-        EXPECT_TRUE(cycle->reset_estop());
-    }
-
-    // The Table II robot simulated with `settings` (torque noise 0.05 / 0.01 N.m; the MIT position code is the
-    // encoder), each sample sent as telemetry and followed by one firmware cycle at 1 kHz simulated time;
-    // `pace_hz` > 0 sleeps so that the datagrams leave at that rate in wall time.
-    void simulate(const sim::SimulationSettings& settings, double pace_hz = 0.0) {
-        sim::MeasurementSettings ms;
-        ms.encoder_counts_per_rev = 0.0;
-        ms.torque_noise = {0.05, 0.01};
-        ms.seed = 8;
-        sim::MeasurementModel measurement(ms);
-        const auto start = std::chrono::steady_clock::now();
-        sim::simulate(*model, table2(*model), robot.joints, settings, measurement, [&](const sim::SimulatedSample& s) {
-            const auto now = static_cast<std::int64_t>(samples) * 1'000'000;
-            bus.set_time_ns(now);
-            player.send(s.q.data(), s.qd.data(), s.tau_measured.data());
-            cycle->step(now);
-            ++samples;
-            if (pace_hz > 0.0) std::this_thread::sleep_until(start + std::chrono::duration<double>(static_cast<double>(samples) / pace_hz));
-        });
-    }
-};
-
 // Runs `seconds` of the simulated robot through the chain; every datagram goes to `publish`.
 // `pace` sleeps so that the datagrams leave at the given rate in wall time (0: as fast as possible).
 ChainResult run_chain(double seconds, firmware::Publisher& publisher, double pace_hz = 0.0) {
-    ChainBench bench(publisher, test::chain_config());
+    test::ChainBench bench(publisher, test::chain_config());
     sim::SimulationSettings settings;
     settings.duration = seconds;
     settings.seed = 7;
@@ -194,7 +153,7 @@ TEST(Chain, PlaybackLoopSimulatedRobotFollowsAndIdentifies) {
         "trajectory:\n  file: " + write_excitation_table() + "\n  ramp_time: 1\n  repeat: 3\n  joints:\n"
         "    - {position: [-3, 3], velocity: 5, acceleration: 20, torque: 120, following_error: 0.2, kp: 40, kd: 1}\n"
         "    - {position: [-3, 3], velocity: 5, acceleration: 20, torque: 8, following_error: 0.2, kp: 10, kd: 0.5}\n");
-    ChainBench bench(publisher, config);
+    test::ChainBench bench(publisher, config);
     sim::CommandFollower follower(*bench.sim_end, test::profiles_of(config), {0.0, 0.0});
     sim::SimulationSettings settings;
     settings.duration = 1.0 + 3 * 10.0 + 0.5;

@@ -88,7 +88,7 @@ TEST(FirmwareConfig, ErrorsNameTheKeyAndLine) {
     EXPECT_EQ(error_of(kCan + kJoints + kStream + "gpio: {chip: gpiochip0, estop_line: 4, enable_line: 4, sync_line: 6}\n"),
               "fw.yaml:6:67: gpio.sync_line: estop_line, enable_line and sync_line must be different lines");
     EXPECT_EQ(error_of(kCan + kJoints + kStream + "realtime: {priority: 120}\n"), "fw.yaml:6:22: realtime.priority: must be an integer in 0..99");
-    EXPECT_EQ(error_of(kCan + kJoints + kStream + "extra: 1\n"), "fw.yaml:6:1: extra: unknown key (known: can, estimator, gpio, joints, max_age, rate, realtime, stream, trajectory)");
+    EXPECT_EQ(error_of(kCan + kJoints + kStream + "extra: 1\n"), "fw.yaml:6:1: extra: unknown key (known: can, estimator, gpio, joints, max_age, monitor, rate, realtime, stream, trajectory)");
     EXPECT_EQ(error_of("can: [\n"), "fw.yaml:2:1: invalid YAML: end of sequence flow not found");
     EXPECT_EQ(error_of(""), "fw.yaml: empty configuration");
     std::string nine = "joints:\n";

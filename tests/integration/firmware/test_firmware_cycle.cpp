@@ -10,6 +10,7 @@
 
 #include "allocation_counter.hpp"
 #include "firmware_test_support.hpp"
+#include "monitor_test_support.hpp"
 #include "jacobid/firmware/jitter_stats.hpp"
 #include "jacobid/firmware/runtime.hpp"
 #include "sim/can_player.hpp"
@@ -127,31 +128,52 @@ TEST(FirmwareCycle, RowsAreAlignedAndDescribeTheDelayedSample) {
     EXPECT_TRUE(rig.enable.level);
 }
 
+// Without and with the contact monitor (fw.yaml `monitor:`, action stop): the Rig's motion is no robot's, so
+// the monitor sees contacts all along and its stop path (the e-stop line) runs in the measured stretch too.
 TEST(FirmwareZeroAllocation, ManyCyclesOnTheVirtualBusAllocateNothing) {
-    Rig rig;
-    rig.keep_rows = false;
-    rig.publisher.on_datagram = nullptr;
-    // Faults in the measured stretch too: their paths must not allocate either.
-    rig.faulty.rule = [](hal::CanFrame& f, bool& duplicate) {
-        static std::uint64_t n = 0;
-        ++n;
-        if (n % 97 == 0) return false;       // dropped
-        if (n % 89 == 0) duplicate = true;   // duplicated
-        if (n % 83 == 0) f.len = 3;          // garbage
-        return true;
-    };
-    rig.run(2000);  // warm-up outside the measurement
-    const std::uint64_t before = test::allocation_count();
-    for (int i = 0; i < 50000; ++i) {
-        if (i == 20000) rig.estop.level = false;
-        if (i == 20100) rig.bus.inject_error_frame(0x40);
-        rig.tick();
+    for (const bool monitored : {false, true}) {
+        SCOPED_TRACE(monitored ? "with the monitor" : "without the monitor");
+        Rig rig;
+        if (monitored) {
+            rig.config = test::monitored_chain_config("alloc", "stop");
+            ASSERT_EQ(rig.cycle->configure(rig.config), "");
+            ASSERT_TRUE(rig.cycle->reset_estop());
+        }
+        rig.keep_rows = false;
+        rig.publisher.on_datagram = nullptr;
+        // Faults in the measured stretch too: their paths must not allocate either.
+        rig.faulty.rule = [](hal::CanFrame& f, bool& duplicate) {
+            static std::uint64_t n = 0;
+            ++n;
+            if (n % 97 == 0) return false;       // dropped
+            if (n % 89 == 0) duplicate = true;   // duplicated
+            if (n % 83 == 0) f.len = 3;          // garbage
+            return true;
+        };
+        rig.run(2000);  // warm-up outside the measurement
+        const std::uint64_t contacts_before = rig.cycle->counters().contact_stops;
+        const std::uint64_t before = test::allocation_count();
+        for (int i = 0; i < 50000; ++i) {
+            if (i == 20000) rig.estop.level = false;
+            if (i == 20100) rig.bus.inject_error_frame(0x40);
+            if (i == 40000) rig.faulty.rule = nullptr;  // clean rows from here: the monitor may detect on them
+            if (i == 30000) {
+                rig.estop.level = true;
+                rig.cycle->reset_estop();  // the operator's reset: a contact may trip the line again
+            }
+            rig.tick();
+        }
+        const std::uint64_t after = test::allocation_count();
+        EXPECT_EQ(after - before, 0u) << "FirmwareCycle::step (or the virtual bus / CanPlayer::send) allocated";
+        EXPECT_EQ(rig.publisher.count, rig.cycle->counters().datagrams_published);
+        EXPECT_GT(rig.cycle->counters().duplicate_frames, 0u);
+        EXPECT_GT(rig.cycle->counters().decode.rejected_short, 0u);
+        EXPECT_EQ(rig.cycle->counters().encode_failures, 0u);
+        if (monitored) {
+            EXPECT_GT(rig.cycle->counters().contact_stops, contacts_before) << "the contact path did not run in the measured stretch";
+            EXPECT_EQ(rig.publisher.last.version, stream::kDatagramVersionMonitor);
+        }
     }
-    const std::uint64_t after = test::allocation_count();
-    EXPECT_EQ(after - before, 0u) << "FirmwareCycle::step (or the virtual bus / CanPlayer::send) allocated";
-    EXPECT_EQ(rig.publisher.count, rig.cycle->counters().datagrams_published);
-    EXPECT_GT(rig.cycle->counters().duplicate_frames, 0u);
-    EXPECT_GT(rig.cycle->counters().decode.rejected_short, 0u);
     // The counter itself works: a vector allocates.
     const std::uint64_t probe = test::allocation_count();
     std::vector<int> v(10);

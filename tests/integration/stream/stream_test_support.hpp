@@ -51,7 +51,7 @@ inline Datagram make_datagram(std::uint64_t seq, std::size_t joints = 2) {
 }
 
 inline std::vector<std::uint8_t> encode_bytes(const Datagram& d) {
-    std::vector<std::uint8_t> b(jacobid::stream::datagram_size(d.joint_count));
+    std::vector<std::uint8_t> b(jacobid::stream::datagram_size(d.joint_count, d.version));
     std::size_t written = 0;
     if (jacobid::stream::encode(d, jacobid::Span<std::uint8_t>(b), written) != jacobid::stream::DatagramStatus::Ok) {
         throw std::runtime_error("test datagram does not encode");

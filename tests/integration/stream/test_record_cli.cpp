@@ -285,10 +285,10 @@ TEST(RecordCli, FuzzRegressionTimeStampsFurtherApartThanInt64AreExact) {
         jacobid::stream::Recorder recorder(options);
         auto d = make_datagram(0);
         d.timestamp_ns = 9208677939247041483;
-        recorder.datagram(jacobid::test::encode_bytes(d), jacobid::stream::datagram_size(d.joint_count));
+        recorder.datagram(jacobid::test::encode_bytes(d), jacobid::stream::datagram_size(d.joint_count, d.version));
         d = make_datagram(1);
         d.timestamp_ns = -9166008540424582197;
-        recorder.datagram(jacobid::test::encode_bytes(d), jacobid::stream::datagram_size(d.joint_count));
+        recorder.datagram(jacobid::test::encode_bytes(d), jacobid::stream::datagram_size(d.joint_count, d.version));
         recorder.finish();
         ASSERT_EQ(recorder.rows_written(), 2u);
     }

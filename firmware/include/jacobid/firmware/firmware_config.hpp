@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "jacobid/firmware/capacity.hpp"
+#include "jacobid/firmware/monitor_config.hpp"
 #include "jacobid/firmware/playback_config.hpp"
 #include "jacobid/hal/joint_decoder_set.hpp"
 #include "jacobid/kernel_params.hpp"
@@ -75,6 +76,8 @@ struct FirmwareConfig {
     // `trajectory:` given: the cycle plays it on the drives (TrajectoryPlayer); else it only measures.
     bool playback = false;
     PlaybackConfig trajectory;
+    // `monitor:` given: the cycle estimates the external torque and acts on a contact (issue 40).
+    MonitorConfig monitor;
 
     double sample_period() const noexcept { return 1.0 / rate; }
 };

@@ -19,6 +19,7 @@
 
 #include "jacobid/differentiator_bank.hpp"
 #include "jacobid/firmware/command_log.hpp"
+#include "jacobid/firmware/cycle_monitor.hpp"
 #include "jacobid/firmware/firmware_config.hpp"
 #include "jacobid/firmware/trajectory_player.hpp"
 #include "jacobid/hal/can_transport.hpp"
@@ -67,6 +68,9 @@ struct CycleCounters {
     std::uint64_t command_frames = 0;    // playback: command frames sent
     std::uint64_t command_failures = 0;  // playback: command frames the transport refused
     std::uint64_t stop_cycles = 0;       // playback: cycles that sent the stop (hold) command
+    std::uint64_t contact_rows = 0;      // monitor: published rows with a confirmed contact
+    std::uint64_t contact_events = 0;    // monitor: rows where a contact was confirmed after one without
+    std::uint64_t contact_stops = 0;     // monitor: contacts acted on (monitor.action: stop)
     hal::DecodeCounters decode{};        // of the decoder set: frames, decoded, rejected by reason
     hal::CanCounters can{};              // of the transport, copied every cycle (error frames, overflows)
     std::array<JointCounters, kMaxJoints> joints{};
@@ -99,6 +103,9 @@ public:
     // Where each playback cycle's commands and measurements go (null: nowhere). Must outlive the cycle.
     void set_command_log(CommandLog* log) noexcept { command_log_ = log; }
     const TrajectoryPlayer& player() const noexcept { return player_; }
+    // The contact monitor (fw.yaml `monitor:`): its last row, and the joint of the first contact acted on.
+    const CycleMonitor& monitor() const noexcept { return monitor_; }
+    int contact_joint() const noexcept { return contact_joint_; }
 
     bool configured() const noexcept { return configured_; }
     std::size_t joint_count() const noexcept { return joint_count_; }
@@ -134,7 +141,9 @@ private:
 
     void note_decoded(std::size_t joint, const hal::CanFrame& f) noexcept;
     void update_safety() noexcept;
-    void publish_row(const Bank::Output& out) noexcept;
+    void build_row(const Bank::Output& out) noexcept;
+    void run_monitor(const Bank::Output& out) noexcept;
+    void publish_row() noexcept;
     void run_playback(std::int64_t now_ns) noexcept;
     void send_command(std::size_t joint, const hal::JointCommand& command) noexcept;
     void log_commands(std::int64_t now_ns, const PlayerInput& in, const std::array<hal::JointCommand, kMaxJoints>& sent) noexcept;
@@ -164,7 +173,7 @@ private:
     bool enable_request_ = false;  // low for the first cycle after start or a reset: arms the SafetyIo
     bool was_stopped_ = false;
     Datagram datagram_{};
-    std::array<std::uint8_t, stream::datagram_size(kMaxJoints)> encoded_{};
+    std::array<std::uint8_t, stream::datagram_size(kMaxJoints, stream::kDatagramVersionMonitor)> encoded_{};
     std::size_t encoded_size_ = 0;
     CycleCounters counters_{};
     // Playback (docs/firmware.md, "Trajectory playback").
@@ -176,6 +185,11 @@ private:
     bool holding_ = false;
     bool deadline_missed_ = false;
     CommandLog* command_log_ = nullptr;
+    // Contact monitor (docs/firmware.md, "Contact monitor").
+    CycleMonitor monitor_{};
+    MonitorAction monitor_action_ = MonitorAction::Stop;
+    bool monitor_contact_ = false;  // the previous row had a confirmed contact (for contact_events)
+    int contact_joint_ = -1;        // set in the cycle a contact is acted on; read by run_playback
 };
 
 }  // namespace jacobid::firmware

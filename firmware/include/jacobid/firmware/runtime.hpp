@@ -93,5 +93,7 @@ const char* format_jitter(const JitterStats& s, std::uint64_t overruns, char* bu
 const char* format_counters(const CycleCounters& c, std::size_t joints, char* buffer, std::size_t size) noexcept;
 // "playback: <phase> [(stopped: <reason>, joint N)], row R, C cycles, F command frames (failures X), S stop cycles".
 const char* format_playback(const TrajectoryPlayer& p, const CycleCounters& c, char* buffer, std::size_t size) noexcept;
+// "monitor: 2 contact events (35 rows), acted on 35 rows, first on joint 3"
+const char* format_monitor(const FirmwareCycle& cycle, char* buffer, std::size_t size) noexcept;
 
 }  // namespace jacobid::firmware

@@ -10,7 +10,7 @@
 // ends) in `ramp_time`; Playing steps one table row per cycle, `repeat` times. Every active cycle checks,
 // in this order, and stops in that same cycle on the first failure (the command becomes "stop", latched
 // until configure/start):
-//   e-stop input, a missed cycle deadline, a drive fault, a joint not fresh for more than
+//   e-stop input, a contact (the monitor's), a missed cycle deadline, a drive fault, a joint not fresh for more than
 //   `max_stale_cycles`, the following error |measured - previous command| above `following_error`, the
 //   command's position outside [position_min, position_max], |velocity| above `velocity_limit`,
 //   |feed-forward torque| above `torque_limit`. The ramp's first cycle also checks the quintic's peak
@@ -40,6 +40,7 @@ enum class StopReason : std::uint8_t {
     VelocityLimit,
     AccelerationLimit,  // the ramp-in from where the robot stands (checked in its first cycle)
     TorqueLimit,
+    Contact,  // the contact monitor (fw.yaml `monitor:`) confirmed a contact in this cycle
 };
 const char* to_string(PlaybackPhase phase) noexcept;
 const char* to_string(StopReason reason) noexcept;
@@ -50,6 +51,7 @@ struct PlayerInput {
     std::array<bool, kMaxJoints> fault{};   // the drive reports a fault
     bool estop = false;
     bool deadline_missed = false;
+    int contact_joint = -1;  // 0-based joint the contact monitor found in contact this cycle; -1: none
 };
 
 // The start-up check of a playback: every row within the limits, and every step the player will command

@@ -58,6 +58,7 @@ enum class StopCause : std::uint8_t {
     OutputFault,  // the drive-enable output could not be written
     Requested,    // software asked for a stop (request_stop)
     Startup,      // never reset since construction: the latch starts stopped (fail safe)
+    Contact,      // the firmware's contact monitor detected a contact (fw.yaml monitor.action: stop)
 };
 
 inline const char* describe(StopCause c) noexcept {
@@ -68,6 +69,7 @@ inline const char* describe(StopCause c) noexcept {
         case StopCause::OutputFault: return "drive-enable output write failed";
         case StopCause::Requested: return "stop requested by software";
         case StopCause::Startup: return "e-stop not yet reset since start";
+        case StopCause::Contact: return "contact detected by the monitor";
     }
     return "unknown stop cause";
 }

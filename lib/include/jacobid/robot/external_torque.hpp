@@ -66,7 +66,7 @@ public:
         terms_.momentum(q, qd, p);
         terms_.gravity(q, g);
         terms_.coriolis_transpose(q, qd, ct);
-        friction_.step(q, qd, f, out.band, out.standing);
+        friction_.step(q, qd, f, out.band, out.standing, &g);
         const Joints input = tau + ct - g - f;  // dp/dt = input + tau_ext
         if (!started_) {
             started_ = true;
@@ -110,9 +110,11 @@ public:
 
     EstimatorStatus step(const Joints& q, const Joints& qd, const Joints& qdd, const Joints& tau, ExternalTorqueEstimate<N>& out) noexcept {
         if (!q.allFinite() || !qd.allFinite() || !qdd.allFinite() || !tau.allFinite()) return EstimatorStatus::NonFiniteInput;
-        Joints model = Joints::Zero(), f = Joints::Zero();
+        Joints model = Joints::Zero(), f = Joints::Zero(), g = Joints::Zero();
         terms_.inverse_dynamics(q, qd, qdd, model);
-        friction_.step(q, qd, f, out.band, out.standing);
+        // One more Newton-Euler pass, only for a load-dependent Coulomb term.
+        if (friction_.load_dependent()) terms_.gravity(q, g);
+        friction_.step(q, qd, f, out.band, out.standing, &g);
         out.external = model + f - tau;  // M qdd + C qd + g + f = tau + tau_ext
         return EstimatorStatus::Ok;
     }

@@ -2,7 +2,7 @@
 #pragma once
 // The identified friction of each joint as the external-torque estimator subtracts it (docs/method.md,
 // "External torque and contact detection"):
-//     f = FV qd + FC s(qd) + FOFF + FD z,
+//     f = FV qd + (FC + FCL l(g)) s(qd) + FOFF + FD z,
 // and, when the joint stands (|qd| below standing_velocity), its Coulomb band FC: at rest friction holds ANY
 // torque in [-FC, FC], whatever the model's s(0) = 0 says. A joint at rest with a torque inside its band is
 // friction doing its job, not a contact: the UR10e's wrists hold several N.m after each stop. The band goes
@@ -10,6 +10,12 @@
 // model's, continuous through the standing velocity (dropping FC s(qd) there would step the estimate by up to
 // FC s(standing_velocity), 70 % of FC at alpha = 100 s/rad and 0.02 rad/s: a false alarm at every stop).
 // z is the Dahl presliding state (presliding_friction.hpp) driven by the positions, when FD is identified.
+// FCL l(g) is the load-dependent Coulomb level (`friction: coulomb_load`, docs/method.md "Load-dependent Coulomb
+// friction"): l = |g| (abs) or g^2 (square) of the joint's gravity torque under the model's own parameters (the
+// reference the host's LoadFrictionModel takes for a description), when FCL is identified; at standstill the band
+// is the whole Coulomb level FC + FCL l(g), the friction a loaded joint holds. With presliding the sliding level is
+// FC + FD (z saturates at +-1), so a standing joint holds up to that, while the model says FD z: the band is
+// FC + FCL l(g) + |FD| (1 + |z|), what the residual held - FD z can reach.
 // Fixed-size, allocation-free.
 #include <Eigen/Core>
 #include <algorithm>
@@ -26,6 +32,8 @@ struct JointFrictionParameters {
     double coulomb = 0.0;    // FC, N.m
     double offset = 0.0;     // FOFF, N.m
     double presliding = 0.0;  // FD, N.m (0: no presliding term)
+    double load = 0.0;        // FCL, N.m per N.m of gravity torque (abs) or per (N.m)^2 (square); 0: none
+    bool load_square = false;  // the law: false |g|, true g^2
     double presliding_displacement = 3e-4;  // x_p, rad
     double presliding_play = 2e-4;          // rad, total width of the play operator
     CoulombSign sign{};
@@ -72,9 +80,18 @@ public:
         }
     }
 
+    // Whether some joint has a load-dependent Coulomb term (its caller then passes the gravity torques).
+    bool load_dependent() const noexcept {
+        for (int j = 0; j < joints_; ++j) {
+            if (parameters_[static_cast<std::size_t>(j)].load != 0.0) return true;
+        }
+        return false;
+    }
+
     // One sample: advances the presliding states along q, then the friction f and, per joint, the Coulomb
-    // band (FC at standstill, 0 when moving) and whether the joint stands.
-    void step(const Joints& q, const Joints& qd, Joints& f, Joints& band, std::array<bool, N>& standing) noexcept {
+    // band (the Coulomb level at standstill, 0 when moving) and whether the joint stands. `gravity`: the
+    // model's gravity torques at q, needed when load_dependent() (null: no load-dependent term).
+    void step(const Joints& q, const Joints& qd, Joints& f, Joints& band, std::array<bool, N>& standing, const Joints* gravity = nullptr) noexcept {
         f.setZero();
         band.setZero();
         for (int j = 0; j < joints_; ++j) {
@@ -84,8 +101,13 @@ public:
             int& still = still_[js];
             still = std::abs(qd[j]) < p.standing_velocity ? std::min(still + 1, p.standing_samples) : 0;
             standing[js] = still >= p.standing_samples;
-            f[j] = p.offset + p.presliding * z + p.viscous * qd[j] + p.coulomb * p.sign(qd[j]);
-            if (standing[js]) band[j] = p.coulomb;
+            double coulomb = p.coulomb;
+            if (gravity != nullptr && p.load != 0.0) {
+                const double g = (*gravity)[j];
+                coulomb += p.load * (p.load_square ? g * g : std::abs(g));
+            }
+            f[j] = p.offset + p.presliding * z + p.viscous * qd[j] + coulomb * p.sign(qd[j]);
+            if (standing[js]) band[j] = coulomb + std::abs(p.presliding) * (1.0 + std::abs(z));
         }
     }
 

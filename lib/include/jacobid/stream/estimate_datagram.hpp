@@ -4,6 +4,12 @@
 // q^, qd^, qdd^) for every joint, sent by the controller to the host recorder over UDP, one datagram per
 // control cycle. The byte layout is specified in docs/stream-format.md; this file implements it.
 //
+// Two versions: 1 (44-byte joint blocks) and 2 (52-byte joint blocks: version 1's 44 bytes unchanged, then
+// the contact monitor's external-torque estimate; stream flag `contact`, joint flag `contact`). A controller
+// sends version 2 only when its monitor streams (fw.yaml `monitor:`), so a stream without the monitor stays
+// byte for byte what version-1 receivers read; version-1 receivers refuse version 2 by its version field
+// (UnsupportedVersion), never misread it.
+//
 // Every field is written and read byte by byte, little-endian, at the offsets of the spec (never by
 // copying a struct), so the wire format does not depend on the compiler's padding or the CPU's byte
 // order. Encoding and decoding are noexcept and allocation-free: the controller calls encode() on its
@@ -20,19 +26,24 @@ namespace jacobid::stream {
 
 // "JDST" in the first four bytes: lets the receiver tell a stray datagram from ours before reading more.
 constexpr std::array<std::uint8_t, 4> kDatagramMagic{0x4A, 0x44, 0x53, 0x54};
-constexpr std::uint16_t kDatagramVersion = 1;
+constexpr std::uint16_t kDatagramVersion = 1;         // without the contact monitor's fields
+constexpr std::uint16_t kDatagramVersionMonitor = 2;  // with tau_ext per joint and the contact flags
 constexpr std::size_t kDatagramHeaderSize = 48;
-constexpr std::size_t kDatagramJointSize = 44;
+constexpr std::size_t kDatagramJointSize = 44;         // version 1
+constexpr std::size_t kDatagramJointSizeMonitor = 52;  // version 2: + tau_ext (f64) at offset 44
 // Largest UDP payload over IPv4 (65535 - 8 UDP - 20 IP): bounds the joint count the format can carry.
 constexpr std::size_t kMaxUdpPayload = 65507;
 constexpr std::size_t kProtocolMaxJoints = (kMaxUdpPayload - kDatagramHeaderSize) / kDatagramJointSize;  // 1487
+constexpr std::size_t kProtocolMaxJointsMonitor = (kMaxUdpPayload - kDatagramHeaderSize) / kDatagramJointSizeMonitor;  // 1258
 
 // Header flags (stream-wide). Unknown bits are rejected: new meanings need a new version.
 enum StreamFlag : std::uint32_t {
     kStreamEstop = 1u << 0,    // the e-stop (safety input) is active: the robot is being stopped
     kStreamRestart = 1u << 1,  // first datagram after a controller (re)start or bank reset; history cleared
+    kStreamContact = 1u << 2,  // version 2: the monitor confirmed a contact in this row (and acted on it)
 };
 constexpr std::uint32_t kStreamFlagsKnown = kStreamEstop | kStreamRestart;
+constexpr std::uint32_t kStreamFlagsKnownMonitor = kStreamFlagsKnown | kStreamContact;
 
 // Per-joint flags. They describe the aligned sample (the instant of `timestamp_ns`), not the newest cycle.
 enum JointFlag : std::uint32_t {
@@ -40,8 +51,10 @@ enum JointFlag : std::uint32_t {
     kJointDecodeError = 1u << 1,  // the frame for the aligned sample arrived but could not be decoded
     kJointWarmup = 1u << 2,       // estimates not valid yet: the windows are not full (after start/reset)
     kJointWindowStale = 1u << 3,  // some sample inside the estimator windows was stale: q^, qd^, qdd^ degraded
+    kJointContact = 1u << 4,      // version 2: |tau_ext| of this joint is beyond its threshold in this row
 };
 constexpr std::uint32_t kJointFlagsKnown = kJointStale | kJointDecodeError | kJointWarmup | kJointWindowStale;
+constexpr std::uint32_t kJointFlagsKnownMonitor = kJointFlagsKnown | kJointContact;
 // q and tau are measurements: they may be non-finite only when there was no fresh, decodable measurement.
 constexpr std::uint32_t kJointNoMeasurement = kJointStale | kJointDecodeError;
 
@@ -52,11 +65,13 @@ struct JointEstimate {
     double qdd_hat = 0.0;       // acceleration estimate (n = 2)
     double tau = 0.0;           // raw measured torque at the aligned sample (N m or N)
     std::uint32_t flags = 0;    // JointFlag bits
+    double tau_ext = 0.0;       // version 2: the monitor's external-torque estimate at the aligned sample (N m or N)
 };
 
 template <std::size_t MaxJoints>
 struct EstimateDatagram {
     static_assert(MaxJoints > 0 && MaxJoints <= kProtocolMaxJoints, "MaxJoints must be 1..1487 (one UDP datagram)");
+    std::uint16_t version = kDatagramVersion;  // 1, or 2 with tau_ext and the contact flags
     std::uint32_t flags = 0;               // StreamFlag bits
     std::uint32_t delay_samples = 0;       // common delay of the estimates behind the newest sample
     std::uint64_t sequence = 0;            // +1 per datagram sent; gaps = lost datagrams
@@ -72,7 +87,7 @@ enum class DatagramStatus {
     Truncated,             // shorter than the header, or than the header + joint_count joint blocks
     Oversized,             // longer than the header + joint_count joint blocks (trailing bytes)
     BadMagic,              // the first four bytes are not "JDST"
-    UnsupportedVersion,    // version other than kDatagramVersion
+    UnsupportedVersion,    // version other than 1 and 2
     NoJoints,              // joint count 0
     TooManyJoints,         // joint count above the receiver's capacity (MaxJoints)
     UnknownFlags,          // a stream or joint flag bit that version 1 does not define
@@ -88,10 +103,10 @@ inline const char* describe(DatagramStatus s) noexcept {
         case DatagramStatus::Truncated: return "datagram is shorter than its header and joint blocks";
         case DatagramStatus::Oversized: return "datagram has trailing bytes after its joint blocks";
         case DatagramStatus::BadMagic: return "datagram does not start with the magic \"JDST\"";
-        case DatagramStatus::UnsupportedVersion: return "unsupported estimate datagram version (this build reads version 1)";
+        case DatagramStatus::UnsupportedVersion: return "unsupported estimate datagram version (this build reads versions 1 and 2)";
         case DatagramStatus::NoJoints: return "datagram has a joint count of 0";
         case DatagramStatus::TooManyJoints: return "joint count exceeds the receiver's capacity";
-        case DatagramStatus::UnknownFlags: return "stream or joint flags have bits that version 1 does not define";
+        case DatagramStatus::UnknownFlags: return "stream or joint flags have bits that the datagram's version does not define";
         case DatagramStatus::InvalidSamplePeriod: return "sample period must be a finite number > 0";
         case DatagramStatus::NonFiniteMeasurement: return "q or tau is not finite on a joint not flagged stale or decode-error";
         case DatagramStatus::NonFiniteEstimate: return "an estimate is not finite on a joint without flags";
@@ -100,8 +115,14 @@ inline const char* describe(DatagramStatus s) noexcept {
     return "unknown datagram status";
 }
 
-constexpr std::size_t datagram_size(std::size_t joint_count) noexcept {
-    return kDatagramHeaderSize + kDatagramJointSize * joint_count;
+constexpr std::size_t joint_block_size(std::uint16_t version) noexcept {
+    return version == kDatagramVersionMonitor ? kDatagramJointSizeMonitor : kDatagramJointSize;
+}
+constexpr std::size_t datagram_size(std::size_t joint_count, std::uint16_t version = kDatagramVersion) noexcept {
+    return kDatagramHeaderSize + joint_block_size(version) * joint_count;
+}
+constexpr bool known_version(std::uint16_t version) noexcept {
+    return version == kDatagramVersion || version == kDatagramVersionMonitor;
 }
 
 namespace wire {
@@ -148,19 +169,23 @@ constexpr double kMinSamplePeriod = 1e-9;
 constexpr double kMaxSamplePeriod = 1e3;
 
 // The checks shared by encode and decode, so the controller cannot send what the host would reject.
-inline DatagramStatus validate_values(std::uint32_t stream_flags, double sample_period, const JointEstimate* joints,
-                                      std::size_t count) noexcept {
-    if ((stream_flags & ~kStreamFlagsKnown) != 0) return DatagramStatus::UnknownFlags;
+inline DatagramStatus validate_values(std::uint16_t version, std::uint32_t stream_flags, double sample_period,
+                                      const JointEstimate* joints, std::size_t count) noexcept {
+    const bool monitor = version == kDatagramVersionMonitor;
+    if ((stream_flags & ~(monitor ? kStreamFlagsKnownMonitor : kStreamFlagsKnown)) != 0) return DatagramStatus::UnknownFlags;
     if (!(sample_period >= kMinSamplePeriod && sample_period <= kMaxSamplePeriod)) return DatagramStatus::InvalidSamplePeriod;
     for (std::size_t j = 0; j < count; ++j) {
         const JointEstimate& e = joints[j];
-        if ((e.flags & ~kJointFlagsKnown) != 0) return DatagramStatus::UnknownFlags;
+        if ((e.flags & ~(monitor ? kJointFlagsKnownMonitor : kJointFlagsKnown)) != 0) return DatagramStatus::UnknownFlags;
         if ((e.flags & kJointNoMeasurement) == 0 && !(std::isfinite(e.q) && std::isfinite(e.tau))) {
             return DatagramStatus::NonFiniteMeasurement;
         }
-        if (e.flags == 0 && !(std::isfinite(e.q_hat) && std::isfinite(e.qd_hat) && std::isfinite(e.qdd_hat))) {
+        // The contact bit says the estimate is valid and large, so it does not excuse a non-finite one.
+        const bool flagged = (e.flags & ~kJointContact) != 0;
+        if (!flagged && !(std::isfinite(e.q_hat) && std::isfinite(e.qd_hat) && std::isfinite(e.qdd_hat))) {
             return DatagramStatus::NonFiniteEstimate;
         }
+        if (monitor && !flagged && !std::isfinite(e.tau_ext)) return DatagramStatus::NonFiniteEstimate;
     }
     return DatagramStatus::Ok;
 }
@@ -172,14 +197,17 @@ DatagramStatus encode(const EstimateDatagram<MaxJoints>& d, Span<std::uint8_t> o
     written = 0;
     if (d.joint_count == 0) return DatagramStatus::NoJoints;
     if (d.joint_count > MaxJoints) return DatagramStatus::TooManyJoints;
-    const DatagramStatus values = validate_values(d.flags, d.sample_period, d.joints.data(), d.joint_count);
+    if (!known_version(d.version)) return DatagramStatus::UnsupportedVersion;
+    if (d.version == kDatagramVersionMonitor && d.joint_count > kProtocolMaxJointsMonitor) return DatagramStatus::TooManyJoints;
+    const DatagramStatus values = validate_values(d.version, d.flags, d.sample_period, d.joints.data(), d.joint_count);
     if (values != DatagramStatus::Ok) return values;
-    const std::size_t size = datagram_size(d.joint_count);
+    const std::size_t block = joint_block_size(d.version);
+    const std::size_t size = datagram_size(d.joint_count, d.version);
     if (out.size() < size) return DatagramStatus::BufferTooSmall;
 
     std::uint8_t* p = out.data();
     for (std::size_t i = 0; i < kDatagramMagic.size(); ++i) p[i] = kDatagramMagic[i];
-    wire::put_u16(p + 4, kDatagramVersion);
+    wire::put_u16(p + 4, d.version);
     wire::put_u16(p + 6, static_cast<std::uint16_t>(d.joint_count));  // <= 1487 by the static_assert
     wire::put_u32(p + 8, d.flags);
     wire::put_u32(p + 12, d.delay_samples);
@@ -188,7 +216,7 @@ DatagramStatus encode(const EstimateDatagram<MaxJoints>& d, Span<std::uint8_t> o
     wire::put_u64(p + 32, static_cast<std::uint64_t>(d.timestamp_ns));  // two's complement bit pattern
     wire::put_f64(p + 40, d.sample_period);
     for (std::size_t j = 0; j < d.joint_count; ++j) {
-        std::uint8_t* b = p + kDatagramHeaderSize + j * kDatagramJointSize;
+        std::uint8_t* b = p + kDatagramHeaderSize + j * block;
         const JointEstimate& e = d.joints[j];
         wire::put_f64(b + 0, e.q);
         wire::put_f64(b + 8, e.q_hat);
@@ -196,6 +224,7 @@ DatagramStatus encode(const EstimateDatagram<MaxJoints>& d, Span<std::uint8_t> o
         wire::put_f64(b + 24, e.qdd_hat);
         wire::put_f64(b + 32, e.tau);
         wire::put_u32(b + 40, e.flags);
+        if (d.version == kDatagramVersionMonitor) wire::put_f64(b + 44, e.tau_ext);
     }
     written = size;
     return DatagramStatus::Ok;
@@ -214,16 +243,19 @@ DatagramStatus decode(Span<const std::uint8_t> in, EstimateDatagram<MaxJoints>& 
         if (p[i] != kDatagramMagic[i]) return DatagramStatus::BadMagic;
     }
     if (in.size() < 6) return DatagramStatus::Truncated;
-    if (wire::get_u16(p + 4) != kDatagramVersion) return DatagramStatus::UnsupportedVersion;
+    const std::uint16_t version = wire::get_u16(p + 4);
+    if (!known_version(version)) return DatagramStatus::UnsupportedVersion;
     if (in.size() < kDatagramHeaderSize) return DatagramStatus::Truncated;
     const std::size_t count = wire::get_u16(p + 6);
     if (count == 0) return DatagramStatus::NoJoints;
     if (count > MaxJoints) return DatagramStatus::TooManyJoints;
-    const std::size_t size = datagram_size(count);
+    const std::size_t block = joint_block_size(version);
+    const std::size_t size = datagram_size(count, version);
     if (in.size() < size) return DatagramStatus::Truncated;
     if (in.size() > size) return DatagramStatus::Oversized;
 
     out.joint_count = count;
+    out.version = version;
     out.flags = wire::get_u32(p + 8);
     out.delay_samples = wire::get_u32(p + 12);
     out.sequence = wire::get_u64(p + 16);
@@ -231,7 +263,7 @@ DatagramStatus decode(Span<const std::uint8_t> in, EstimateDatagram<MaxJoints>& 
     out.timestamp_ns = static_cast<std::int64_t>(wire::get_u64(p + 32));
     out.sample_period = wire::get_f64(p + 40);
     for (std::size_t j = 0; j < count; ++j) {
-        const std::uint8_t* b = p + kDatagramHeaderSize + j * kDatagramJointSize;
+        const std::uint8_t* b = p + kDatagramHeaderSize + j * block;
         JointEstimate& e = out.joints[j];
         e.q = wire::get_f64(b + 0);
         e.q_hat = wire::get_f64(b + 8);
@@ -239,8 +271,9 @@ DatagramStatus decode(Span<const std::uint8_t> in, EstimateDatagram<MaxJoints>& 
         e.qdd_hat = wire::get_f64(b + 24);
         e.tau = wire::get_f64(b + 32);
         e.flags = wire::get_u32(b + 40);
+        e.tau_ext = version == kDatagramVersionMonitor ? wire::get_f64(b + 44) : 0.0;
     }
-    return validate_values(out.flags, out.sample_period, out.joints.data(), count);
+    return validate_values(version, out.flags, out.sample_period, out.joints.data(), count);
 }
 
 }  // namespace jacobid::stream
