@@ -31,18 +31,14 @@ for design in payload_design arm_design; do
     "$jacobid" payload --quiet --robot "$robot" --arm "$robot" --in "$out/${design}_log.csv" --json > "$out/${design}_$i.json"
   done
 done
-python3 - "$out" "$runs" <<'PY'
-import json, math, statistics, sys
+python3 - "$out" "$runs" "$root/scripts" <<'PY'
+import json, statistics, sys
+sys.path.insert(0, sys.argv[3])
+from payload_loaded_robot import payload_standard
 out, n = sys.argv[1], int(sys.argv[2])
-m, c = 1.5, [0.03, -0.02, 0.05]
-ic = [[4e-3, 5e-4, -3e-4], [5e-4, 6e-3, 2e-4], [-3e-4, 2e-4, 3e-3]]
-cc = sum(x * x for x in c)
-i = [[ic[a][b] + m * ((cc if a == b else 0) - c[a] * c[b]) for b in range(3)] for a in range(3)]
-truth = {"XX": i[0][0], "XY": i[0][1], "XZ": i[0][2], "YY": i[1][1], "YZ": i[1][2], "ZZ": i[2][2],
-         "MX": m * c[0], "MY": m * c[1], "MZ": m * c[2], "M": m}
+truth = payload_standard()
 design = json.load(open(f"{out}/payload_design.json"))
 prediction = {"payload_design": design["predicted"]["parameters"], "arm_design": design["compare"]["predicted"]["parameters"]}
-ratios_all = {}
 for name in ("payload_design", "arm_design"):
     runs = [json.load(open(f"{out}/{name}_{k}.json"))["standard_parameters"] for k in range(1, n + 1)]
     print(f"{name}: {n} runs, jacobid payload --arm (the true arm)")
@@ -56,7 +52,6 @@ for name in ("payload_design", "arm_design"):
         covered = sum(abs(v - t) <= 2 * predicted for v in values)
         ratios.append(spread / predicted)
         print(f"{k:<5} {predicted:>10.3g} {spread:>10.3g} {spread / predicted:>6.2f} {reported:>10.3g} {(statistics.mean(values) - t) / predicted:>+9.2f} {covered:>4}/{n}")
-    ratios_all[name] = ratios
     print(f"spread / predicted: median {statistics.median(ratios):.2f} (range {min(ratios):.2f}-{max(ratios):.2f}); "
           f"within 0.8-1.25: {sum(0.8 <= r <= 1.25 for r in ratios)} of 10")
 p, a = design["predicted"], design["compare"]["predicted"]
