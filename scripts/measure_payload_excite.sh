@@ -8,7 +8,9 @@
 # the predicted std, the spread of the RUNS estimates and their ratio, the median std jacobid payload reported,
 # and the coverage of the truth by +-2 spread-free predicted std.
 #
-#   bash scripts/measure_payload_excite.sh [BUILD_DIR] [OUTPUT_DIR] [RUNS] [TIME_LIMIT]
+#   [SIMULATE_ARGS="--encoder-counts 0"] bash scripts/measure_payload_excite.sh [BUILD_DIR] [OUTPUT_DIR] [RUNS] [TIME_LIMIT]
+# SIMULATE_ARGS: more options of every `jacobid simulate`. Designs already in OUTPUT_DIR (payload_design.json and
+# arm_design.csv) are kept, so that one pair of designs can be measured under several simulations.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jacobid=${1:-$root/build}/host-tools/jacobid
@@ -21,13 +23,15 @@ robot="$root/examples/robots/ur5_like.yaml"
 noise=0.15,0.15,0.1,0.03,0.03,0.02
 limits="--velocity-limit 3.15 --acceleration-limit 10 --torque-noise $noise --time-limit $time_limit --starts 2"
 python3 "$root/scripts/payload_loaded_robot.py" "$robot" "$out/loaded.yaml"
-"$jacobid" excite --quiet --robot "$robot" --duration 10 $limits -o "$out/arm_design.csv" --json "$out/arm_design.json"
-"$jacobid" excite --quiet --robot "$robot" --payload --payload-mass 1.5 --payload-com 0.03,-0.02,0.05 $limits \
-  --compare "$out/arm_design.csv" -o "$out/payload_design.csv" --json "$out/payload_design.json"
+if [ ! -f "$out/payload_design.json" ] || [ ! -f "$out/arm_design.csv" ]; then
+  "$jacobid" excite --quiet --robot "$robot" --duration 10 $limits -o "$out/arm_design.csv" --json "$out/arm_design.json"
+  "$jacobid" excite --quiet --robot "$robot" --payload --payload-mass 1.5 --payload-com 0.03,-0.02,0.05 $limits \
+    --compare "$out/arm_design.csv" -o "$out/payload_design.csv" --json "$out/payload_design.json"
+fi
 for design in payload_design arm_design; do
   for i in $(seq 1 "$runs"); do
     "$jacobid" simulate --quiet --robot "$out/loaded.yaml" --trajectory "$out/$design.csv" --torque-noise "$noise" --noise-seed $((500 + i)) \
-      -o "$out/${design}_log.csv"
+      ${SIMULATE_ARGS:-} -o "$out/${design}_log.csv"
     "$jacobid" payload --quiet --robot "$robot" --arm "$robot" --in "$out/${design}_log.csv" --json > "$out/${design}_$i.json"
   done
 done
