@@ -156,6 +156,7 @@ struct Outcome {
     std::optional<excite::Prediction> compared_prediction;
     Eigen::VectorXd compared_inertial_std;
     excite::IdentificationBandwidth bandwidth;
+    excite::Prediction after_fp;  // the design's prediction from what identify's decimated rows keep (its F_p)
     bool needs_cutoff = false, worse = false;
     double margin = std::numeric_limits<double>::infinity();  // the workspace point's smallest distance to a face (m)
     int closest = 0;                                          // and that face
@@ -214,6 +215,15 @@ nlohmann::json outcome_json(const Outcome& r) {
     j["target"] = r.payload ? "payload" : "base parameters";
     j["predicted"] = prediction_json(r.names, r.target, r.predicted);
     j["predicted"]["score"] = prediction_score(criterion, r.predicted);
+    // Added beside the prediction of every sample's information: what identify's rows keep after its F_p.
+    nlohmann::json after = prediction_json(r.names, r.target, r.after_fp);
+    for (auto& [name, p] : after["parameters"].items()) {
+        j["predicted"]["parameters"][name]["std_after_fp"] = p["std"];
+        j["predicted"]["parameters"][name]["relative_std_after_fp"] = p["relative_std"];
+    }
+    after.erase("parameters");
+    after["decimation_cutoff_hz"] = r.bandwidth.decimation_cutoff_hz();
+    j["predicted"]["after_fp"] = after;
     if (r.compared) {
         j["compare"] = {{"file", o.compare}, {"how", r.compared->how}, {"duration", r.compared->duration}};
         j["compare"]["predicted"] = prediction_json(r.names, r.target, *r.compared_prediction);
@@ -266,6 +276,8 @@ void print_outcome(const Outcome& r) {
                r.compared ? fmt::format(", beside --compare {} ({:g} s, {})", o.compare, r.compared->duration, r.compared->how) : std::string(),
                prediction_table(r.names, r.target, r.predicted, compared));
     if (r.payload) fmt::print(stderr, "{}", payload_table(r.inertial_std, r.compared ? &r.compared_inertial_std : nullptr));
+    fmt::print(stderr, "excite: after identify's F_p at {:.3g} Hz (what its decimated rows keep; the JSON's std_after_fp): worst relative std {:.3g} % ({})\n",
+               r.bandwidth.decimation_cutoff_hz(), 100.0 * r.after_fp.worst_relative_std, r.worst_name(r.after_fp));
     fmt::print(stderr, "excite: worst relative std {:.3g} % ({}){}\n", 100.0 * r.predicted.worst_relative_std, r.worst_name(r.predicted),
                compared ? fmt::format("; --compare: {:.3g} % ({})", 100.0 * compared->worst_relative_std, r.worst_name(*compared)) : std::string());
 }
@@ -332,16 +344,24 @@ void run(ExciteOptions o) {
     excite::require_separable_design(d);
     const excite::FourierTrajectory trajectory = problem.trajectory(d.coefficients);
     const Sampled s = sample(trajectory, *model, x, o.duration, o.rate, box);
-    Outcome r{o, *model, prior, target, names, payload, limits, pose, box, problem, d, trajectory, {}, {}, {}, {}, {}, {}};
+    Outcome r{o, *model, prior, target, names, payload, limits, pose, box, problem, d, trajectory, {}, {}, {}, {}, {}, {}, {}};
     // The prediction from every control sample (not the optimizer's), the same way as --compare's.
-    auto predict = [&](const excite::SampledMotion& motion, Eigen::VectorXd& inertial_std) {
-        const Eigen::MatrixXd information = excite::motion_information(*model, motion, prior.noise_std);
+    auto predict_from = [&](const Eigen::MatrixXd& information, Eigen::VectorXd* inertial_std) {
         if (!payload) return excite::predict(information, prior.scales);
-        inertial_std = excite::predicted_inertial_std(information, *payload);
+        if (inertial_std) *inertial_std = excite::predicted_inertial_std(information, *payload);
         return excite::predict_payload(information, *payload);
+    };
+    auto predict = [&](const excite::SampledMotion& motion, Eigen::VectorXd& inertial_std) {
+        return predict_from(excite::motion_information(*model, motion, prior.noise_std), &inertial_std);
     };
     r.predicted = predict(motion_of(s), r.inertial_std);
     r.bandwidth = excite::identification_bandwidth(s.q, s.tau, prior.noise_std, o.rate);
+    // The same after identify's F_p (a column's content above it is filtered out of both sides of its equations);
+    // an F_p at or above the Nyquist frequency filters nothing.
+    const double fp = r.bandwidth.decimation_cutoff_hz();
+    r.after_fp = fp > 0.0 && fp < 0.45 * o.rate
+                     ? predict_from(excite::filtered_motion_information(*model, motion_of(s), prior.noise_std, 1.0 / o.rate, fp), nullptr)
+                     : r.predicted;
     // Said only when identify's automatic cutoff would miss the torque's band by a margin worth a flag (its rule
     // takes the torque's band: only if something, e.g. its position-noise limit, held it lower).
     r.needs_cutoff = r.bandwidth.recommended_cutoff_hz() > 1.5 * r.bandwidth.default_cutoff_hz();
