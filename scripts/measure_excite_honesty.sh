@@ -4,16 +4,20 @@
 # simulated robot with fresh torque noise (the same motion every time: the noise is the only thing that
 # changes), each log identified; per base parameter the spread of the estimates against the std the design
 # predicted (its JSON's predicted.parameters.<NAME>.std, for the same noise).
-#   [IDENTIFY_ARGS=...] bash scripts/measure_excite_honesty.sh BUILD_DIR OUT_DIR ROBOT.yaml RUNS NOISE [EXCITE_ARGS...]
+#   [IDENTIFY_ARGS=...] [ENCODER_COUNTS=262144] bash scripts/measure_excite_honesty.sh BUILD_DIR OUT_DIR ROBOT.yaml RUNS NOISE [EXCITE_ARGS...]
+# ENCODER_COUNTS: the simulated encoders' counts per revolution (0: no quantization). A design already in OUT_DIR
+# (design.csv and design.json) is kept, so that one design can be measured under several settings.
 set -euo pipefail
 build=$1 out=$2 robot=$3 runs=$4 noise=$5
 shift 5
 J="$build/host-tools/jacobid"
 PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3
 mkdir -p "$out"
-"$J" excite --robot "$robot" --torque-noise "$noise" -o "$out/design.csv" --json "$out/design.json" --quiet "$@"
+if [ ! -f "$out/design.json" ] || [ ! -f "$out/design.csv" ]; then
+  "$J" excite --robot "$robot" --torque-noise "$noise" -o "$out/design.csv" --json "$out/design.json" --quiet "$@"
+fi
 for k in $(seq 1 "$runs"); do
-  "$J" simulate --robot "$robot" --trajectory "$out/design.csv" --torque-noise "$noise" --noise-seed "$((100 + k))" --encoder-counts 262144 \
+  "$J" simulate --robot "$robot" --trajectory "$out/design.csv" --torque-noise "$noise" --noise-seed "$((100 + k))" --encoder-counts "${ENCODER_COUNTS:-262144}" \
       --quiet -o "$out/run$k.csv"
   "$J" identify --robot "$robot" ${IDENTIFY_ARGS:-} --in "$out/run$k.csv" --format json --quiet > "$out/run$k.json"
   rm -f "$out/run$k.csv"

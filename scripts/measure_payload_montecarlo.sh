@@ -15,19 +15,7 @@ runs=${3:-20}
 [ -x "$jacobid" ] || { echo "measure_payload_montecarlo.sh: no jacobid at '$jacobid'" >&2; exit 2; }
 mkdir -p "$out"
 robot="$root/examples/robots/ur5_like.yaml"
-python3 - "$robot" "$out/loaded.yaml" <<'PY'
-import re, sys
-m, c = 1.5, [0.03, -0.02, 0.05]
-ic = [[4e-3, 5e-4, -3e-4], [5e-4, 6e-3, 2e-4], [-3e-4, 2e-4, 3e-3]]
-cc = sum(x * x for x in c)
-i = [[ic[a][b] + m * ((cc if a == b else 0) - c[a] * c[b]) for b in range(3)] for a in range(3)]
-add = {"XX6": i[0][0], "XY6": i[0][1], "XZ6": i[0][2], "YY6": i[1][1], "YZ6": i[1][2], "ZZ6": i[2][2],
-       "MX6": m * c[0], "MY6": m * c[1], "MZ6": m * c[2], "M6": m}
-text = open(sys.argv[1]).read()
-for k, v in add.items():
-    text = re.sub(r"(\n  %s: )([-0-9.e]+)" % k, lambda mo: mo.group(1) + repr(float(mo.group(2)) + v), text)
-open(sys.argv[2], "w").write(text)
-PY
+python3 "$root/scripts/payload_loaded_robot.py" "$robot" "$out/loaded.yaml"
 for i in $(seq 1 "$runs"); do
   common="simulate --quiet --duration 30 --seed 3 --torque-noise 0.3"
   "$jacobid" $common --noise-seed $((100 + 2 * i)) --robot "$robot" -o "$out/unloaded.csv"

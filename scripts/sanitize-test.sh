@@ -23,7 +23,10 @@
 #    drive-gains fit runs sanitized in DriveGains.SharedUr10ePairValidatesAtLeastAsWellAsTheSourceGains on
 #    the shared real logs, which CI has; without them only its bad-input test runs sanitized). The native
 #    run keeps both. Likewise Payload.MonteCarloStdCoversTheTruth (8 simulated loaded/unloaded pairs, 23 s
-#    natively): the payload estimate runs sanitized in the other Payload.* tests.
+#    natively): the payload estimate runs sanitized in the other Payload.* tests. And excite --payload's two
+#    end-to-end tests (each two time-limited designs of 20 s, whose comparison needs the evaluations a native run
+#    gets, and 8 simulated runs through jacobid payload: 33-47 s natively): its criterion and projection run
+#    sanitized in ExcitePayload.PayloadColumns..., its options in ExcitePayload.BadPayloadOptions....
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${JACOBID_HARDENING_BUILD_DIR:-$root/build-hardening}"
@@ -51,7 +54,7 @@ if [ -f "$native_costs" ] && [ ! -f "$build/Testing/Temporary/CTestCostData.txt"
     mkdir -p "$build/Testing/Temporary" && cp "$native_costs" "$build/Testing/Temporary/CTestCostData.txt"
 fi
 status=0
-acceptance_scale='^(SerialIdentify\.Puma560MeetsTheIssueAcceptance|DriveGains\.SimulatedPairGivesTheGainsBack|Payload\.MonteCarloStdCoversTheTruth)$'
+acceptance_scale='^(SerialIdentify\.Puma560MeetsTheIssueAcceptance|DriveGains\.SimulatedPairGivesTheGainsBack|Payload\.MonteCarloStdCoversTheTruth|ExcitePayload\.DesignGivesThePayloadMoreInformationThanTheArmsDesignOfTheSameDuration|ExcitePayload\.PredictedStdIsTheSpreadOfJacobidPayloadOnSimulatedRuns)$'
 ctest --test-dir "$build" -j "$jobs" -LE '^(vcan|vm|gpio|examples|end-to-end)$' -E "$acceptance_scale" --output-on-failure --timeout 900 || status=$?
 # A report that did not fail its test (e.g. in a child process whose exit code was not checked) still
 # shows in the logs: fail on any.

@@ -16,6 +16,16 @@
 
 namespace jacobid::test {
 
+// The payload of docs/identify.md, "Payload" (the truth of the payload tests and of excite --payload's), in link 6's
+// frame (the UR5-like flange): 1.5 kg, centre of mass 3 cm and 2 cm off the flange axis.
+constexpr double kDocsPayloadMass = 1.5;
+inline Eigen::Vector3d docs_payload_com() { return {0.03, -0.02, 0.05}; }
+inline Eigen::Matrix3d docs_payload_central_inertia() {
+    Eigen::Matrix3d i;
+    i << 4e-3, 5e-4, -3e-4, 5e-4, 6e-3, 2e-4, -3e-4, 2e-4, 3e-3;
+    return i;
+}
+
 // Writes dir/loaded.yaml: `robot` (whose last link, number `link`, lists its ten inertial parameters) with the payload.
 inline std::string write_loaded_robot(const std::string& robot, const std::filesystem::path& dir, int link, double m, const Eigen::Vector3d& c,
                                       const Eigen::Matrix3d& central) {

@@ -12,6 +12,7 @@
 #include "identify/plan/log_columns.hpp"
 #include "io/time_axis.hpp"
 #include "io/csv_table.hpp"
+#include "payload/payload_inertia.hpp"
 
 namespace jacobid::cli {
 namespace {
@@ -121,6 +122,46 @@ std::string prediction_table(const std::vector<std::string>& names, const Excite
         if (compare) {
             out += fmt::format(" {:>11.3g} {:>8.3g}% {:>7.3g}", compare->std_dev[i], 100.0 * compare->relative_std[i], design.std_dev[i] / compare->std_dev[i]);
         }
+        out += "\n";
+    }
+    return out;
+}
+
+ExcitePrior payload_prior(const ExcitePrior& prior, const excite::PayloadTarget& payload) {
+    ExcitePrior p = prior;
+    p.values = payload.prior;
+    p.scales = payload.scales;
+    p.values_source = fmt::format("a point mass of {:g} kg at ({:g}, {:g}, {:g}) m in link {}'s frame (--payload-mass, --payload-com)", payload.mass, payload.com.x(),
+                                  payload.com.y(), payload.com.z(), payload.link);
+    return p;
+}
+
+nlohmann::json payload_json(const excite::PayloadTarget& payload, const Eigen::VectorXd& inertial_std, const Eigen::VectorXd* compare_inertial_std) {
+    auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+    auto stds = [&](const Eigen::VectorXd& v) {
+        nlohmann::json out = nlohmann::json::object();
+        for (std::size_t k = 0; k < payload::inertial_names().size(); ++k) out[payload::inertial_names()[k]] = number(v[static_cast<Eigen::Index>(k)]);
+        return out;
+    };
+    nlohmann::json j = {{"mass", payload.mass},
+                        {"com", {payload.com.x(), payload.com.y(), payload.com.z()}},
+                        {"link", payload.link},
+                        {"parameters", payload.names},
+                        {"prior", std::vector<double>(payload.prior.data(), payload.prior.data() + payload.prior.size())},
+                        {"size", std::max(payload.com.norm(), excite::kPayloadMinSize)},
+                        {"predicted_std", stds(inertial_std)}};
+    if (compare_inertial_std) j["compare_predicted_std"] = stds(*compare_inertial_std);
+    return j;
+}
+
+std::string payload_table(const Eigen::VectorXd& inertial_std, const Eigen::VectorXd* compare_inertial_std) {
+    std::string out = fmt::format("excite: as jacobid payload prints them (about the centre of mass, at the prior):\n{:<10} {:>11}", "quantity", "std");
+    if (compare_inertial_std) out += fmt::format(" {:>11} {:>7}", "compare std", "ratio");
+    out += "\n";
+    for (std::size_t k = 0; k < payload::inertial_names().size(); ++k) {
+        const auto i = static_cast<Eigen::Index>(k);
+        out += fmt::format("{:<10} {:>11.3g}", payload::inertial_names()[k], inertial_std[i]);
+        if (compare_inertial_std) out += fmt::format(" {:>11.3g} {:>7.3g}", (*compare_inertial_std)[i], inertial_std[i] / (*compare_inertial_std)[i]);
         out += "\n";
     }
     return out;

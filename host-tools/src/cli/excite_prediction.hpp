@@ -11,6 +11,7 @@
 #include "options/log_format_options.hpp"
 #include "excite/information_criterion.hpp"
 #include "excite/motion_information.hpp"
+#include "excite/payload_target.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/robot_model.hpp"
 
@@ -50,5 +51,16 @@ nlohmann::json prediction_json(const std::vector<std::string>& names, const Exci
 // The table of every base parameter: prior, scale, predicted std and relative std, and the comparison's.
 std::string prediction_table(const std::vector<std::string>& names, const ExcitePrior& prior, const excite::Prediction& design,
                              const excite::Prediction* compare);
+
+// --payload: the prior the payload's table and JSON show (the point mass's ten parameters and their scales; the
+// noise stays the prior's).
+ExcitePrior payload_prior(const ExcitePrior& prior, const excite::PayloadTarget& payload);
+
+// --payload's JSON `payload`: the prior (mass, com, link, standard parameters, scales) and the predicted std of what
+// `jacobid payload` prints (mass, com_x.., I_xx.. about the centre of mass), the design's and --compare's.
+nlohmann::json payload_json(const excite::PayloadTarget& payload, const Eigen::VectorXd& inertial_std, const Eigen::VectorXd* compare_inertial_std);
+
+// The same predicted std as a table (one line per quantity), the comparison's beside.
+std::string payload_table(const Eigen::VectorXd& inertial_std, const Eigen::VectorXd* compare_inertial_std);
 
 }  // namespace jacobid::cli

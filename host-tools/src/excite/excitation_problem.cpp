@@ -44,8 +44,13 @@ ExcitationProblem::ExcitationProblem(const robot::RobotModel& model, Eigen::Vect
     }
     InformationModel& info = settings_.information;
     if (info.noise_std.size() == 0) info.noise_std = Eigen::VectorXd::Ones(joints_);
-    if (info.scale.size() == 0) info.scale = Eigen::VectorXd::Ones(columns_);
-    if (info.noise_std.size() != joints_ || info.scale.size() != columns_ || !(info.noise_std.minCoeff() > 0.0) || !(info.scale.minCoeff() > 0.0)) {
+    // The parameters designed for: the base parameters, or the projection's columns (InformationModel::projection).
+    if (info.projection.size() > 0 && info.projection.rows() != columns_) {
+        throw std::invalid_argument("ExcitationProblem: the projection needs one row per base parameter");
+    }
+    const Eigen::Index designed = info.projection.size() > 0 ? info.projection.cols() : columns_;
+    if (info.scale.size() == 0) info.scale = Eigen::VectorXd::Ones(designed);
+    if (info.noise_std.size() != joints_ || info.scale.size() != designed || !(info.noise_std.minCoeff() > 0.0) || !(info.scale.minCoeff() > 0.0)) {
         throw std::invalid_argument("ExcitationProblem: the noise (one per joint) and prior scales (one per parameter) must be > 0");
     }
     const double highest = basis_.harmonics() * basis_.base_frequency();

@@ -17,6 +17,7 @@
 namespace jacobid::excite {
 
 inline constexpr double kCutoffRatio = 10.0;  // identify's differentiator cutoff / bandwidth
+inline constexpr double kDecimationRatio = 5.0;  // identify's F_p cutoff / bandwidth (identify::PipelineSettings::decimation_ratio)
 
 struct IdentificationBandwidth {
     double velocity_hz = 0.0;   // 99 % of the velocity's energy (identify's energy frequency)
@@ -25,6 +26,7 @@ struct IdentificationBandwidth {
     double differentiator_hz = 0.0;  // identify's differentiators' bandwidth on it (the torque's band too)
     double default_cutoff_hz() const { return kCutoffRatio * differentiator_hz; }
     double recommended_cutoff_hz() const { return kCutoffRatio * std::max(velocity_hz, torque_hz); }
+    double decimation_cutoff_hz() const { return kDecimationRatio * automatic_hz; }  // identify's F_p on this motion
 };
 // q, tau per joint (all of one length), sampled at `rate` Hz; noise_std per joint (per sample).
 IdentificationBandwidth identification_bandwidth(const std::vector<std::vector<double>>& q, const std::vector<std::vector<double>>& tau,

@@ -111,6 +111,19 @@ Eigen::MatrixXd information_matrix(const Eigen::MatrixXd& W, int joints, const E
 }
 
 double evaluate_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joints, const InformationModel& model, Eigen::MatrixXd* dW) {
+    if (model.projection.size() > 0) {
+        // The criterion of V = W K (the parameters designed for), chained back: dF/dW = dF/dV K^T.
+        InformationModel of_v = model;
+        of_v.projection.resize(0, 0);
+        thread_local Eigen::MatrixXd V, dV;
+        V.noalias() = W * model.projection;
+        const double value = evaluate_criterion(criterion, V, joints, of_v, dW ? &dV : nullptr);
+        if (dW) {
+            dW->resize(W.rows(), W.cols());
+            dW->noalias() = dV * model.projection.transpose();
+        }
+        return value;
+    }
     if (!is_information_criterion(criterion)) return column_scaled_criterion(criterion, W, dW);
     const double gamma = model.sample_weight;
     const Factored A(information_matrix(W, joints, model.noise_std, gamma));

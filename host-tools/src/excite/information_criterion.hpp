@@ -34,14 +34,21 @@ bool is_information_criterion(Criterion c);
 inline constexpr double kRankDeficient = 1e30;
 inline constexpr double kMaxSharpness = 20.0;  // e-relative: over-estimate of the max <= log(parameters) / 20
 
-// What the information criteria weigh: per-joint noise, per-parameter prior scale, the samples' weight.
+// What the information criteria weigh: per-joint noise, per-parameter prior scale, the samples' weight, and
+// which parameters the design is for.
 struct InformationModel {
     Eigen::VectorXd noise_std;   // per joint, N.m (> 0)
-    Eigen::VectorXd scale;       // per base parameter, its prior scale (> 0)
+    Eigen::VectorXd scale;       // per parameter designed for (base parameter, or projection column), its prior scale (> 0)
     double sample_weight = 1.0;  // gamma: log samples per criterion sample
+    // Empty: the criteria are of the base parameters themselves. Else (base parameters x m) the criteria are of
+    // the m parameters phi whose regressor is W K, the others held known: `excite --payload`'s K is the
+    // regrouping's columns of the last link's ten standard parameters (payload_target.hpp), so the information
+    // matrix is K^T A K and dF/dW = dF/d(WK) K^T.
+    Eigen::MatrixXd projection;
 };
 
-// F(W) and, when `dW` is not null, dF/dW (W's shape). `model` is read by the information criteria only.
+// F(W) and, when `dW` is not null, dF/dW (W's shape). `model` is read by the information criteria only, except
+// its projection, which every criterion applies (cond and logdet then of W K).
 double evaluate_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joints, const InformationModel& model, Eigen::MatrixXd* dW);
 
 // The information matrix gamma sum_i W_i^T S^-1 W_i of stacked rows W (as above).

@@ -22,4 +22,13 @@ struct SampledMotion {
 Eigen::MatrixXd motion_information(const robot::RobotModel& model, const SampledMotion& motion, const Eigen::VectorXd& noise_std,
                                    std::size_t max_rows = 20000);
 
+// The information identify's rows keep after its decimation filter F_p (a zero-phase Butterworth of `order` at
+// `cutoff_hz`, as identify/pipeline/pipeline_fold.cpp applies it to both sides of the equations): sum over every sample of
+// (F W)^T S^-1 (F W), F W each regressor column filtered along time at `sample_period` s. F projects white noise
+// onto its passband, so this is the information of the filtered equations; a column with content above F_p (a
+// Coulomb column's steps, accelerations) keeps less of its information than motion_information counts. One joint's
+// regressor rows at every sample are held at a time (samples x columns doubles).
+Eigen::MatrixXd filtered_motion_information(const robot::RobotModel& model, const SampledMotion& motion, const Eigen::VectorXd& noise_std,
+                                            double sample_period, double cutoff_hz, int order = 4);
+
 }  // namespace jacobid::excite

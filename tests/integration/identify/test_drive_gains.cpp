@@ -107,6 +107,10 @@ TEST(DriveGains, SimulatedPairGivesTheGainsBack) {
         EXPECT_LT(std::abs(g["constrained"].get<double>() - kGains[j]), band);
     }
     EXPECT_TRUE(d["estimators"]["constrained"]["converged"].get<bool>());
+    // TLS converged with positive gains: its line is the one recommended (the least squares' keep gains_line).
+    EXPECT_EQ(d["recommended_estimator"], "tls");
+    EXPECT_EQ(d["recommended_gains_line"].get<std::string>().rfind("gains: [", 0), 0u);
+    EXPECT_NE(d["recommended_gains_line"], d["gains_line"]);
     // The same pair with the whole payload given (centre of mass and inertia moved to the link frame by the
     // parallel axes): nothing of it is left to identify, and the gains are the same.
     const auto known = run_command(kJacobid + " identify --quiet --format json --robot " + kRobot + " --drive-gains --in " + p.unloaded +

@@ -33,13 +33,9 @@ const std::string kJacobid = JACOBID_EXECUTABLE;
 const std::string kRobot = std::string(JACOBID_SOURCE_DIR) + "/examples/robots/ur5_like.yaml";
 
 // The truth, in link 6's frame (the flange): 1.5 kg, centre of mass 3 cm and 2 cm off the flange axis.
-constexpr double kMass = 1.5;
-const Eigen::Vector3d kCom(0.03, -0.02, 0.05);
-Eigen::Matrix3d central_inertia() {
-    Eigen::Matrix3d i;
-    i << 4e-3, 5e-4, -3e-4, 5e-4, 6e-3, 2e-4, -3e-4, 2e-4, 3e-3;
-    return i;
-}
+constexpr double kMass = jacobid::test::kDocsPayloadMass;
+const Eigen::Vector3d kCom = jacobid::test::docs_payload_com();
+Eigen::Matrix3d central_inertia() { return jacobid::test::docs_payload_central_inertia(); }
 constexpr int kDroppedRows = 137;  // the loaded log starts this many 1 kHz samples later
 constexpr double kClockOffset = 1000.0;
 

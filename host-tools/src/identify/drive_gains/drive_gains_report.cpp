@@ -42,6 +42,11 @@ std::string gains_line(const Eigen::VectorXd& gains) {
     return line + "]";
 }
 
+const DriveGainEstimate& recommended_estimate(const DriveGainResult& r) {
+    const bool usable = r.tls.converged && r.tls.gains.size() == r.joints && r.tls.gains.allFinite() && (r.tls.gains.array() > 0.0).all();
+    return usable ? r.tls : r.least_squares;
+}
+
 std::string drive_gains_text(const DriveGainResult& r, const ReportContext& context) {
     std::string t = format_table({r.method}, context);
     const LsSolution& s = r.method.solution;
@@ -60,6 +65,14 @@ std::string drive_gains_text(const DriveGainResult& r, const ReportContext& cont
                          gain_cell(con[j], 12), prior, 100.0 * r.payload_share[static_cast<std::size_t>(j)]);
     }
     if (r.constrained) t += fmt::format("constrained: {}\n", r.constrained->note);
+    // The recommended line first (the one to paste); the least squares' after it, with their std above.
+    const DriveGainEstimate& best = recommended_estimate(r);
+    if (&best != &r.least_squares) {
+        t += fmt::format("for a log-format file ({}, recommended: the least squares' gains are pulled towards 0 by the noise in the current columns): {}\n",
+                         best.estimator, gains_line(absolute_gains(r, best)));
+    } else {
+        t += fmt::format("tls gave no usable gains ({}): the least squares' are recommended\n", r.tls.converged ? "a gain not finite and positive" : "not converged");
+    }
     t += fmt::format("for a log-format file ({}): {}\n", r.least_squares.estimator, gains_line(ls));
     return t;
 }
@@ -96,6 +109,10 @@ nlohmann::json drive_gains_json(const DriveGainResult& r, const ReportContext& c
         d["estimators"][e->estimator] = est;
     }
     d["gains_line"] = gains_line(ls);
+    // Added beside gains_line (still the least squares'): which estimate the text recommends, and its line.
+    const DriveGainEstimate& best = recommended_estimate(r);
+    d["recommended_estimator"] = best.estimator;
+    d["recommended_gains_line"] = gains_line(absolute_gains(r, best));
     j["drive_gains"] = d;
     return j;
 }

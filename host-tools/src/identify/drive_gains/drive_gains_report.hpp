@@ -19,6 +19,12 @@ Eigen::VectorXd absolute_gains(const DriveGainResult& result, const DriveGainEst
 // "gains: [10.1, 10.7, ...]", the line a log-format file takes (docs/log-format.md).
 std::string gains_line(const Eigen::VectorXd& gains);
 
+// The estimate whose `gains:` line the text prints first, for a log format (and so for jacobid payload, which takes
+// the gains from one): TLS when it converged with every gain finite and positive (the least squares' gains are
+// pulled towards 0 by the noise and model error in the current columns: docs/real-data.md, "Payload", where only
+// the TLS gains give the UR10e's 2.805 kg back), else the least squares'.
+const DriveGainEstimate& recommended_estimate(const DriveGainResult& result);
+
 std::string drive_gains_text(const DriveGainResult& result, const ReportContext& context);
 nlohmann::json drive_gains_json(const DriveGainResult& result, const ReportContext& context);
 
