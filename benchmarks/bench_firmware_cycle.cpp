@@ -11,7 +11,7 @@
 #include <cmath>
 #include <memory>
 
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #include "jacobid/firmware/firmware_cycle.hpp"
 #include "jacobid/firmware/runtime.hpp"
 #include "jacobid/hal/virtual_can_bus.hpp"

@@ -17,7 +17,7 @@
 #include <optional>
 #include <string>
 
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #include "jacobid/firmware/firmware_cycle.hpp"
 #include "jacobid/firmware/jitter_stats.hpp"
 #include "jacobid/firmware/runtime.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// jacobid-fw configuration (firmware/src/firmware_config_yaml.cpp): any text must either parse or raise
+// jacobid-fw configuration (fwconfig/src/firmware_config_yaml.cpp): any text must either parse or raise
 // ConfigError (one line naming file, line, column and key), never another exception or a crash.
 // Property of an accepted configuration: its joints configure the HAL decoder set without error (the
 // parser promises to report a bad decoder setting by key, not leave it to start-up), within kMaxJoints.
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fuzz_check.hpp"
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 
 using namespace jacobid;
 

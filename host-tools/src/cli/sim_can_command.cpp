@@ -28,7 +28,7 @@
 #include "sim/simulator.hpp"
 
 #if JACOBID_WITH_FIRMWARE
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #include "jacobid/hal/socketcan_transport.hpp"
 #endif
 

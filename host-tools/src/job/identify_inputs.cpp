@@ -13,7 +13,7 @@
 #include "io/candump_joints.hpp"
 #include "io/distinct_inputs.hpp"
 #if JACOBID_WITH_FIRMWARE
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #endif
 
 namespace jacobid::job {

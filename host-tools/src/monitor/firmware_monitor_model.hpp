@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "jacobid/firmware/firmware_config.hpp"
+#include "jacobid/fwconfig/firmware_config.hpp"
 
 namespace jacobid::monitor {
 

@@ -17,7 +17,7 @@ target_sources(jacobid PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../cli/monitor_command.
 # fw.yaml `monitor:` -> firmware::MonitorModel (docs/firmware.md, "Contact monitor"): only with the firmware.
 if(TARGET jacobid_firmware)
   add_library(jacobid_firmware_monitor STATIC ${CMAKE_CURRENT_LIST_DIR}/firmware_monitor_model.cpp)
-  target_link_libraries(jacobid_firmware_monitor PUBLIC jacobid_host_base jacobid_firmware)
+  target_link_libraries(jacobid_firmware_monitor PUBLIC jacobid_host_base jacobid_fwconfig)
   jacobid_set_warnings(jacobid_firmware_monitor)
   target_link_libraries(jacobid-fw PRIVATE jacobid_firmware_monitor)
   target_compile_definitions(jacobid-fw PRIVATE JACOBID_FW_MONITOR=1)

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #include "jacobid/firmware/firmware_cycle.hpp"
 #include "jacobid/hal/gpio.hpp"
 #include "jacobid/hal/virtual_can_bus.hpp"

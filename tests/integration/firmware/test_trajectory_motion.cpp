@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The start-up check of the steps a trajectory table commands (issue 36, firmware/src/trajectory_motion.cpp):
+// The start-up check of the steps a trajectory table commands (issue 36, fwconfig/src/trajectory_motion.cpp):
 // a jump between rows whose own values are within the limits, a velocity column that does not describe the
 // positions, positions that accelerate beyond the limit, a table that does not start at rest after the
 // ramp-in, and a table that does not join its start at the wrap (repeat > 1) are refused by configure(),
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <string>
 
-#include "jacobid/firmware/trajectory_motion.hpp"
+#include "jacobid/fwconfig/trajectory_motion.hpp"
 #include "jacobid/firmware/trajectory_player.hpp"
 
 namespace {

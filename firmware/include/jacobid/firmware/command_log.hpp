@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "jacobid/firmware/capacity.hpp"
+#include "jacobid/fwconfig/capacity.hpp"
 #include "jacobid/firmware/trajectory_player.hpp"
 
 namespace jacobid::firmware {

@@ -10,8 +10,8 @@
 #include <optional>
 #include <string>
 
-#include "jacobid/firmware/capacity.hpp"
-#include "jacobid/firmware/monitor_config.hpp"
+#include "jacobid/fwconfig/capacity.hpp"
+#include "jacobid/fwconfig/monitor_config.hpp"
 #include "jacobid/robot/contact_detector.hpp"
 #include "jacobid/robot/external_torque.hpp"
 

@@ -20,7 +20,7 @@
 #include "jacobid/differentiator_bank.hpp"
 #include "jacobid/firmware/command_log.hpp"
 #include "jacobid/firmware/cycle_monitor.hpp"
-#include "jacobid/firmware/firmware_config.hpp"
+#include "jacobid/fwconfig/firmware_config.hpp"
 #include "jacobid/firmware/trajectory_player.hpp"
 #include "jacobid/hal/can_transport.hpp"
 #include "jacobid/hal/gpio.hpp"

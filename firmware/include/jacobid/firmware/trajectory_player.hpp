@@ -22,8 +22,9 @@
 #include <cstdint>
 #include <string>
 
-#include "jacobid/firmware/capacity.hpp"
-#include "jacobid/firmware/playback_config.hpp"
+#include "jacobid/fwconfig/capacity.hpp"
+#include "jacobid/fwconfig/playback_checks.hpp"
+#include "jacobid/fwconfig/playback_config.hpp"
 #include "jacobid/hal/joint_command.hpp"
 
 namespace jacobid::firmware {
@@ -53,13 +54,6 @@ struct PlayerInput {
     bool deadline_missed = false;
     int contact_joint = -1;  // 0-based joint the contact monitor found in contact this cycle; -1: none
 };
-
-// The start-up check of a playback: every row within the limits, and every step the player will command
-// (along the table, from the ramp-in's end, at the wrap) within the velocity and acceleration limits at the
-// control rate (trajectory_motion.hpp). "" or a one-line reason naming the table's file:line and joint.
-// Shared by fw.yaml's parser (so jacobid-fw refuses before it opens anything) and configure() (the last
-// gate before any command, whoever built the PlaybackConfig).
-std::string check_playback(const PlaybackConfig& config, std::size_t joints, double sample_period);
 
 class TrajectoryPlayer {
 public:

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "jacobid/firmware/firmware_config.hpp"
+#include "jacobid/fwconfig/firmware_config.hpp"
 
 namespace jacobid::firmware {
 

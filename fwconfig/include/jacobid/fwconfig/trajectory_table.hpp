@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "jacobid/firmware/playback_config.hpp"
+#include "jacobid/fwconfig/playback_config.hpp"
 
 namespace jacobid::firmware {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 
 namespace jacobid::firmware {

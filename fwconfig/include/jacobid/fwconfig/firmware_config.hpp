@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "jacobid/firmware/capacity.hpp"
-#include "jacobid/firmware/monitor_config.hpp"
-#include "jacobid/firmware/playback_config.hpp"
+#include "jacobid/fwconfig/capacity.hpp"
+#include "jacobid/fwconfig/monitor_config.hpp"
+#include "jacobid/fwconfig/playback_config.hpp"
 #include "jacobid/hal/joint_decoder_set.hpp"
 #include "jacobid/kernel_params.hpp"
 

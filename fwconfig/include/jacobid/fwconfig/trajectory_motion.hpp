@@ -19,7 +19,7 @@
 #include <cstddef>
 #include <string>
 
-#include "jacobid/firmware/playback_config.hpp"
+#include "jacobid/fwconfig/playback_config.hpp"
 
 namespace jacobid::firmware {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "jacobid/firmware/trajectory_table.hpp"
+#include "jacobid/fwconfig/trajectory_table.hpp"
 
 #include <fmt/core.h>
 
@@ -9,7 +9,7 @@
 #include <map>
 #include <optional>
 
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #include "jacobid/yaml/input_file.hpp"
 
 namespace jacobid::firmware {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "jacobid/firmware/capacity.hpp"
+#include "jacobid/fwconfig/capacity.hpp"
 #include "jacobid/hal/joint_command.hpp"
 
 namespace jacobid::firmware {

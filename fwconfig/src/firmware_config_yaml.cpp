@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 
 #include <fmt/core.h>
 #include <yaml-cpp/yaml.h>
@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "jacobid/differentiator_bank.hpp"
-#include "jacobid/firmware/trajectory_player.hpp"
-#include "jacobid/firmware/trajectory_table.hpp"
+#include "jacobid/fwconfig/playback_checks.hpp"
+#include "jacobid/fwconfig/trajectory_table.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"
 #include "jacobid/yaml/input_file.hpp"

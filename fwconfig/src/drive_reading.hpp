@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "jacobid/firmware/playback_config.hpp"
+#include "jacobid/fwconfig/playback_config.hpp"
 #include "jacobid/hal/joint_decoder_set.hpp"
 
 namespace jacobid::firmware {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "jacobid/firmware/firmware_config.hpp"
+#include "jacobid/fwconfig/firmware_config.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 
 namespace jacobid::firmware {

@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "jacobid/firmware/firmware_config_yaml.hpp"
+#include "jacobid/fwconfig/firmware_config_yaml.hpp"
 #include "jacobid/hal/joint_decoder_set.hpp"
 #include "jacobid/hal/profile_registry.hpp"
 #include "jacobid/yaml/yaml_section.hpp"

@@ -9,7 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "jacobid/firmware/firmware_config.hpp"
+#include "jacobid/fwconfig/firmware_config.hpp"
 
 namespace jacobid::firmware {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "jacobid/firmware/trajectory_motion.hpp"
+#include "jacobid/fwconfig/trajectory_motion.hpp"
 
 #include <fmt/core.h>
 
