@@ -13,5 +13,7 @@ void bind_host(pybind11::module_& m);
 void bind_payload(pybind11::module_& m);
 // Contact detection with the identified model: monitor, monitor_calibrate (monitor_bindings.cpp).
 void bind_monitor(pybind11::module_& m);
+// identify as a map-reduce: plan, factor, merge (fleet_bindings.cpp).
+void bind_fleet(pybind11::module_& m);
 
 }  // namespace jacobid::python

@@ -45,4 +45,5 @@ PYBIND11_MODULE(_jacobid, m) {
     jacobid::python::bind_host(m);
     jacobid::python::bind_payload(m);
     jacobid::python::bind_monitor(m);
+    jacobid::python::bind_fleet(m);
 }
