@@ -15,7 +15,7 @@ from collections import namedtuple
 
 import jacobid
 
-__all__ = ["identify"]
+__all__ = ["identify", "montecarlo"]
 
 # A log that could not be factored: its name and the one-line reason (jacobid.InputError's message).
 Failed = namedtuple("Failed", "log message")
@@ -201,3 +201,46 @@ def identify(robot, logs, client=None, by_robot=None, *, plan=None, threshold=5.
             client.close()
             cluster.close()
 
+
+def _montecarlo_task(robot, first, count, options):
+    """Map: runs first .. first + count - 1 of the study (each run's numbers depend on its seeds alone)."""
+    return jacobid._jacobid._montecarlo_runs(robot, first, count, **options)
+
+
+def montecarlo(robot=None, client=None, *, runs_per_task=1, format="table", timeout=None, **montecarlo_options):
+    """The runs of ``jacobid montecarlo`` as Dask tasks: the same table (or with format="json" the same JSON).
+
+    robot: the path of a robot description (None: the planar 2R); on a cluster, a path every worker can read.
+    client: a ``dask.distributed.Client``; None: a LocalCluster of one single-threaded worker process per core,
+    closed at the end. runs_per_task: runs simulated and identified by one task. montecarlo_options: the
+    command's options as keywords (runs=40, seed=100, noise_seed=500, duration, rate, torque_noise, method,
+    bandwidth, weighting ... as ``jacobid montecarlo --help`` lists them; threads is ignored: one run per worker
+    thread). Run k has seeds seed + k and noise_seed + k wherever it runs, so the table's numbers are the
+    command's; its first line gives the wall time and the number of workers instead of threads.
+    """
+    import time
+
+    import distributed
+
+    options = {k: v for k, v in montecarlo_options.items() if k != "threads"}
+    runs = int(options.get("runs", 40))
+    if robot is not None:
+        robot = os.path.abspath(os.fsdecode(robot))
+    own_cluster = client is None
+    if own_cluster:
+        client = distributed.Client(distributed.LocalCluster(threads_per_worker=1, processes=True, dashboard_address=None))
+    try:
+        start = time.monotonic()
+        if runs < 2:  # the command's message, before any task
+            jacobid._jacobid._montecarlo_table(robot, [], 0.0, 1, format, **options)
+        step = max(1, int(runs_per_task))
+        tasks = [client.submit(_montecarlo_task, robot, first, min(step, runs - first), options, pure=False) for first in range(0, runs, step)]
+        distributed.wait(tasks, timeout=timeout)
+        estimates = [run for chunk in client.gather(tasks) for run in chunk]
+        workers = len(client.scheduler_info()["workers"])
+        return jacobid._jacobid._montecarlo_table(robot, estimates, time.monotonic() - start, workers, format, **options)
+    finally:
+        if own_cluster:
+            cluster = client.cluster
+            client.close()
+            cluster.close()

@@ -133,3 +133,17 @@ def test_a_corrupt_log_is_reported_by_path_and_left_out(cli_json, fleet_logs, cl
     assert list(out["failed"]) == [str(corrupt)]
     assert out["failed"][str(corrupt)].startswith(f"{corrupt}:3"), out["failed"]
     assert_same_cli_json(out["pooled"], cli_reference(cli_json, fleet_logs))
+
+
+def test_montecarlo_on_dask_is_the_commands_table(cli, cli_json, client):
+    import jacobid.fleet
+
+    options = ["--runs", "3", "--duration", "8", "--method", "both", "--quiet"]
+    mine = jacobid.fleet.montecarlo(None, client, runs=3, duration=8, method="both", quiet=True, timeout=120)
+    status, table, err = cli("montecarlo", *options)
+    assert status == 0, err
+    # The first line gives the wall time and the threads (here: the workers); every other line is the command's.
+    assert mine.splitlines()[1:] == table.splitlines()[1:]
+    as_json = jacobid.fleet.montecarlo(None, client, runs=3, duration=8, method="both", quiet=True, format="json", runs_per_task=2, timeout=120)
+    assert_same_json(as_json, cli_json("montecarlo", *options, "--format", "json"), rel=1e-9,
+                     ignored=lambda key: key in ("wall_seconds", "threads"))
