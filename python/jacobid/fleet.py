@@ -152,7 +152,7 @@ def identify(robot, logs, client=None, by_robot=None, *, plan=None, threshold=5.
     options.setdefault("threads", 1)
     own_cluster = client is None
     if own_cluster:
-        client = distributed.Client(distributed.LocalCluster(threads_per_worker=1, processes=True, dashboard_address=None))
+        client = distributed.Client(distributed.LocalCluster(threads_per_worker=1, processes=True, dashboard_address=":0"))
     try:
         failed = {}
         if plan is None:
@@ -228,7 +228,7 @@ def montecarlo(robot=None, client=None, *, runs_per_task=1, format="table", time
         robot = os.path.abspath(os.fsdecode(robot))
     own_cluster = client is None
     if own_cluster:
-        client = distributed.Client(distributed.LocalCluster(threads_per_worker=1, processes=True, dashboard_address=None))
+        client = distributed.Client(distributed.LocalCluster(threads_per_worker=1, processes=True, dashboard_address=":0"))
     try:
         start = time.monotonic()
         if runs < 2:  # the command's message, before any task

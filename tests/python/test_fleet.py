@@ -78,7 +78,7 @@ def test_merge_refuses_what_identify_would_not_count(fleet_logs):
 @pytest.fixture(scope="module")
 def client():
     distributed = pytest.importorskip("distributed", reason="python3-distributed (Dask) is not installed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as c:
         yield c
 
