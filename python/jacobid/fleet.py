@@ -148,6 +148,10 @@ def identify(robot, logs, client=None, by_robot=None, *, plan=None, threshold=5.
     logs = list(logs)
     if not logs:
         raise jacobid.InputError("logs: an empty list; expected the logs to identify")
+    if by_robot is not None:
+        missing = [_name(log) for log in logs if log not in by_robot]
+        if missing:
+            raise jacobid.InputError(f"by_robot: no robot id for {missing[0]}; expected every log of logs mapped to its robot")
     options = dict(identify_options)
     options.setdefault("threads", 1)
     own_cluster = client is None

@@ -90,6 +90,8 @@ def test_fleet_is_identify_in_a_in_b_with_one_identification_per_robot(cli_json,
     out = jacobid.fleet.identify(ROBOT, fleet_logs, client=client, by_robot=by_robot, quiet=True, timeout=120)
     assert_same_cli_json(out["pooled"], cli_reference(cli_json, fleet_logs))
     assert out["failed"] == {} and set(out["factor_bytes"]) == set(fleet_logs)
+    with pytest.raises(jacobid.InputError, match=r"^by_robot: no robot id for .*log5.csv; expected every log"):
+        jacobid.fleet.identify(ROBOT, fleet_logs, client=client, by_robot={log: "a" for log in fleet_logs[:5]})
     for rid in ("even", "odd"):
         own = [log for log in fleet_logs if by_robot[log] == rid]
         assert out["robots"][rid]["logs"] == own
