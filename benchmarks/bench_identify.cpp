@@ -15,8 +15,8 @@
 #include <fstream>
 #include <string>
 
-#include "identify/least_squares.hpp"
-#include "identify/pipeline.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/pipeline/pipeline.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "robot/planar2r_model.hpp"

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "identify/report.hpp"
-#include "identify/segmented_pipeline.hpp"
+#include "identify/report/report.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
 #include "job/identify_plan.hpp"
 #include "robot/robot_description.hpp"
 

@@ -3,7 +3,7 @@
 // checks the estimates against the paper's Table II values the simulation used as truth (written out here,
 // not taken from the library), then checks the rows handed out through identify::RowSink.
 #include <jacobid/host.hpp>
-#include <jacobid/host/identify/pipeline.hpp>  // single headers install under jacobid/host/ too
+#include <jacobid/host/identify/pipeline/pipeline.hpp>  // single headers install under jacobid/host/ too
 
 #include <cmath>
 #include <cstdio>

@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "identify/pipeline.hpp"
+#include "identify/pipeline/pipeline.hpp"
 
 namespace jacobid::test {
 

@@ -9,7 +9,7 @@
 #include "core/per_joint.hpp"
 #include "excite/parameter_scales.hpp"
 #include "excite/prior_file.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "io/time_axis.hpp"
 #include "io/csv_table.hpp"
 

@@ -24,7 +24,7 @@
 #include "sim/simulator.hpp"
 #include "sim/tabulated_trajectory.hpp"
 #include "io/partial_output.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "io/csv_table.hpp"
 
 namespace jacobid::cli {
@@ -90,21 +90,132 @@ std::string stem(const std::string& path) {
     return path.substr(0, dot);
 }
 
-void run(SimulateOptions o) {
-    const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
-    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
-    inputs.insert(inputs.end(), {{"--effects", o.effects_file}, {"--trajectory", o.trajectory}});
-    check_outputs({{"--out", o.out}, {"--truth", o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth}, {"--states", o.states}}, inputs);
-    const auto model = robot::make_robot_model(robot);
-    const int n = model->joint_count();
-    // Truth: the model's reference values (Table II for planar2r) unless the description lists parameters.
-    const Eigen::VectorXd x = robot::simulated_parameters(robot, *model);
+// The hidden effects of --effect / --effects: the truth is the nominal model plus the effects' columns with
+// the injected coefficients; a torque delay acts in the measurement instead, and contacts (external:...) act
+// on the physics as a function of time, not as model columns.
+struct HiddenEffects {
+    std::vector<sim::EffectSpec> effects;
+    std::vector<sim::ExternalTorque> contacts;
+    std::vector<sim::EffectTerm> terms;
+    std::vector<Eigen::VectorXd> coefficients;
+    double torque_delay = 0.0;  // s, added to the measurement's
+};
 
-    sim::MeasurementSettings ms = measurement_settings(o, n);
-    apply_controller(robot, o);
+HiddenEffects hidden_effects(const SimulateOptions& o, const robot::RobotDescription& robot, const robot::RobotModel& model, const Eigen::VectorXd& x,
+                             sim::EffectContext& context) {
+    const int n = model.joint_count();
+    HiddenEffects h;
+    if (!o.effects_file.empty()) h.effects = sim::load_effects_file(o.effects_file, n);
+    for (const auto& token : o.effects) {
+        if (sim::is_external_torque(token)) {
+            h.contacts.push_back(sim::parse_external_torque(token, n));
+        } else {
+            h.effects.push_back(sim::parse_effect(token, n));
+        }
+    }
+    const bool load_effect = std::any_of(h.effects.begin(), h.effects.end(), [](const sim::EffectSpec& e) { return e.kind == sim::EffectKind::CoulombLoad; });
+    if (load_effect) context.load = robot::gravity_load_reference(robot);
+    for (const auto& e : h.effects) {
+        if (e.kind == sim::EffectKind::TorqueDelay) {
+            h.torque_delay += e.value;
+            continue;
+        }
+        const sim::EffectTerm term = sim::term_of(e);
+        std::string why_not;
+        if (!sim::term_applicable(term, context, &why_not)) throw InputError("--effect " + why_not);
+        h.terms.push_back(term);
+        h.coefficients.push_back(sim::injected_coefficients(e, model, x));
+    }
+    return h;
+}
+
+// The log must read back: each joint's position and torque in a column of its own, none on the time
+// column or on a reference column written after them (identify refuses such a header).
+void check_log_columns(const robot::RobotDescription& robot, int n) {
+    (void)robot_column_names(robot, "t");
+    for (const char* prefix : {"q_ref", "qd_ref"}) {
+        for (int k = 1; k <= n; ++k) {
+            const std::string name = fmt::format("{}{}", prefix, k);
+            for (std::size_t j = 0; j < robot.joints.size(); ++j) {
+                for (const std::string* column : {&robot.joints[j].position_column, &robot.joints[j].torque_column}) {
+                    if (*column == name) {
+                        throw InputError(fmt::format("{}: joint {} ({}) reads column '{}', which is the reference column simulate writes for joint "
+                                                     "{}; give it another name",
+                                                     robot.source, j + 1, robot.joints[j].name, name, k));
+                    }
+                }
+            }
+        }
+    }
+}
+
+// t, the measured columns, then the reference the controller tracked (what IDIM-IV and DIDIM simulate along);
+// with contacts, their truth last (tau_ext1..): what `jacobid monitor` is checked against. Logs without
+// contacts keep their columns.
+std::string log_header(const robot::RobotDescription& robot, int n, bool external) {
+    std::string header = "t";
+    for (const auto& j : robot.joints) header += "," + j.position_column;
+    for (const auto& j : robot.joints) header += "," + j.torque_column;
+    for (const char* prefix : {"q_ref", "qd_ref"}) {
+        for (int j = 1; j <= n; ++j) header += fmt::format(",{}{}", prefix, j);
+    }
+    if (external) {
+        for (int j = 1; j <= n; ++j) header += fmt::format(",tau_ext{}", j);
+    }
+    return header + "\n";
+}
+
+std::string states_header(int n, bool external) {
+    std::string h = "t";
+    for (const char* prefix : {"q", "qd", "qdd", "tau"}) {
+        for (int j = 1; j <= n; ++j) h += fmt::format(",{}{}", prefix, j);
+    }
+    if (external) {
+        for (int j = 1; j <= n; ++j) h += fmt::format(",tau_ext{}", j);
+    }
+    return h + "\n";
+}
+
+void append_values(fmt::memory_buffer& b, const Eigen::VectorXd& v, int n, const char* spec) {
+    for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), fmt::runtime(spec), v[j]);
+}
+
+nlohmann::json truth_json(const SimulateOptions& o, const robot::RobotDescription& robot, const robot::RobotModel& model, const Eigen::VectorXd& x,
+                          const sim::MeasurementSettings& ms, const HiddenEffects& hidden, std::size_t samples) {
+    nlohmann::json truth;
+    truth["model"] = robot.model;
+    truth["robot"] = robot::to_yaml(robot);
+    nlohmann::json params = nlohmann::json::object();
+    for (int c = 0; c < model.parameter_count(); ++c) params[model.parameter_names()[static_cast<std::size_t>(c)]] = x[c];
+    truth["parameters"] = params;
+    truth["parameter_order"] = model.parameter_names();
+    truth["log"] = o.out;
+    truth["states"] = o.states.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.states);
+    truth["samples"] = samples;
+    truth["simulation"] = {{"duration", o.settings.duration},      {"rate", o.settings.output_rate},
+                           {"control_rate", o.settings.control_rate}, {"integration_rate", o.settings.control_rate * o.settings.substeps},
+                           {"omega_dyn", o.settings.omega_dyn},     {"damping", o.settings.damping},
+                           {"seed", o.settings.seed},               {"move_duration", o.move_duration},
+                           {"dwell", o.settings.moves.max_dwell},
+                           {"velocity_limit", o.settings.moves.velocity_limit},
+                           {"acceleration_limit", o.settings.moves.acceleration_limit},
+                           {"trajectory", o.trajectory.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.trajectory)}};
+    truth["measurement"] = {{"encoder_counts_per_rev", ms.encoder_counts_per_rev}, {"torque_noise", ms.torque_noise},
+                            {"ripple_amplitude", ms.ripple_amplitude},           {"ripple_periods_per_rev", ms.ripple_periods_per_rev},
+                            {"position_noise", ms.position_noise},
+                            {"seed", ms.seed},
+                            {"torque_delay", ms.torque_delay}};
+    truth["effects"] = nlohmann::json::array();
+    for (const auto& e : hidden.effects) truth["effects"].push_back(sim::to_json(e));
+    for (const auto& c : hidden.contacts) truth["effects"].push_back(sim::to_json(c));
+    return truth;
+}
+
+// The run's reference: the random moves (their limits from --velocity-limit / --acceleration-limit) or a
+// given --trajectory table, which is checked by excite or by the user, not changed here.
+void apply_reference(SimulateOptions& o, const robot::RobotDescription& robot, int n) {
     std::shared_ptr<const sim::TabulatedTrajectory> reference;
     if (!o.trajectory.empty()) {
-        // The limits shape the random moves; a given table is checked by excite or by the user, not changed here.
         for (const auto& [limit, option] : {std::pair{&o.settings.moves.velocity_limit, "--velocity-limit"}, {&o.settings.moves.acceleration_limit, "--acceleration-limit"}}) {
             if (!limit->empty()) throw InputError(fmt::format("{} shapes the random moves: it cannot be given with --trajectory {}", option, o.trajectory));
         }
@@ -127,156 +238,73 @@ void run(SimulateOptions o) {
         o.settings.reference = [reference](double t, sim::ReferenceSample& out) { reference->evaluate(t, out); };
         o.settings.reference_start = reference->start();
     }
+}
 
-    // Hidden effects: the truth is the nominal model plus the effects' columns with the injected
-    // coefficients; a torque delay acts in the measurement instead.
-    std::vector<sim::EffectSpec> effects;
-    if (!o.effects_file.empty()) effects = sim::load_effects_file(o.effects_file, n);
-    // Contacts (external:...) act on the physics as a function of time, not as model columns.
-    std::vector<sim::ExternalTorque> contacts;
-    for (const auto& token : o.effects) {
-        if (sim::is_external_torque(token)) {
-            contacts.push_back(sim::parse_external_torque(token, n));
-        } else {
-            effects.push_back(sim::parse_effect(token, n));
-        }
-    }
-    if (!contacts.empty()) {
-        o.settings.external_torque = [contacts, n](double t, Eigen::VectorXd& out) { sim::external_torque_at(contacts, t, n, out); };
-    }
-    std::vector<sim::EffectTerm> terms;
-    std::vector<Eigen::VectorXd> coefficients;
+void run(SimulateOptions o) {
+    const robot::RobotDescription robot = o.robot.empty() ? robot::default_planar2r_description() : robot::load_robot_description(o.robot);
+    std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
+    inputs.insert(inputs.end(), {{"--effects", o.effects_file}, {"--trajectory", o.trajectory}});
+    check_outputs({{"--out", o.out}, {"--truth", o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth}, {"--states", o.states}}, inputs);
+    const auto model = robot::make_robot_model(robot);
+    const int n = model->joint_count();
+    // Truth: the model's reference values (Table II for planar2r) unless the description lists parameters.
+    const Eigen::VectorXd x = robot::simulated_parameters(robot, *model);
+
+    sim::MeasurementSettings ms = measurement_settings(o, n);
+    apply_controller(robot, o);
+    apply_reference(o, robot, n);
     sim::EffectContext context{model->model_name(), n, robot.coulomb, robot::joint_coulomb_signs(robot)};
-    const bool load_effect = std::any_of(effects.begin(), effects.end(), [](const sim::EffectSpec& e) { return e.kind == sim::EffectKind::CoulombLoad; });
-    if (load_effect) context.load = robot::gravity_load_reference(robot);
-    for (const auto& e : effects) {
-        if (e.kind == sim::EffectKind::TorqueDelay) {
-            ms.torque_delay += e.value;
-            continue;
-        }
-        const sim::EffectTerm term = sim::term_of(e);
-        std::string why_not;
-        if (!sim::term_applicable(term, context, &why_not)) throw InputError("--effect " + why_not);
-        terms.push_back(term);
-        coefficients.push_back(sim::injected_coefficients(e, *model, x));
+    const HiddenEffects hidden = hidden_effects(o, robot, *model, x, context);
+    ms.torque_delay += hidden.torque_delay;
+    if (!hidden.contacts.empty()) {
+        o.settings.external_torque = [contacts = hidden.contacts, n](double t, Eigen::VectorXd& out) { sim::external_torque_at(contacts, t, n, out); };
     }
-    const sim::AugmentedModel truth_model(*model, context, terms);
+    const sim::AugmentedModel truth_model(*model, context, hidden.terms);
     Eigen::VectorXd x_truth(truth_model.parameter_count());
     x_truth.head(model->parameter_count()) = x;
-    for (std::size_t t = 0; t < terms.size(); ++t) {
-        x_truth.segment(truth_model.term_column(t), terms[t].column_count()) = coefficients[t];
+    for (std::size_t t = 0; t < hidden.terms.size(); ++t) {
+        x_truth.segment(truth_model.term_column(t), hidden.terms[t].column_count()) = hidden.coefficients[t];
     }
     sim::MeasurementModel measurement(ms);
 
-    // The log must read back: each joint's position and torque in a column of its own, none on the time
-    // column or on a reference column written after them (identify refuses such a header).
-    (void)robot_column_names(robot, "t");
-    for (const char* prefix : {"q_ref", "qd_ref"}) {
-        for (int k = 1; k <= n; ++k) {
-            const std::string name = fmt::format("{}{}", prefix, k);
-            for (std::size_t j = 0; j < robot.joints.size(); ++j) {
-                for (const std::string* column : {&robot.joints[j].position_column, &robot.joints[j].torque_column}) {
-                    if (*column == name) {
-                        throw InputError(fmt::format("{}: joint {} ({}) reads column '{}', which is the reference column simulate writes for joint "
-                                                     "{}; give it another name",
-                                                     robot.source, j + 1, robot.joints[j].name, name, k));
-                    }
-                }
-            }
-        }
-    }
-    std::string header = "t";
-    for (const auto& j : robot.joints) header += "," + j.position_column;
-    for (const auto& j : robot.joints) header += "," + j.torque_column;
-    // The reference the controller tracked, after the measured columns (what IDIM-IV and DIDIM simulate along).
-    for (const char* prefix : {"q_ref", "qd_ref"}) {
-        for (int j = 1; j <= n; ++j) header += fmt::format(",{}{}", prefix, j);
-    }
-    // With contacts, their truth last (tau_ext1..): what `jacobid monitor` is checked against; logs without
-    // contacts keep their columns.
-    const bool external = !contacts.empty();
-    if (external) {
-        for (int j = 1; j <= n; ++j) header += fmt::format(",tau_ext{}", j);
-    }
-    header += "\n";
-    CsvWriter log(o.out, header);
+    check_log_columns(robot, n);
+    const bool external = !hidden.contacts.empty();
+    CsvWriter log(o.out, log_header(robot, n, external));
     std::unique_ptr<CsvWriter> states;
-    if (!o.states.empty()) {
-        std::string h = "t";
-        for (const char* prefix : {"q", "qd", "qdd", "tau"}) {
-            for (int j = 1; j <= n; ++j) h += fmt::format(",{}{}", prefix, j);
-        }
-        if (external) {
-            for (int j = 1; j <= n; ++j) h += fmt::format(",tau_ext{}", j);
-        }
-        states = std::make_unique<CsvWriter>(o.states, h + "\n");
-    }
+    if (!o.states.empty()) states = std::make_unique<CsvWriter>(o.states, states_header(n, external));
     const std::size_t total = sim::simulated_sample_count(o.settings);
     const bool progress = !o.quiet && total > 1'000'000;
     std::size_t emitted = 0;
     // t is printed from the sample index so that the time column is exactly uniform in decimal.
     const double period = 1.0 / o.settings.output_rate;
     // Without effects the nominal model itself is integrated, exactly as before effects existed.
-    const bool hidden = !terms.empty();
-    sim::simulate(hidden ? static_cast<const robot::RobotModel&>(truth_model) : *model, hidden ? x_truth : x, robot.joints, o.settings, measurement, [&](const sim::SimulatedSample& s) {
-        auto& b = log.buffer();
-        const double t = static_cast<double>(emitted) * period;
-        fmt::format_to(std::back_inserter(b), "{:.6f}", t);
-        for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.12g}", s.q_measured[j]);
-        for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.10g}", s.tau_measured[j]);
-        for (const Eigen::VectorXd* v : {&s.q_ref, &s.qd_ref}) {
-            for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.15g}", (*v)[j]);
-        }
-        if (external) {
-            for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(b), ",{:.15g}", s.tau_external[j]);
-        }
-        b.push_back('\n');
-        log.row_done();
-        if (states) {
-            auto& sb = states->buffer();
-            fmt::format_to(std::back_inserter(sb), "{:.6f}", t);
-            for (const Eigen::VectorXd* v : {&s.q, &s.qd, &s.qdd, &s.tau}) {
-                for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(sb), ",{:.15g}", (*v)[j]);
-            }
-            if (external) {
-                for (int j = 0; j < n; ++j) fmt::format_to(std::back_inserter(sb), ",{:.15g}", s.tau_external[j]);
-            }
-            sb.push_back('\n');
-            states->row_done();
-        }
-        ++emitted;
-        if (progress && emitted % (total / 10) == 0) fmt::print(stderr, "simulate: {:.0f} %\n", 100.0 * static_cast<double>(emitted) / static_cast<double>(total));
-    });
+    const bool with_terms = !hidden.terms.empty();
+    sim::simulate(with_terms ? static_cast<const robot::RobotModel&>(truth_model) : *model, with_terms ? x_truth : x, robot.joints, o.settings, measurement,
+                  [&](const sim::SimulatedSample& s) {
+                      auto& b = log.buffer();
+                      const double t = static_cast<double>(emitted) * period;
+                      fmt::format_to(std::back_inserter(b), "{:.6f}", t);
+                      append_values(b, s.q_measured, n, ",{:.12g}");
+                      append_values(b, s.tau_measured, n, ",{:.10g}");
+                      append_values(b, s.q_ref, n, ",{:.15g}");
+                      append_values(b, s.qd_ref, n, ",{:.15g}");
+                      if (external) append_values(b, s.tau_external, n, ",{:.15g}");
+                      b.push_back('\n');
+                      log.row_done();
+                      if (states) {
+                          auto& sb = states->buffer();
+                          fmt::format_to(std::back_inserter(sb), "{:.6f}", t);
+                          for (const Eigen::VectorXd* v : {&s.q, &s.qd, &s.qdd, &s.tau}) append_values(sb, *v, n, ",{:.15g}");
+                          if (external) append_values(sb, s.tau_external, n, ",{:.15g}");
+                          sb.push_back('\n');
+                          states->row_done();
+                      }
+                      ++emitted;
+                      if (progress && emitted % (total / 10) == 0) fmt::print(stderr, "simulate: {:.0f} %\n", 100.0 * static_cast<double>(emitted) / static_cast<double>(total));
+                  });
     log.close();
     if (states) states->close();
-
-    nlohmann::json truth;
-    truth["model"] = robot.model;
-    truth["robot"] = robot::to_yaml(robot);
-    nlohmann::json params = nlohmann::json::object();
-    for (int c = 0; c < model->parameter_count(); ++c) params[model->parameter_names()[static_cast<std::size_t>(c)]] = x[c];
-    truth["parameters"] = params;
-    truth["parameter_order"] = model->parameter_names();
-    truth["log"] = o.out;
-    truth["states"] = o.states.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.states);
-    truth["samples"] = emitted;
-    truth["simulation"] = {{"duration", o.settings.duration},      {"rate", o.settings.output_rate},
-                           {"control_rate", o.settings.control_rate}, {"integration_rate", o.settings.control_rate * o.settings.substeps},
-                           {"omega_dyn", o.settings.omega_dyn},     {"damping", o.settings.damping},
-                           {"seed", o.settings.seed},               {"move_duration", o.move_duration},
-                           {"dwell", o.settings.moves.max_dwell},
-                           {"velocity_limit", o.settings.moves.velocity_limit},
-                           {"acceleration_limit", o.settings.moves.acceleration_limit},
-                           {"trajectory", o.trajectory.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.trajectory)}};
-    truth["measurement"] = {{"encoder_counts_per_rev", ms.encoder_counts_per_rev}, {"torque_noise", ms.torque_noise},
-                            {"ripple_amplitude", ms.ripple_amplitude},           {"ripple_periods_per_rev", ms.ripple_periods_per_rev},
-                            {"position_noise", ms.position_noise},
-                            {"seed", ms.seed},
-                            {"torque_delay", ms.torque_delay}};
-    truth["effects"] = nlohmann::json::array();
-    for (const auto& e : effects) truth["effects"].push_back(sim::to_json(e));
-    for (const auto& c : contacts) truth["effects"].push_back(sim::to_json(c));
-    write_output(o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth, truth.dump(2) + "\n");
+    write_output(o.truth.empty() ? stem(o.out) + ".truth.json" : o.truth, truth_json(o, robot, *model, x, ms, hidden, emitted).dump(2) + "\n");
 }
 
 }  // namespace

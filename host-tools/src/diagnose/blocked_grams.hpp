@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// Normal equations (identify/normal_equations.hpp) of the decimated rows, kept per joint and per contiguous block of time: G = W^T W,
+// Normal equations (identify/solve/normal_equations.hpp) of the decimated rows, kept per joint and per contiguous block of time: G = W^T W,
 // b = W^T Y, yy = Y^T Y over every catalogue column. Any subset of columns, any joint weighting and any
 // split into fitted and held-out blocks (blocked cross-validation) is then a small dense solve, so the
 // stepwise selection can try hundreds of candidate models without touching the rows again.
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "diagnose/decimated_rows.hpp"
-#include "identify/normal_equations.hpp"
+#include "identify/solve/normal_equations.hpp"
 
 namespace jacobid::diagnose {
 

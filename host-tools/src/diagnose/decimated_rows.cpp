@@ -7,7 +7,7 @@
 #include <fmt/core.h>
 
 #include "core/errors.hpp"
-#include "identify/row_collector.hpp"
+#include "identify/pipeline/row_collector.hpp"
 
 namespace jacobid::diagnose {
 using identify::sample_at;

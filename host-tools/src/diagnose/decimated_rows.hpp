@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "identify/pipeline.hpp"
-#include "identify/torque_delay.hpp"
+#include "identify/pipeline/pipeline.hpp"
+#include "identify/friction/torque_delay.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::diagnose {
@@ -44,7 +44,7 @@ DecimatedRows decimated_rows(const robot::RobotModel& model, const identify::Log
 DecimatedRows stacked_decimated_rows(const robot::RobotModel& model, const std::vector<identify::LogColumns>& logs,
                                      const identify::PipelineSettings& settings, const identify::PipelineInfo& plan);
 
-// Torque columns read later: identify::shift_torques (identify/torque_delay.hpp).
+// Torque columns read later: identify::shift_torques (identify/friction/torque_delay.hpp).
 using identify::ShiftedTorques;
 using identify::shift_torques;
 

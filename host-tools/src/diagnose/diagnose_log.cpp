@@ -3,8 +3,8 @@
 
 #include <optional>
 
-#include "identify/coulomb_smoothing.hpp"
-#include "identify/segmented_pipeline.hpp"
+#include "identify/friction/coulomb_smoothing.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
 #include "sim/effect_terms.hpp"
 
 namespace jacobid::diagnose {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "diagnose/diagnosis.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/robot_model.hpp"
 

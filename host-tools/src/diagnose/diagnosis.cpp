@@ -13,8 +13,8 @@
 #include "diagnose/decimated_rows.hpp"
 #include "diagnose/heldout.hpp"
 #include "diagnose/statistics.hpp"
-#include "identify/segmented_pipeline.hpp"
-#include "identify/validation.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
+#include "identify/validation/validation.hpp"
 #include "sim/augmented_model.hpp"
 
 namespace jacobid::diagnose {

@@ -12,8 +12,8 @@
 #include "diagnose/horizon_simulation.hpp"
 #include "diagnose/residual_analysis.hpp"
 #include "diagnose/selection.hpp"
-#include "identify/least_squares.hpp"
-#include "identify/pipeline.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/pipeline/pipeline.hpp"
 
 namespace jacobid::diagnose {
 

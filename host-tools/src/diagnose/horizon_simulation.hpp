@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "identify/pipeline.hpp"
+#include "identify/pipeline/pipeline.hpp"
 #include "robot/robot_model.hpp"
 
 namespace jacobid::diagnose {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "excite/identification_bandwidth.hpp"
 
-#include "identify/bandwidth.hpp"
+#include "identify/plan/bandwidth.hpp"
 
 namespace jacobid::excite {
 

@@ -7,7 +7,7 @@
 // smoothing's passband stopped at 10 x the velocity's band, it would differ between the torque and the
 // regressor columns computed from the positions, and the estimate would be biased (measured: 2.44 x the
 // validation error of random moves with a velocity-only bandwidth, 0.79 x with --cutoff 20). identify's
-// differentiators therefore take the larger of the velocity's and the torque's band (identify/bandwidth.hpp); excite runs
+// differentiators therefore take the larger of the velocity's and the torque's band (identify/plan/bandwidth.hpp); excite runs
 // that same code on the design (the noise-free positions, and the model torque with the noise the design is
 // made for as each joint's floor), and names a cutoff only when identify's own would still miss the torque.
 #include <Eigen/Core>

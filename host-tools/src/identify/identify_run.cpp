@@ -3,10 +3,10 @@
 
 #include <utility>
 
-#include "identify/didim.hpp"
-#include "identify/instrumental_variables.hpp"
-#include "identify/plausibility.hpp"
-#include "identify/reference_simulation.hpp"
+#include "identify/solve/didim.hpp"
+#include "identify/solve/instrumental_variables.hpp"
+#include "identify/physical/plausibility.hpp"
+#include "identify/solve/reference_simulation.hpp"
 
 namespace jacobid::identify {
 

@@ -6,12 +6,12 @@
 // a Monte Carlo study checks exactly what users run.
 #include <optional>
 
-#include "identify/coulomb_smoothing.hpp"
-#include "identify/estimator.hpp"
-#include "identify/least_squares.hpp"
-#include "identify/pipeline.hpp"
-#include "identify/report.hpp"
-#include "identify/torque_delay.hpp"
+#include "identify/friction/coulomb_smoothing.hpp"
+#include "identify/solve/estimator.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/pipeline/pipeline.hpp"
+#include "identify/report/report.hpp"
+#include "identify/friction/torque_delay.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/robot_model.hpp"
 

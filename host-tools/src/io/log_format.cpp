@@ -1,17 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "io/log_format.hpp"
 
-#include <fast_float/fast_float.h>
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string_view>
-#include <unordered_map>
 #include <utility>
 
 #include "core/errors.hpp"
-#include "io/increasing_rows.hpp"
 #include "io/log_text_checks.hpp"
 #include "io/resample.hpp"
 #include "io/time_axis.hpp"
@@ -25,11 +22,6 @@ using Section = yaml::YamlSection<InputError>;
 constexpr std::size_t kMaxJoints = 64;
 // |gain| bounds of a current-to-torque gain, N.m/A (see the gains: check).
 constexpr std::pair<double, double> kPlausibleGain{1e-6, 1e6};
-
-bool parses_as_number(const std::string& s, double& value) {
-    const auto r = fast_float::from_chars(s.data(), s.data() + s.size(), value);
-    return r.ec == std::errc() && r.ptr == s.data() + s.size();
-}
 
 // One column reference: a 1-based index, a header name, or (where allowed) null. The rule (docs/log-format.md,
 // "Keys"): a plain YAML number is a column number, a quoted scalar is always a name, so `'3'` is the
@@ -72,16 +64,6 @@ std::vector<ColumnRef> column_list(Section& s, const std::string& key, bool null
     return refs;
 }
 
-void split(std::string_view line, char delimiter, std::vector<std::string_view>& cells) {
-    cells.clear();
-    for (std::size_t start = 0;;) {
-        const std::size_t at = line.find(delimiter, start);
-        cells.push_back(trim_cell(line.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start)));
-        if (at == std::string_view::npos) break;
-        start = at + 1;
-    }
-}
-
 std::string ms(double seconds) { return fmt::format("{:.4g} ms", 1e3 * seconds); }
 
 // Lines 1,2,3,7 as "1-3, 7"; after 10 ranges, "... (N ranges)".
@@ -97,50 +79,6 @@ std::string line_ranges(const std::vector<std::size_t>& lines) {
     }
     if (ranges > kListed) out += fmt::format(", ... ({} ranges)", ranges);
     return out;
-}
-
-struct SkippedRow {
-    std::size_t line;
-    std::string message;
-};
-
-// --skip-bad-rows: the rows whose times do not fit the longest increasing run (io/increasing_rows.hpp) are
-// skipped, each named with the kept row it collides with; `time_column` is 1-based, for the messages.
-void keep_increasing_times(RawLog& raw, const std::string& source, std::size_t time_column, std::vector<SkippedRow>& skipped) {
-    const std::vector<double> t = raw.table.column(0);
-    const std::vector<bool> keep = longest_increasing_times(t);
-    std::size_t previous = t.size();  // the last kept row before i (none yet)
-    for (std::size_t i = 0; i < t.size(); ++i) {
-        if (keep[i]) {
-            previous = i;
-            continue;
-        }
-        // Not kept: at or before the previous kept row's time, or else at or after the next kept row's (a
-        // longest run leaves no row that fits between its neighbours, so that next kept row exists).
-        if (previous < t.size() && !(t[i] > t[previous])) {
-            skipped.push_back({raw.lines[i], fmt::format("{}:{}: column {} (time): time {:.10g} s is not after {:.10g} s of line {} (time must increase)",
-                                                         source, raw.lines[i], time_column, t[i], t[previous], raw.lines[previous])});
-            continue;
-        }
-        std::size_t next = i + 1;
-        while (next < t.size() && !keep[next]) ++next;
-        skipped.push_back({raw.lines[i], fmt::format("{}:{}: column {} (time): time {:.10g} s is not before {:.10g} s of line {}, where the "
-                                                     "increasing times go on (time must increase)",
-                                                     source, raw.lines[i], time_column, t[i], t[next], raw.lines[next])});
-    }
-    for (std::size_t c = 0; c < raw.table.columns(); ++c) {
-        std::vector<double>& column = raw.table.mutable_column(c);
-        std::size_t kept = 0;
-        for (std::size_t i = 0; i < column.size(); ++i) {
-            if (keep[i]) column[kept++] = column[i];
-        }
-        column.resize(kept);
-    }
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < raw.lines.size(); ++i) {
-        if (keep[i]) raw.lines[kept++] = raw.lines[i];
-    }
-    raw.lines.resize(kept);
 }
 
 }  // namespace
@@ -239,237 +177,6 @@ LogColumnNames LogColumnNames::numbered(std::size_t joints, const std::string& t
         n.tau.push_back(fmt::format("tau{}", j));
     }
     return n;
-}
-
-RawLog parse_raw_log(const std::string& text, const std::string& source, const LogFormat& format, const LogColumnNames& names,
-                     const LogReadSettings& settings, LogReadReport& report) {
-    const std::size_t joints = format.joints();
-    if (names.q.size() != joints || names.tau.size() != joints || (!format.velocities.empty() && names.qd.size() != joints)) {
-        throw InputError(fmt::format("{}: the log format {} has {} joints, the column names {}", source, format.source, joints, names.q.size()));
-    }
-    report.source = source;
-    require_readable_log_text(std::string_view(text).substr(0, text.find('\n')), source);
-    TextLines lines(text);
-    std::size_t line = 0;
-    auto next_line = [&](std::string_view& out) {
-        const bool more = lines.next(out);
-        line = lines.line();
-        if (line == 1) out = without_utf8_bom(out);  // a spreadsheet's encoding marker, not part of the first cell
-        return more;
-    };
-    std::string_view row;
-    for (std::size_t i = 0; i < format.skip_rows; ++i) {
-        if (!next_line(row)) throw InputError(fmt::format("{}: {} lines, fewer than skip_rows: {} of {}", source, line, format.skip_rows, format.source));
-    }
-    std::vector<std::string_view> cells;
-    std::vector<std::string> header;
-    std::size_t width = 0;
-    if (format.header) {
-        if (!next_line(row) || trim_cell(row).empty()) throw InputError(fmt::format("{}:{}: expected the header row (header: true in {})", source, line + 1, format.source));
-        split(row, format.delimiter, cells);
-        for (auto c : cells) {
-            if (c.size() >= 2 && c.front() == '"' && c.back() == '"') c = c.substr(1, c.size() - 2);
-            header.emplace_back(c);
-        }
-        width = header.size();
-    }
-    const std::size_t header_line = line;
-    // Resolves a reference to a 0-based column; the width check waits for the first data row without a header.
-    auto resolve = [&](const ColumnRef& ref, const std::string& key) -> std::size_t {
-        if (ref.index > 0) {
-            // `3` is column 3; a header that names another column '3' makes the intent unclear: refuse.
-            const std::string digits = std::to_string(ref.index);
-            for (std::size_t c = 0; c < header.size(); ++c) {
-                if (header[c] == digits && c + 1 != ref.index) {
-                    throw InputError(fmt::format("{}:{}: {}: {} (unquoted) is column number {}, but the header names column {} '{}': quote it ('{}') "
-                                                 "for the column of that name, or rename the header",
-                                                 source, header_line, key, digits, digits, c + 1, digits, digits));
-                }
-            }
-            return ref.index - 1;
-        }
-        std::size_t found = header.size();
-        for (std::size_t c = 0; c < header.size(); ++c) {
-            if (header[c] != ref.name) continue;
-            if (found != header.size()) {
-                throw InputError(fmt::format("{}:{}: {}: column name '{}' appears twice in the header (columns {} and {})", source, header_line, key,
-                                             printable_cell(ref.name), found + 1, c + 1));
-            }
-            found = c;
-        }
-        if (found == header.size()) {
-            double number = 0.0;
-            const std::string number_hint = parses_as_number(ref.name, number)
-                                                ? fmt::format(" ('{}' is quoted, so a name; write {} without quotes for a column number)", ref.name, ref.name)
-                                                : std::string();
-            const std::string delimiter = delimiter_hint(header.size(), header.front(), format.delimiter, format.source);
-            if (!delimiter.empty()) {
-                throw InputError(fmt::format("{}:{}: {}: no column '{}': the header is one column '{}': {}", source, header_line, key,
-                                             printable_cell(ref.name), printable_cell(header.front()), delimiter));
-            }
-            // A header of numbers is the first data row of a log without one.
-            const bool all_numbers = std::all_of(header.begin(), header.end(), [](const std::string& c) {
-                double v = 0.0;
-                return parses_as_number(c, v);
-            });
-            throw InputError(fmt::format("{}:{}: {}: no column '{}' in the header{} (columns: {}){}", source, header_line, key, printable_cell(ref.name),
-                                         number_hint, describe_columns(header),
-                                         all_numbers ? fmt::format("; that line is all numbers: has the log no header? (header: false in {})", format.source)
-                                                     : std::string()));
-        }
-        return found;
-    };
-    struct Use {
-        std::size_t column;    // 0-based in the raw log
-        std::string key;       // the log format's key, for messages
-        double gain;
-    };
-    std::vector<Use> uses;  // time, q.., qd.. (logged), tau.. (logged), in table order
-    std::vector<std::string> table_names{names.time};
-    uses.push_back({resolve(format.time, "time.column"), "time", format.time_scale});
-    for (std::size_t j = 0; j < joints; ++j) {
-        uses.push_back({resolve(format.positions[j], fmt::format("positions[{}]", j)), fmt::format("positions[{}]", j), 1.0});
-        table_names.push_back(names.q[j]);
-    }
-    for (std::size_t j = 0; j < format.velocities.size(); ++j) {
-        if (!format.velocities[j].present()) continue;
-        uses.push_back({resolve(format.velocities[j], fmt::format("velocities[{}]", j)), fmt::format("velocities[{}]", j), 1.0});
-        table_names.push_back(names.qd[j]);
-    }
-    for (std::size_t k = 0; k < format.references.size(); ++k) {
-        const std::string key = fmt::format("references[{}]", k);
-        uses.push_back({resolve(format.references[k], key), key, 1.0});
-        table_names.push_back(fmt::format("{}{}", k < joints ? "q_ref" : "qd_ref", k % joints + 1));
-    }
-    const char* effort = format.currents ? "currents" : "torques";
-    std::vector<std::size_t> zero_torque;  // table columns of joints without actuator
-    for (std::size_t j = 0; j < joints; ++j) {
-        if (format.efforts[j].present()) {
-            uses.push_back({resolve(format.efforts[j], fmt::format("{}[{}]", effort, j)), fmt::format("{}[{}]", effort, j), format.gains[j]});
-        } else {
-            zero_torque.push_back(table_names.size());
-        }
-        table_names.push_back(names.tau[j]);
-    }
-    // Each signal from its own raw column: `positions: [t, q2]` read the time as joint 1's position.
-    std::unordered_map<std::size_t, const Use*> reader_of;
-    for (const Use& u : uses) {
-        const auto [it, fresh] = reader_of.emplace(u.column, &u);
-        if (!fresh) {
-            throw InputError(fmt::format("{}: '{}' reads raw column {}, which '{}' also reads; give each signal its own column", source, u.key,
-                                         u.column + 1, it->second->key));
-        }
-    }
-    for (const Use& u : uses) {
-        if (format.header && u.column >= width) {
-            const std::string delimiter = delimiter_hint(width, header.front(), format.delimiter, format.source);
-            throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the header has {} columns{}", source, header_line, u.key, u.column + 1,
-                                         width, delimiter.empty() ? "" : ": " + delimiter));
-        }
-    }
-    RawLog raw{CsvTable(source, table_names), {}};  // refuses two columns of one name
-    std::vector<double> values(uses.size());
-    double last_time = 0.0;
-    std::size_t last_line = 0;
-    std::vector<SkippedRow> skipped;
-    auto bad_row = [&](const std::string& reason) {
-        const std::string message = fmt::format("{}:{}: {}", source, line, reason);
-        if (!settings.skip_bad_rows) throw InputError(message + " (--skip-bad-rows skips such rows and reports them)");
-        skipped.push_back({line, message});
-    };
-    while (next_line(row)) {
-        if (trim_cell(row).empty()) {
-            if (lines.at_end()) break;  // a final empty line
-            bad_row("empty line inside the data");
-            continue;
-        }
-        split(row, format.delimiter, cells);
-        if (width == 0) {
-            // Strictly, the first data row sets the width. With --skip-bad-rows the most common one does: a
-            // misaligned first record made every good row "bad" after it.
-            const auto most_common_width = [&] {
-                return most_common_cell_count(std::string_view(text).substr(static_cast<std::size_t>(row.data() - text.data())), format.delimiter);
-            };
-            width = settings.skip_bad_rows ? most_common_width() : cells.size();
-            for (const Use& u : uses) {
-                if (u.column >= width) {
-                    const std::string delimiter = delimiter_hint(width, cells.front(), format.delimiter, format.source);
-                    const std::size_t most = most_common_width();
-                    const std::string misaligned =
-                        most != width ? fmt::format(" (most rows have {}: is this one misaligned? --skip-bad-rows skips it)", most) : std::string();
-                    throw InputError(fmt::format("{}:{}: {}: column {} does not exist, the {} has {} columns{}{}", source, line, u.key, u.column + 1,
-                                                 settings.skip_bad_rows ? "most common data row" : "first data row", width,
-                                                 delimiter.empty() ? "" : ": " + delimiter, misaligned));
-                }
-            }
-        }
-        if (cells.size() != width) {
-            bad_row(fmt::format("expected {} columns, found {}", width, cells.size()));
-            continue;
-        }
-        bool ok = true;
-        for (std::size_t k = 0; k < uses.size() && ok; ++k) {
-            const std::string_view cell = cells[uses[k].column];
-            double v = 0.0;
-            const auto r = fast_float::from_chars(cell.data(), cell.data() + cell.size(), v);
-            if (r.ec != std::errc() || r.ptr != cell.data() + cell.size() || cell.empty()) {
-                // Text in the first data row of a log read without a header is most likely its header.
-                const std::string decimal_comma = decimal_comma_hint(cell);
-                const bool header_row = !format.header && raw.lines.empty() && skipped.empty() && decimal_comma.empty();
-                bad_row(fmt::format("column {} ({}): expected a number, got '{}'{}{}", uses[k].column + 1, uses[k].key, printable_cell(cell),
-                                    decimal_comma,
-                                    header_row ? fmt::format(" (is line {} a header? header: true or skip_rows in {})", line, format.source) : std::string()));
-                ok = false;
-            } else if (!std::isfinite(v)) {
-                bad_row(fmt::format("column {} ({}): value '{}' is not finite (NaN or Inf)", uses[k].column + 1, uses[k].key, printable_cell(cell)));
-                ok = false;
-            }
-            values[k] = v * uses[k].gain;
-            if (ok && !std::isfinite(values[k])) {
-                bad_row(fmt::format("column {} ({}): {} times the gain or scale {} is not finite", uses[k].column + 1, uses[k].key, printable_cell(cell),
-                                    uses[k].gain));
-                ok = false;
-            } else if (ok && beyond_log_range(values[k])) {  // the time too: a corrupt stamp of 1e154 s is no time
-                bad_row(fmt::format("column {} ({}): value {} {}", uses[k].column + 1, uses[k].key, values[k], kBeyondLogRange));
-                ok = false;
-            } else if (ok && k >= 1 && k <= joints && k <= names.q_bounds.size() && names.q_bounds[k - 1] && !names.q_bounds[k - 1]->holds(values[k])) {
-                bad_row(fmt::format("column {} ({}): {}", uses[k].column + 1, uses[k].key, names.q_bounds[k - 1]->refusal(values[k])));
-                ok = false;
-            }
-        }
-        if (!ok) continue;
-        // A zero-filled record (every value read exactly 0, whatever its time) is what a logger
-        // writes for a sample it lost; a real robot never measures every joint at exactly 0 rad and 0 N.m (a
-        // synthetic log might, at rest at the origin), so only --skip-bad-rows judges it (strictly, its time
-        // breaks the order or leaves a gap, named by line).
-        if (settings.skip_bad_rows && std::all_of(values.begin() + 1, values.end(), [](double v) { return v == 0.0; })) {
-            bad_row("every value but the time is 0 (a zero-filled record, not a sample)");
-            continue;
-        }
-        // With --skip-bad-rows the time order is judged over the whole log once it is read (keep_increasing_times).
-        if (!settings.skip_bad_rows && !raw.lines.empty() && !(values[0] > last_time)) {
-            bad_row(fmt::format("column {} (time): time {:.10g} s is not after {:.10g} s of line {} (time must increase)", uses[0].column + 1,
-                                values[0], last_time, last_line));
-            continue;
-        }
-        last_time = values[0];
-        last_line = line;
-        std::size_t k = 0;
-        for (std::size_t c = 0; c < table_names.size(); ++c) {
-            const bool zero = std::find(zero_torque.begin(), zero_torque.end(), c) != zero_torque.end();
-            raw.table.mutable_column(c).push_back(zero ? 0.0 : values[k++]);
-        }
-        raw.lines.push_back(line);
-    }
-    if (settings.skip_bad_rows) keep_increasing_times(raw, source, uses[0].column + 1, skipped);
-    std::stable_sort(skipped.begin(), skipped.end(), [](const SkippedRow& a, const SkippedRow& b) { return a.line < b.line; });
-    for (SkippedRow& r : skipped) {
-        report.skipped_lines.push_back(r.line);
-        report.skipped.push_back(std::move(r.message));
-    }
-    report.lines = line;
-    report.rows = raw.lines.size();
-    return raw;
 }
 
 std::vector<CsvTable> parse_formatted_log_segments(const std::string& text, const std::string& source, const LogFormat& format,

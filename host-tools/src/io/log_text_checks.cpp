@@ -106,8 +106,12 @@ std::string decimal_comma_hint(std::string_view cell) {
     std::string dotted(cell);
     std::replace(dotted.begin(), dotted.end(), ',', '.');
     double value = 0.0;
-    const auto r = fast_float::from_chars(dotted.data(), dotted.data() + dotted.size(), value);
-    return r.ec == std::errc() && r.ptr == dotted.data() + dotted.size() ? " (a decimal comma? numbers are read with a '.')" : std::string();
+    return parses_as_number(dotted, value) ? " (a decimal comma? numbers are read with a '.')" : std::string();
+}
+
+bool parses_as_number(std::string_view s, double& value) {
+    const auto r = fast_float::from_chars(s.data(), s.data() + s.size(), value);
+    return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
 }  // namespace jacobid::io

@@ -31,4 +31,7 @@ void require_readable_log_text(std::string_view first_line, const std::string& s
 // a spreadsheet export, which "expected a number, got '0,5'" left to guess.
 std::string decimal_comma_hint(std::string_view cell);
 
+// Whether all of `s` is one number (fast_float's grammar), stored in `value`.
+bool parses_as_number(std::string_view s, double& value);
+
 }  // namespace jacobid::io

@@ -4,6 +4,7 @@
 # go into the command line's support library (the jacobid executable and the Python module use them).
 target_sources(jacobid_host_base PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/log_format.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/raw_log_reader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/log_text_checks.cpp
   ${CMAKE_CURRENT_LIST_DIR}/increasing_rows.cpp
   ${CMAKE_CURRENT_LIST_DIR}/distinct_inputs.cpp

@@ -9,7 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/parallel_for.hpp"
-#include "identify/estimator.hpp"
+#include "identify/solve/estimator.hpp"
 #include "io/candump_joints.hpp"
 #include "io/distinct_inputs.hpp"
 #if JACOBID_WITH_FIRMWARE

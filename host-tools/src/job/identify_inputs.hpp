@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "identify/log_columns.hpp"
-#include "identify/report.hpp"
-#include "identify/segmented_pipeline.hpp"
+#include "identify/plan/log_columns.hpp"
+#include "identify/report/report.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
 #include "io/csv_table.hpp"
 #include "job/streamed_log.hpp"
 #include "options/identify_options.hpp"

@@ -14,8 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "identify/periodic_log.hpp"
-#include "identify/report.hpp"
+#include "identify/plan/periodic_log.hpp"
+#include "identify/report/report.hpp"
 #include "job/identify_inputs.hpp"
 #include "options/identify_options.hpp"
 #include "options/output_file.hpp"

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "identify/coulomb_smoothing.hpp"
+#include "identify/friction/coulomb_smoothing.hpp"
 #include "identify/identify_run.hpp"
-#include "identify/segmented_pipeline.hpp"
-#include "identify/torque_delay.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
+#include "identify/friction/torque_delay.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/robot_model.hpp"
 

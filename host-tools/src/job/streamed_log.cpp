@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 
 namespace jacobid::job {
 

@@ -3,7 +3,7 @@
 // identify on a plain CSV log longer than one piece (docs/performance.md, "Ten hours"): the log is read
 // piece by piece (io/csv_pieces.hpp), each piece identified and merged into the running QR factors before
 // the next is read, so memory does not grow with the log. The pieces are identified as the segments of a
-// log split at its gaps are (identify/segmented_pipeline.hpp): the automatic choices (bandwidth, windows,
+// log split at its gaps are (identify/pipeline/segmented_pipeline.hpp): the automatic choices (bandwidth, windows,
 // decimation, torque delay, Coulomb smoothing) resolved on the first piece, the longest, and each piece
 // with its own edges, so the equations within a differentiator window of each seam are not formed.
 #include <cstddef>
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "identify/report.hpp"
-#include "identify/segmented_pipeline.hpp"
+#include "identify/report/report.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
 #include "io/csv_pieces.hpp"
 #include "robot/robot_description.hpp"
 

@@ -11,7 +11,7 @@
 
 #include "core/errors.hpp"
 #include "core/parallel_for.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "robot/simulated_parameters.hpp"
 
 namespace jacobid::montecarlo {

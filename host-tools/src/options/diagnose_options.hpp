@@ -4,7 +4,7 @@
 // --max-cogging-order, --horizon, --horizon-spacing and the pipeline rates), shared by `jacobid diagnose` and
 // the Python module's jacobid.diagnose().
 #include "diagnose/diagnosis.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "robot/robot_model.hpp"
 
 namespace CLI {

@@ -9,9 +9,9 @@
 #include "core/errors.hpp"
 #include "options/option_checks.hpp"
 #include "core/same_file.hpp"
-#include "identify/drive_gains.hpp"
-#include "identify/drive_gains_report.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/drive_gains/drive_gains.hpp"
+#include "identify/drive_gains/drive_gains_report.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "io/log_format.hpp"
 
 namespace jacobid::options {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // identify --drive-gains --loaded LOG --payload-mass KG [--payload-com x,y,z] [--payload-inertia ...]: the
-// options and the run (identify/drive_gains.hpp), kept out of identify_command.cpp.
+// options and the run (identify/drive_gains/drive_gains.hpp), kept out of identify_command.cpp.
 #include <string>
 #include <utility>
 #include <vector>

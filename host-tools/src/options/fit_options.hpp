@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "identify/identify_run.hpp"
-#include "identify/pipeline.hpp"
+#include "identify/pipeline/pipeline.hpp"
 
 namespace CLI {
 class App;

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "identify/model_export.hpp"
-#include "identify/physical_identification.hpp"
+#include "identify/report/model_export.hpp"
+#include "identify/physical/physical_identification.hpp"
 #include "io/time_axis.hpp"
 #include "options/drive_gains_options.hpp"
 #include "options/fit_options.hpp"

@@ -8,7 +8,7 @@
 
 #include "options/option_checks.hpp"
 #include "core/errors.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 
 namespace jacobid::options {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// identify --export-urdf FILE / --export-robot FILE (identify/model_export.hpp): the options and writing the files.
+// identify --export-urdf FILE / --export-robot FILE (identify/report/model_export.hpp): the options and writing the files.
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "identify/model_export.hpp"
+#include "identify/report/model_export.hpp"
 
 namespace CLI {
 class App;

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "options/option_checks.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "io/distinct_inputs.hpp"
 #include "payload/payload_export.hpp"
 #include "robot/urdf_chain.hpp"

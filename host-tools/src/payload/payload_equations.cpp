@@ -3,9 +3,9 @@
 
 #include <fmt/core.h>
 
-#include "identify/drive_gains.hpp"
-#include "identify/torque_delay.hpp"
-#include "identify/validation.hpp"
+#include "identify/drive_gains/drive_gains.hpp"
+#include "identify/friction/torque_delay.hpp"
+#include "identify/validation/validation.hpp"
 #include "payload/payload_inertia.hpp"
 #include "payload/payload_rows.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "identify/drive_gains.hpp"
+#include "identify/drive_gains/drive_gains.hpp"
 #include "robot/urdf_chain.hpp"
 
 namespace jacobid::payload {

@@ -3,7 +3,7 @@
 // A payload's inertial description two ways (docs/method.md, "Payload identification"; docs/identify.md,
 // "Payload"):
 //   - the ten standard parameters about the last link's frame origin, in its axes, XX XY XZ YY YZ ZZ MX MY MZ M
-//     (what the regressor sees: they add to the last link's own, identify/drive_gains.hpp);
+//     (what the regressor sees: they add to the last link's own, identify/drive_gains/drive_gains.hpp);
 //   - mass, centre of mass and inertia about the centre of mass, in a tool frame fixed to the last link (what a
 //     controller's payload setting asks for).
 // Conversions between them, their Jacobian (for the delta-method std) and the physical-consistency checks.

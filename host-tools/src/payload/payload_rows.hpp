@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The payload's equations, one per joint and decimated row of the pipeline (identify/pipeline.hpp), folded
+// The payload's equations, one per joint and decimated row of the pipeline (identify/pipeline/pipeline.hpp), folded
 // into per-joint running QR factors (and lagged products, for identify's joint-HAC std) over the columns
 //     [ W_j K_L (10) | W_j (c) | y_j e_j (joints) | y_j - W_j theta ]
 // K_L: the regrouping's columns of the last link's ten standard parameters (a payload fixed to the last link adds
@@ -14,10 +14,10 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "identify/least_squares.hpp"
-#include "identify/pipeline.hpp"
-#include "identify/residual_correlation.hpp"
-#include "identify/running_qr.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/pipeline/pipeline.hpp"
+#include "identify/solve/residual_correlation.hpp"
+#include "identify/pipeline/running_qr.hpp"
 
 namespace jacobid::payload {
 

@@ -9,7 +9,7 @@
 // Fills cov_arm, cov_gain, mass_gain_sensitivity, included and left_out of `out`.
 #include <vector>
 
-#include "identify/least_squares.hpp"
+#include "identify/solve/least_squares.hpp"
 #include "payload/arm_file.hpp"
 #include "payload/payload_estimate.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "identify/pipeline.hpp"
+#include "identify/pipeline/pipeline.hpp"
 
 namespace jacobid::payload {
 

@@ -19,7 +19,7 @@ struct PreslidingSettings {
     double play_width = 2e-4;          // rad: total width of the play operator's band (two UR10e quantization steps); 0: raw positions
     // s at the first sample, per joint (empty: 0 for all). Unknown in general: the neutral 0 when identifying
     // (the state saturates within the first x_p of motion); validation estimates it from the held torque at
-    // the log's start (identify/validation.cpp), as an observer would.
+    // the log's start (identify/validation/validation.cpp), as an observer would.
     std::vector<double> initial_state;
 };
 

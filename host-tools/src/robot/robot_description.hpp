@@ -65,7 +65,7 @@ struct RobotDescription {
     std::vector<JointDescription> joints;
     CoulombSign coulomb{CoulombModel::SmoothAtan, 100.0};
     // friction.alpha: `auto` (the default) lets identify and diagnose choose each joint's smoothing on held-out
-    // data (identify/coulomb_smoothing.hpp); until then, and in simulation, coulomb.alpha applies.
+    // data (identify/friction/coulomb_smoothing.hpp); until then, and in simulation, coulomb.alpha applies.
     bool coulomb_alpha_auto = true;
     std::vector<double> coulomb_alpha;  // s/rad per joint (a list in the file, or chosen); empty: coulomb.alpha for all
     bool friction_offset = false;
@@ -74,7 +74,7 @@ struct RobotDescription {
     CoulombLoad coulomb_load = CoulombLoad::none;
     // friction.presliding: dahl (docs/method.md, "Presliding friction (Dahl)"). presliding_displacement:
     // `auto` (the default) lets identify choose x_p per joint on held-out data
-    // (identify/presliding_displacement.hpp); until then, and in simulation, the common value applies.
+    // (identify/friction/presliding_displacement.hpp); until then, and in simulation, the common value applies.
     bool presliding = false;
     bool presliding_displacement_auto = true;
     double presliding_displacement = 3e-4;                // rad, every joint

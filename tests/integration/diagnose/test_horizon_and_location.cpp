@@ -11,7 +11,7 @@
 #include "diagnose/decimated_rows.hpp"
 #include "diagnose/horizon_simulation.hpp"
 #include "diagnose/residual_analysis.hpp"
-#include "identify/segmented_pipeline.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
 #include "robot/planar2r_model.hpp"
 #include "sim/simulator.hpp"
 

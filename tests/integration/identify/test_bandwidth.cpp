@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Motion bandwidth estimate (identify/bandwidth.hpp, docs/method.md "Motion bandwidth estimate") against
+// Motion bandwidth estimate (identify/plan/bandwidth.hpp, docs/method.md "Motion bandwidth estimate") against
 // references computed from the signal's construction, never from the estimator: a sum of sines of known
 // amplitudes has its 99 % velocity-energy frequency in closed form, and with a known white position noise
 // (Gaussian, or a quantizer of step D: variance D^2 / 12) the noise-limited bandwidth is closed form too.
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "identify/bandwidth.hpp"
+#include "identify/plan/bandwidth.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "identify/coulomb_smoothing.hpp"
+#include "identify/friction/coulomb_smoothing.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/errors.hpp"
-#include "identify/drive_gains.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/drive_gains/drive_gains.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "loaded_robot.hpp"
 #include "realdata.hpp"
 #include "robot/robot_description.hpp"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Issue 14: the Jacobi pipeline must give the torque the low-pass its velocity estimates have
-// (identify/torque_smoothing.hpp, docs/method.md "Pitfalls"), or F_p keeps a band in which Y and W differ
+// (identify/pipeline/torque_smoothing.hpp, docs/method.md "Pitfalls"), or F_p keeps a band in which Y and W differ
 // and the parameters are biased even without noise.
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include <memory>
 #include <string>
 
-#include "identify/least_squares.hpp"
-#include "identify/log_columns.hpp"
-#include "identify/pipeline.hpp"
-#include "identify/torque_smoothing.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/plan/log_columns.hpp"
+#include "identify/pipeline/pipeline.hpp"
+#include "identify/pipeline/torque_smoothing.hpp"
 #include "jacobid/kernel_design.hpp"
 #include "robot/robot_description.hpp"
 #include "sim/simulator.hpp"

@@ -10,9 +10,9 @@
 #include <cmath>
 #include <random>
 
-#include "identify/least_squares.hpp"
-#include "identify/residual_correlation.hpp"
-#include "identify/running_qr.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/solve/residual_correlation.hpp"
+#include "identify/pipeline/running_qr.hpp"
 
 namespace jacobid::identify {
 namespace {

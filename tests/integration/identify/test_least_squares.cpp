@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "identify/least_squares.hpp"
-#include "identify/running_qr.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/pipeline/running_qr.hpp"
 
 namespace {
 

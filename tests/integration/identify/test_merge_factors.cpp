@@ -7,9 +7,9 @@
 #include <random>
 
 #include "core/errors.hpp"
-#include "identify/least_squares.hpp"
-#include "identify/merge_factors.hpp"
-#include "identify/running_qr.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/pipeline/merge_factors.hpp"
+#include "identify/pipeline/running_qr.hpp"
 
 namespace jacobid::identify {
 namespace {

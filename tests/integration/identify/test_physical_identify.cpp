@@ -12,7 +12,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "identify/physical_least_squares.hpp"
+#include "identify/physical/physical_least_squares.hpp"
 #include "realdata.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/serial_robot_model.hpp"

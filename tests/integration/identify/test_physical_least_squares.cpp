@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Physically consistent least squares (identify/physical_parametrization.hpp, physical_least_squares.hpp),
+// Physically consistent least squares (identify/physical/physical_parametrization.hpp, physical_least_squares.hpp),
 // checked against independent facts: the pseudo-inertia of a uniform box from its closed form, the
 // triangle inequalities computed from eigenvalues of the inertia about the centre of mass, and optimality of
 // the constrained solution by brute force (the problem is convex in the standard parameters, so no feasible
@@ -11,9 +11,9 @@
 #include <limits>
 #include <random>
 
-#include "identify/lmi_barrier.hpp"
-#include "identify/physical_least_squares.hpp"
-#include "identify/physical_parametrization.hpp"
+#include "identify/physical/lmi_barrier.hpp"
+#include "identify/physical/physical_least_squares.hpp"
+#include "identify/physical/physical_parametrization.hpp"
 
 namespace {
 

@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "identify/log_columns.hpp"
-#include "identify/pipeline.hpp"
-#include "identify/torque_smoothing.hpp"
-#include "identify/validation.hpp"
+#include "identify/plan/log_columns.hpp"
+#include "identify/pipeline/pipeline.hpp"
+#include "identify/pipeline/torque_smoothing.hpp"
+#include "identify/validation/validation.hpp"
 #include "jacobid/baseline/filtfilt.hpp"
 #include "jacobid/kernel_design.hpp"
 #include "robot/robot_description.hpp"

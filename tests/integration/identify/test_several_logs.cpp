@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "identify/least_squares.hpp"
-#include "identify/log_columns.hpp"
-#include "identify/pipeline.hpp"
-#include "identify/segmented_pipeline.hpp"
+#include "identify/solve/least_squares.hpp"
+#include "identify/plan/log_columns.hpp"
+#include "identify/pipeline/pipeline.hpp"
+#include "identify/pipeline/segmented_pipeline.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"

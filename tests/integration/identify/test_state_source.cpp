@@ -9,9 +9,9 @@
 #include <cmath>
 #include <random>
 
-#include "identify/log_columns.hpp"
-#include "identify/pipeline.hpp"
-#include "identify/state_source.hpp"
+#include "identify/plan/log_columns.hpp"
+#include "identify/pipeline/pipeline.hpp"
+#include "identify/pipeline/state_source.hpp"
 #include "robot/robot_description.hpp"
 
 namespace jacobid::identify {

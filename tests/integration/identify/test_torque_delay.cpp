@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "identify/log_columns.hpp"
-#include "identify/torque_delay.hpp"
-#include "identify/validation.hpp"
+#include "identify/plan/log_columns.hpp"
+#include "identify/friction/torque_delay.hpp"
+#include "identify/validation/validation.hpp"
 #include "io/csv_table.hpp"
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"

@@ -10,7 +10,7 @@
 
 #include "core/errors.hpp"
 #include "input_error_of.hpp"
-#include "identify/log_columns.hpp"
+#include "identify/plan/log_columns.hpp"
 #include "io/log_format.hpp"
 #include "robot/robot_description.hpp"
 

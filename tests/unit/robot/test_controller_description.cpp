@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
 // The robot description's controller (robot/controller_description.hpp): both forms round-trip through
 // to_yaml, malformed ones name the key; and the closed loop the estimators simulate along a log's reference
-// (identify/reference_simulation.hpp) reproduces the simulator's own true states when given the true
+// (identify/solve/reference_simulation.hpp) reproduces the simulator's own true states when given the true
 // parameters: the same loop, the same gains, the reference at the same control instants.
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "core/errors.hpp"
-#include "identify/log_columns.hpp"
-#include "identify/reference_simulation.hpp"
+#include "identify/plan/log_columns.hpp"
+#include "identify/solve/reference_simulation.hpp"
 #include "robot/robot_description.hpp"
 #include "sim/simulator.hpp"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Sign constraints of base parameters (identify/plausibility.hpp), checked against physics rather than
+// Sign constraints of base parameters (identify/physical/plausibility.hpp), checked against physics rather than
 // against the classification's own rules: base values of many random, physically possible robots
 // (positive masses, centres of mass anywhere, inertias positive-definite and obeying the triangle
 // inequalities) never go negative where a constraint is claimed, and parameters that can be negative
@@ -10,7 +10,7 @@
 #include <random>
 #include <set>
 
-#include "identify/plausibility.hpp"
+#include "identify/physical/plausibility.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/serial_robot_model.hpp"
 #include "serial_test_support.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Static validation (identify/static_validation.hpp) of a vertical 2R arm holding poses: the model's
+// Static validation (identify/validation/static_validation.hpp) of a vertical 2R arm holding poses: the model's
 // prediction at rest is checked against the gravity torques written out by hand from the potential energy
 // V = g (m1 c1 sin q1 + m2 (L1 sin q1 + c2 sin(q1 + q2))), and a known torque offset in the "measured"
 // log must come out as the error, classified against the Coulomb band.
@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "identify/static_validation.hpp"
+#include "identify/validation/static_validation.hpp"
 #include "robot/robot_description.hpp"
 
 using namespace jacobid;

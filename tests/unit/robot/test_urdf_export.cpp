@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// identify --export-urdf, the file itself (robot/urdf_export.hpp, identify/model_export.hpp): random
+// identify --export-urdf, the file itself (robot/urdf_export.hpp, identify/report/model_export.hpp): random
 // physically consistent standard parameters of a test arm (rotated joint and inertial frames, a link fixed to
 // the last body, a prismatic joint) written into its URDF, then
 //   - that URDF read by urdfdom into a KDL tree without jacobid's urdf_chain (urdf_kdl_reference.hpp): KDL's
@@ -17,7 +17,7 @@
 #include <set>
 #include <sstream>
 
-#include "identify/model_export.hpp"
+#include "identify/report/model_export.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/serial_robot_model.hpp"
 #include "robot/urdf_export.hpp"
@@ -118,7 +118,7 @@ TEST(UrdfExport, JacobidReadsBackTheSameStandardValues) {
     fs::create_directories(dir);
     const std::string urdf = (dir / "exported.urdf").string();
     std::ofstream(urdf) << e.urdf;
-    // The description export (identify/model_export.hpp) pointing to it carries IA and FOFF.
+    // The description export (identify/report/model_export.hpp) pointing to it carries IA and FOFF.
     const std::vector<double> alphas{40, 80, 120, 160};
     const robot::RobotDescription written = identify::identified_description(e.original, serial.standard_names(), e.standard, alphas, "exported.urdf");
     const std::string yaml = (dir / "exported.yaml").string();
