@@ -173,13 +173,11 @@ def identify(robot, logs, client=None, by_robot=None, *, plan=None, threshold=5.
         # Only the small descriptions come to the driver; the factors stay on the workers. The trees are built
         # over the logs that gave a factor, so that they pair them as identify --in pairs those logs.
         distributed.wait(described, timeout=timeout)
+        statuses = client.gather(described)
         factor_bytes = {}
-        for log, (status, value) in zip(logs, client.gather(described)):
-            if status == "failed":
-                failed[_name(log)] = value
-            else:
-                factor_bytes[_name(log)] = value
-        good = [(log, f) for log, f in zip(logs, factors) if _name(log) in factor_bytes]
+        for log, (status, value) in zip(logs, statuses):
+            (failed if status == "failed" else factor_bytes)[_name(log)] = value
+        good = [(log, f) for log, f, (status, _) in zip(logs, factors, statuses) if status == "ok"]
         solves = {"pooled": client.submit(_solve_task, _tree(client, [f for _, f in good]), pure=False)}
         groups = {}
         if by_robot is not None:
