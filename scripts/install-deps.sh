@@ -21,6 +21,7 @@ if [ "${1:-}" != "--main" ]; then
   packages+=(
     clang libclang-rt-14-dev lld                  # sanitizer build and libFuzzer targets (scripts/sanitize-test.sh, fuzz/), linked by lld
     valgrind python3-scipy python3-numpy python3-can python3-pytest  # tests, references, tests/python
+    python3-dask python3-distributed              # jacobid.fleet on Dask (tests/python/test_fleet.py, examples/python/03_fleet_dask.py)
   )
 fi
 missing=()

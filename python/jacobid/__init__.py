@@ -11,11 +11,14 @@ named, with the closest valid keyword). docs/python.md has the whole story.
 Core (the real-time library, lib/): :func:`kernel`, :func:`frequency_response`, :func:`differentiate`,
 :class:`Bank`, :func:`butterworth_euler`. Host (jacobid::host): :func:`load_robot`, :func:`simulate`,
 :func:`identify` (with ``validate=``), :func:`diagnose`, :func:`payload`, :func:`monitor_calibrate` and :func:`monitor`
-(contact detection with the identified model, docs/monitor.md).
+(contact detection with the identified model, docs/monitor.md). Several logs as a map-reduce (docs/fleet.md):
+:func:`plan`, :func:`factor`, :func:`merge`, and :mod:`jacobid.fleet` running them on Dask.
 """
 from ._jacobid import (  # noqa: F401  (the public API)
     Bank,
     Estimate,
+    Factor,
+    Plan,
     InputError,
     Robot,
     __version__,
@@ -33,6 +36,7 @@ from . import _jacobid
 __all__ = [
     "Bank", "Estimate", "InputError", "Robot", "butterworth_euler", "differentiate", "frequency_response",
     "kernel", "load_robot", "simulate", "identify", "diagnose", "payload", "monitor", "monitor_calibrate", "__version__",
+    "Plan", "Factor", "plan", "factor", "merge",
 ]
 
 
@@ -81,3 +85,43 @@ def payload(robot=None, arm=None, log=None, unloaded=None, *extra, **options):
     physically_consistent, violations, warnings, alignment (with unloaded) ... (docs/identify.md, "Payload").
     """
     return _jacobid._payload(robot, arm, log, unloaded, *extra, **options)
+
+
+def plan(robot=None, log=None, *extra, **options):
+    """identify's set-up for several logs, resolved once: the first step of ``identify --in a --in b ...``.
+
+    What the command resolves on the longest of its logs before it reduces each one (bandwidth, Jacobi windows,
+    F_p, decimation, torque delay, Coulomb smoothing, the Coulomb columns' velocity) resolved on ``log`` (one log,
+    or a list: then on the longest, as identify does). robot: a :class:`Robot` or a path; log: as for
+    :func:`identify`; options: identify's keywords (method, bandwidth, weighting, std, physical, essential,
+    on_gap, log_format, threads ...), except period, piece_rows, drive_gains, report, export_urdf, export_robot and
+    the iterated estimators (iv, didim), which need one log or the whole run in one process.
+
+    Returns a :class:`Plan`, picklable (the robot and log_format travel as paths: on a cluster, give paths every
+    worker can read). Every log of a plan must share its sample period.
+    """
+    return _jacobid._plan(robot, log, *extra, **options)
+
+
+def factor(robot=None, log=None, plan=None, *extra, **options):
+    """One log reduced with ``plan`` to what identify merges: per method and joint the triangular factor of its
+    equations, their count, the lagged products the joint-HAC std needs, and the log's report lines.
+
+    robot: the plan's robot (a :class:`Robot` or a path); log: one log, as for :func:`identify`; plan: a
+    :class:`Plan`. A log too short for the plan gives a factor that says why (identify's ``segments[].why``);
+    a log that cannot be read raises :class:`InputError` naming it. Returns a :class:`Factor`, picklable;
+    ``Factor.nbytes`` is its size as it travels (independent of the log's length).
+    """
+    return _jacobid._factor(robot, log, plan, *extra, **options)
+
+
+def merge(factors=None, *extra, **options):
+    """The factors of several logs merged in their order and solved: the dict ``jacobid identify --in a --in b
+    ... --format json`` gives for the same logs (every key, the same numbers to rounding).
+
+    factors: a list of :class:`Factor` of one plan, each log once. The merge is associative: with
+    ``solve=False`` it returns the merged :class:`Factor` instead, which merges again like any factor, so
+    ``merge([merge([a, b], solve=False), merge([c, d], solve=False)])`` equals ``merge([a, b, c, d])`` to rounding
+    (a tree reduction; keep the logs' order for the same ``segments`` list).
+    """
+    return _jacobid._merge(factors, *extra, **options)

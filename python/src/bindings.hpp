@@ -13,5 +13,9 @@ void bind_host(pybind11::module_& m);
 void bind_payload(pybind11::module_& m);
 // Contact detection with the identified model: monitor, monitor_calibrate (monitor_bindings.cpp).
 void bind_monitor(pybind11::module_& m);
+// identify as a map-reduce: plan, factor, merge (fleet_bindings.cpp).
+void bind_fleet(pybind11::module_& m);
+// The runs of jacobid montecarlo one by one and their table, for jacobid.fleet.montecarlo (montecarlo_bindings.cpp).
+void bind_montecarlo(pybind11::module_& m);
 
 }  // namespace jacobid::python

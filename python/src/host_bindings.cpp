@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "bindings.hpp"
+#include "host_values.hpp"
 #include "options/diagnose_options.hpp"
 #include "job/identify_job.hpp"
 #include "options/drive_gains_options.hpp"
@@ -43,13 +44,6 @@
 namespace py = pybind11;
 
 namespace jacobid::python {
-namespace {
-
-// A robot description and its model (robot/robot_description.hpp), as `--robot FILE` loads them.
-struct Robot {
-    robot::RobotDescription description;
-    std::shared_ptr<const robot::RobotModel> model;
-};
 
 Robot load_robot(const py::object& path, const py::args& extra, const py::kwargs& keywords) {
     refuse_extra_positional("load_robot", extra, {"path"});
@@ -66,12 +60,19 @@ Robot load_robot(const py::object& path, const py::args& extra, const py::kwargs
     return r;
 }
 
+py::object robot_path(const Robot& r) {
+    if (r.description.source == robot::default_planar2r_description().source) return py::none();
+    return py::module_::import("os").attr("path").attr("abspath")(text_of(r.description.source));
+}
+
 // The `robot` argument of simulate, identify and diagnose: a Robot, or what load_robot reads (a path; None: the planar 2R).
 Robot robot_of(const py::handle& value) {
     if (py::isinstance<Robot>(value)) return value.cast<const Robot&>();
     if (value.is_none() || is_path(value)) return load_robot(py::reinterpret_borrow<py::object>(value), py::args(), py::kwargs());
     throw InputError(fmt::format("robot: expected a Robot or the path of a robot description, got {}", type_name(value)));
 }
+
+namespace {
 
 std::vector<std::string> joint_field(const Robot& r, std::string robot::JointDescription::*field) {
     std::vector<std::string> names;
@@ -216,6 +217,8 @@ io::CsvTable read_log(const Robot& r, const py::handle& source, const LogKeyword
     return options::read_log_table(path, o.log_format, options::robot_column_names(r.description, o.time_column), o.quiet, period);
 }
 
+}  // namespace
+
 // --- identify ----------------------------------------------------------------------------------------------
 
 // A log of identify (job/identify_inputs.hpp): a path, read by the job as --in reads it (--log-format, --on-gap
@@ -242,6 +245,20 @@ bool several_logs(const py::handle& value) {
     return log.size() == 3 && py::hasattr(log[0], "__len__");
 }
 
+std::vector<job::LogSource> log_sources(const Robot& r, const py::handle& source, const std::string& time_column) {
+    std::vector<job::LogSource> logs;
+    if (several_logs(source)) {
+        const py::sequence items = py::reinterpret_borrow<py::sequence>(source);
+        if (items.size() == 0) throw InputError("log: an empty list; expected a log or a list of logs");
+        for (std::size_t k = 0; k < items.size(); ++k) logs.push_back(log_source(r, items[k], time_column, fmt::format("--in[{}]", k)));
+    } else {
+        logs.push_back(log_source(r, source, time_column, "--in"));
+    }
+    return logs;
+}
+
+namespace {
+
 py::dict identify(const py::object& robot_value, const py::object& source, const py::object& validation, const py::object& truth,
                   const py::args& extra, const py::kwargs& keywords) {
     refuse_extra_positional("identify", extra, {"robot", "log", "validate", "truth"});
@@ -255,14 +272,7 @@ py::dict identify(const py::object& robot_value, const py::object& source, const
     o.robot = r.description.source;
     // Before the logs are read: a wrong truth is refused at once.
     const std::map<std::string, double> truth_by_name = truth.is_none() ? std::map<std::string, double>{} : truth_values(truth, model.parameter_names());
-    std::vector<job::LogSource> logs;
-    if (several_logs(source)) {
-        const py::sequence items = py::reinterpret_borrow<py::sequence>(source);
-        if (items.size() == 0) throw InputError("log: an empty list; expected a log or a list of logs");
-        for (std::size_t k = 0; k < items.size(); ++k) logs.push_back(log_source(r, items[k], o.time_column, fmt::format("--in[{}]", k)));
-    } else {
-        logs.push_back(log_source(r, source, o.time_column, "--in"));
-    }
+    std::vector<job::LogSource> logs = log_sources(r, source, o.time_column);
     for (const job::LogSource& l : logs) o.inputs.push_back(l.name);
     std::optional<job::LogSource> validation_log;
     if (!validation.is_none()) {
@@ -356,6 +366,10 @@ void bind_host(py::module_& m) {
                  return to_python(robot::base_parameter_json(r.description, *r.model));
              },
              "The base parameters with their regrouping relations and true values, as `jacobid identify --print-base --format json`.")
+        // Pickled as the description's file (absolute), read again where it is unpickled: a fleet's workers read it
+        // from shared storage as they read the logs (docs/fleet.md).
+        .def(py::pickle([](const Robot& r) { return py::make_tuple(robot_path(r)); },
+                        [](const py::tuple& state) { return load_robot(state[0], py::args(), py::kwargs()); }))
         .def("__repr__", [](const Robot& r) { return text_of(fmt::format("Robot(model={}, joints={}, source={})", r.model->model_name(), r.model->joint_count(), r.description.source)); });
     // Every argument defaults to None, so that a missing one reaches the checks instead of pybind11's
     // "incompatible function arguments" (None: the planar 2R for a robot, "expected a path ..." for a log).

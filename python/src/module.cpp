@@ -45,4 +45,6 @@ PYBIND11_MODULE(_jacobid, m) {
     jacobid::python::bind_host(m);
     jacobid::python::bind_payload(m);
     jacobid::python::bind_monitor(m);
+    jacobid::python::bind_fleet(m);
+    jacobid::python::bind_montecarlo(m);
 }

@@ -120,7 +120,14 @@ std::vector<identify::SegmentReport> segment_reports(const std::vector<io::LogSe
 }
 
 
-InputLogs read_inputs(std::vector<LogSource> sources, const robot::RobotDescription& robot, const IdentifyOptions& o) {
+void check_sample_period(const std::string& log, double period, const std::string& first, double first_period) {
+    if (std::abs(period - first_period) <= 1e-3 * first_period) return;
+    throw InputError(fmt::format("--in {}: sampled every {:.6g} ms, but --in {} every {:.6g} ms; logs identified together must share "
+                                 "their sample period (resample one of them)",
+                                 log, 1e3 * period, first, 1e3 * first_period));
+}
+
+InputLogs read_inputs(std::vector<LogSource> sources, const robot::RobotDescription& robot, const IdentifyOptions& o, double grid_period) {
     std::vector<std::string> files;
     for (const LogSource& s : sources) {
         if (!s.table) files.push_back(s.name);
@@ -143,7 +150,7 @@ InputLogs read_inputs(std::vector<LogSource> sources, const robot::RobotDescript
     // (each on its own mean step, the UR10e's Fourier runs differ by up to 2 % and were refused).
     const bool one_grid = !o.log_format.file.empty() && o.inputs.size() > 1;
     if (one_grid) in.read[0] = read_log(std::move(sources[0]), robot, o);
-    const double period = one_grid ? in.read[0].grid_period : 0.0;
+    const double period = one_grid ? in.read[0].grid_period : grid_period;
     const std::vector<std::exception_ptr> errors = parallel_for(o.inputs.size(), pool, [&](std::size_t k) {
         if (!(one_grid && k == 0) && !in.streamed) in.read[k] = read_log(std::move(sources[k]), robot, o, period);
     });
@@ -175,14 +182,7 @@ InputLogs read_inputs(std::vector<LogSource> sources, const robot::RobotDescript
                 name += fmt::format(": segment {} ({})", s + 1, logs.segments[s].describe());
             }
             // One plan (windows, F_p, decimation in samples) serves every piece: the logs must share their sampling.
-            if (!in.columns.empty()) {
-                const double first_period = in.columns.front().sample_period;
-                if (std::abs(columns[s].sample_period - first_period) > 1e-3 * first_period) {
-                    throw InputError(fmt::format("--in {}: sampled every {:.6g} ms, but --in {} every {:.6g} ms; logs identified together must share "
-                                                 "their sample period (resample one of them)",
-                                                 o.inputs[k], 1e3 * columns[s].sample_period, o.inputs.front(), 1e3 * first_period));
-                }
-            }
+            if (!in.columns.empty()) check_sample_period(o.inputs[k], columns[s].sample_period, o.inputs.front(), in.columns.front().sample_period);
             // A given --cutoff is refused above the Nyquist frequency (as differentiate does), not clamped to
             // the shortest windows: the settings line would name another cutoff than the one asked for.
             const double nyquist = 0.5 / columns[s].sample_period;

@@ -48,8 +48,14 @@ struct InputLogs {
 };
 
 // `sources`: one per o.inputs, in order. InputError for a bad file, logs of different sample periods, a
-// --cutoff above a log's Nyquist frequency, --piece-rows where a log cannot be read in pieces.
-InputLogs read_inputs(std::vector<LogSource> sources, const robot::RobotDescription& robot, const options::IdentifyOptions& o);
+// --cutoff above a log's Nyquist frequency, --piece-rows where a log cannot be read in pieces. `grid_period`
+// (s, > 0): a single raw log is resampled onto that grid (a fleet's log onto its plan's, as the first --in's
+// grid serves every raw log of one identify).
+InputLogs read_inputs(std::vector<LogSource> sources, const robot::RobotDescription& robot, const options::IdentifyOptions& o,
+                      double grid_period = 0.0);
+
+// InputError unless `log`'s sample period (s) is `first`'s, as logs identified together must share it.
+void check_sample_period(const std::string& log, double period, const std::string& first, double first_period);
 
 // A log read piece by piece: its first piece freed once identified, so that one piece at a time is held, and
 // read again for the next method.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <thread>
 
@@ -21,6 +22,7 @@
 #include "identify/validation/validate_log.hpp"
 #include "identify/validation/validation.hpp"
 #include "io/distinct_inputs.hpp"
+#include "job/identify_plan.hpp"
 #include "options/model_export_options.hpp"
 #include "options/robot_files.hpp"
 
@@ -80,37 +82,31 @@ void refuse_estimator_combinations(const identify::IdentifySettings& resolved, c
 // Every segment or log with the choices resolved on the longest one, the equations stacked (segmented_pipeline.hpp):
 // the delay with the description's alpha, then each joint's alpha (friction alpha: auto) on the aligned log.
 identify::IdentifiedLog identify_pieces(InputLogs& inputs, const robot::RobotDescription& robot, const robot::RobotModel& model,
-                                        const identify::PipelineSettings& settings, const identify::SolveOptions& solve, identify::Method m,
-                                        const IdentifyOptions& o, std::optional<identify::ShiftedTorques>& first_aligned) {
+                                        const identify::PipelineSettings& settings, const identify::SolveOptions& solve, const IdentifyOptions& o,
+                                        std::optional<identify::ShiftedTorques>& first_aligned) {
     const std::vector<identify::LogColumns>& logs = inputs.columns;
     identify::SegmentSource source;
     if (inputs.several()) source = {"--in", "log"};
     if (inputs.in_pieces()) source = {"--piece-rows", "piece"};
     if (inputs.in_pieces() && logs.front().q.empty()) read_first_piece_again(inputs, robot, o);  // freed by the method before
-    const identify::SegmentPlan plan = identify::plan_segments(logs, settings, source);
-    identify::TorqueDelayResult delay = identify::resolve_torque_delay(model, logs[plan.reference], plan.fixed, solve, given_torque_delay(o));
-    if (inputs.in_pieces()) {
+    // Plan -> factor per log -> merge -> solve, the pieces jacobid.plan / factor / merge run (identify_plan.hpp).
+    MethodPlan plan = plan_method(logs, source, robot, model, settings, solve, given_torque_delay(o), [&](double delay) {
+        if (!inputs.in_pieces()) return;
         // A log read piece by piece: its first piece is read again for a further method, so its torques,
         // read by nothing else now, are aligned in place (every later piece's are, by the pipeline),
         // not into a copy beside the piece (173 MB for an hour of 6-axis torques).
         identify::LogColumns& first = inputs.columns.front();
         first.own_tau = identify::writable_torques(inputs.read.front().tables.front(), first);
-        first_aligned = identify::shift_torques(first, delay.applied());  // holds no copy: in place
+        first_aligned = identify::shift_torques(first, delay);  // holds no copy: in place
         first = first_aligned->log;
-    }
-    identify::SmoothedModel smoothed = [&] {
-        const identify::ShiftedTorques reference = identify::shift_torques(logs[plan.reference], delay.applied());
-        return identify::resolve_coulomb_smoothing(robot, model, reference.log, plan.fixed, solve.weighted);
-    }();  // an aligned copy of the reference's torques is not held through the identification
+    });
     std::vector<identify::SegmentReport> piece_lines = inputs.pieces;
     std::vector<std::string> piece_names = inputs.names;
     const identify::NextSegment more =
         inputs.in_pieces() ? inputs.streamed->rest(logs.front().sample_period, piece_lines, piece_names, [&] { release_first_piece(inputs); }) : nullptr;
-    identify::SegmentedOutput split = identify::run_segmented_pipeline(smoothed.get(model), logs, plan, delay.applied(), o.threads, more);
-    std::vector<identify::SegmentReport> reports = piece_reports(std::move(piece_lines), piece_names, split, identify::to_string(m));
-    identify::IdentifiedLog fit = identify::solve_identification(std::move(split.merged), std::move(smoothed), std::move(delay), model, solve);
-    fit.result.segments = std::move(reports);
-    return fit;
+    identify::SegmentedOutput split =
+        identify::run_segmented_pipeline(plan.smoothed.get(model), logs, plan.segments, plan.delay.applied(), o.threads, more);
+    return solve_plan(std::move(plan), std::move(split), std::move(piece_lines), piece_names, model, solve);
 }
 
 // --validate: one log (or a log that holds a pose) as identify::validate_log does it; with --on-gap split, the
@@ -137,6 +133,8 @@ void validate(const robot::RobotModel& model, const LogSegments& input, const st
     r.validation_segments = segment_reports(input.segments, pooled.used, pooled.why, identify::to_string(r.info.method), o.validate);
 }
 
+}  // namespace
+
 identify::ReportContext report_context(const robot::RobotDescription& robot, const robot::RobotModel& model, const IdentifyOptions& o,
                                        std::map<std::string, double> truth, const identify::PeriodicLog* periodic, bool validation_is_file) {
     identify::ReportContext ctx;
@@ -152,7 +150,6 @@ identify::ReportContext report_context(const robot::RobotDescription& robot, con
     return ctx;
 }
 
-}  // namespace
 
 void resolve_threads(IdentifyOptions& o) {
     if (o.threads < 0) throw InputError(fmt::format("--threads {}: must be >= 0 (0: one per core)", o.threads));
@@ -208,7 +205,6 @@ IdentifyJobResult run_identify(const robot::RobotDescription& robot, const robot
         validation_logs = columns_of(validation_input, robot, o);
     }
     out.ctx = report_context(robot, model, o, std::move(truth), out.periodic.get(), validation_is_file);
-    identify::ReportContext& ctx = out.ctx;
     const std::vector<identify::Method> methods = methods_of(o.method);
     for (const identify::Method m : methods) {
         identify::PipelineSettings settings = method_pipeline(o.pipeline, m, o.velocity, o.method);
@@ -222,26 +218,41 @@ IdentifyJobResult run_identify(const robot::RobotDescription& robot, const robot
         identify::IdentifiedLog fit;
         std::optional<identify::ShiftedTorques> first_aligned;  // what the first piece's torques are read from
         if (pieces) {
-            fit = identify_pieces(inputs, robot, model, settings, solve, m, o, first_aligned);
+            fit = identify_pieces(inputs, robot, model, settings, solve, o, first_aligned);
         } else {
             // One method reads the log's torques once: they are aligned in place rather than copied.
             identify::LogColumns view = out.periodic ? out.periodic->columns : inputs.columns.front();
             if (!out.periodic && methods.size() == 1) view.own_tau = identify::writable_torques(inputs.read.front().tables.front(), view);
             fit = identify::identify_log(robot, model, view, {settings, solve, given_torque_delay(o), resolved.estimator});
         }
-        if (physical) identify::make_physically_consistent(fit, robot, model, *physical);
-        const robot::RobotModel& fitted = fit.smoothed.get(model);
-        identify::MethodResult& r = fit.result;
-        if (o.essential_flag) r.essential = identify::essential_parameters(fit.factors, fitted.parameter_names(), o.essential, solve);
-        if (validation) validate(fitted, validation_input, validation_logs, settings, o, r);
-        for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(m), w));
-        out.results.push_back(std::move(r));
+        complete_fit(fit, robot, model, o, solve, [&](const robot::RobotModel& fitted, identify::MethodResult& r) {
+            if (validation) validate(fitted, validation_input, validation_logs, settings, o, r);
+        });
+        out.results.push_back(std::move(fit.result));
+    }
+    finish_identify(out, robot, o);
+    return out;
+}
+
+void complete_fit(identify::IdentifiedLog& fit, const robot::RobotDescription& robot, const robot::RobotModel& model, const IdentifyOptions& o,
+                  const identify::SolveOptions& solve, const std::function<void(const robot::RobotModel&, identify::MethodResult&)>& validate_fit) {
+    const std::optional<identify::PhysicalSettings> physical = physical_settings(o);
+    if (physical) identify::make_physically_consistent(fit, robot, model, *physical);
+    const robot::RobotModel& fitted = fit.smoothed.get(model);
+    identify::MethodResult& r = fit.result;
+    if (o.essential_flag) r.essential = identify::essential_parameters(fit.factors, fitted.parameter_names(), o.essential, solve);
+    if (validate_fit) validate_fit(fitted, r);
+}
+
+void finish_identify(IdentifyJobResult& out, const robot::RobotDescription& robot, const IdentifyOptions& o) {
+    identify::ReportContext& ctx = out.ctx;
+    for (const auto& r : out.results) {
+        for (const auto& w : identify::identifiability_warnings(r, ctx.joint_names)) ctx.warnings.push_back(fmt::format("[{}] {}", identify::to_string(r.info.method), w));
     }
     for (const auto& w : ctx.warnings) fmt::print(stderr, "jacobid identify: warning: {}\n", w);
     for (const auto& r : out.results) identify::require_finite_solution(r.solution, o.first_input());
     if (o.model_export.any()) out.exported = write_model_export(o.model_export, robot, out.results.front(), o.first_input());
     if (!o.report.empty()) identify::write_report(o.report, out.results, ctx);
-    return out;
 }
 
 nlohmann::json to_json(const IdentifyJobResult& r) {

@@ -5,6 +5,7 @@
 // and the report), from options to results and their JSON / text. The command line parses and prints
 // (cli/identify_command.cpp); the Python module's jacobid.identify() calls the same job, so both give the same
 // numbers and the same layout. --drive-gains is options/drive_gains_options.hpp's run.
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -47,6 +48,19 @@ void check_identify_files(const options::IdentifyOptions& o, const robot::RobotD
 // combination, a bad log, a non-finite solution.
 IdentifyJobResult run_identify(const robot::RobotDescription& robot, const robot::RobotModel& model, options::IdentifyOptions o,
                                std::vector<LogSource> logs, std::optional<LogSource> validation, std::map<std::string, double> truth);
+
+// What follows a method's least squares: --physical, --essential, then `validate_fit` (may be empty) with the
+// model fitted. The several-log path of run_identify and jacobid.merge (python/src/fleet_bindings.cpp) share it.
+void complete_fit(identify::IdentifiedLog& fit, const robot::RobotDescription& robot, const robot::RobotModel& model, const options::IdentifyOptions& o,
+                  const identify::SolveOptions& solve, const std::function<void(const robot::RobotModel&, identify::MethodResult&)>& validate_fit);
+
+// The end of a run with every method's result in `out`: the identifiability warnings (into out.ctx, then every
+// warning on stderr), the finite-solution check, --export-urdf / --export-robot and --report.
+void finish_identify(IdentifyJobResult& out, const robot::RobotDescription& robot, const options::IdentifyOptions& o);
+
+// The report's context (log and joint names, truth, the period's warnings, a validation that is the --in log).
+identify::ReportContext report_context(const robot::RobotDescription& robot, const robot::RobotModel& model, const options::IdentifyOptions& o,
+                                       std::map<std::string, double> truth, const identify::PeriodicLog* periodic, bool validation_is_file);
 
 // `jacobid identify --format json`'s layout: the first method at the top level, every method under "methods",
 // and log, logs, model, parse_seconds, export, period.

@@ -49,6 +49,19 @@ struct Study {
 std::uint64_t run_seed(const StudySettings& settings, int k);
 std::uint64_t run_noise_seed(const StudySettings& settings, int k);
 
+// One run's estimates, per method (NaN where a parameter was not identified).
+struct RunEstimates {
+    std::vector<Eigen::VectorXd> x, std_dev;
+};
+
+// Run k (from 0) alone: its simulation and identifications, the same numbers wherever it runs (a thread of
+// run_study, a Dask task of jacobid.fleet.montecarlo). Its error prefixed with the run and its seeds.
+RunEstimates run_one(const StudySettings& settings, int k);
+
+// The study of the runs 0 .. runs.size() - 1 (`seconds` of wall time on `threads` threads or workers).
+// InputError for fewer than 2 runs or no method.
+Study collect_study(const StudySettings& settings, std::vector<RunEstimates> runs, double seconds, int threads);
+
 // Runs the study. InputError for runs < 2 or threads < 1, or a failing run's error prefixed with the run and
 // its seeds (the lowest run index among those that failed before the workers stopped taking new runs).
 Study run_study(const StudySettings& settings);

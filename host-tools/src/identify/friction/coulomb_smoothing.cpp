@@ -93,20 +93,26 @@ std::string describe(const CoulombSmoothingChoice& choice, const std::vector<std
 SmoothedModel resolve_coulomb_smoothing(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& log,
                                         const PipelineSettings& settings, bool weighted) {
     SmoothedModel m;
-    robot::RobotDescription chosen = description;
     const auto* presliding = dynamic_cast<const robot::PreslidingModel*>(&nominal);
     if (presliding && description.presliding_displacement_auto && description.presliding_displacements.empty()) {
         m.presliding = choose_presliding_displacement(*presliding, log, settings, description.presliding_displacement, weighted);
-        chosen.presliding_displacements = m.presliding->displacement;
-        m.chosen = robot::make_robot_model(chosen);
+        make_chosen_model(description, m);
     }
     if (!description.coulomb_alpha_auto || description.coulomb.model != robot::CoulombModel::SmoothAtan) return m;
     CoulombSmoothingSettings smoothing;
     smoothing.weighted = weighted;
     m.choice = choose_coulomb_smoothing(m.get(nominal), log, settings, description.coulomb.alpha, smoothing);
-    chosen.coulomb_alpha = m.choice->alphas();
-    m.chosen = robot::make_robot_model(chosen);
+    make_chosen_model(description, m);
     return m;
+}
+
+void make_chosen_model(const robot::RobotDescription& description, SmoothedModel& m) {
+    m.chosen.reset();
+    if (!m.presliding && !m.choice) return;
+    robot::RobotDescription chosen = description;
+    if (m.presliding) chosen.presliding_displacements = m.presliding->displacement;
+    if (m.choice) chosen.coulomb_alpha = m.choice->alphas();
+    m.chosen = robot::make_robot_model(chosen);
 }
 
 }  // namespace jacobid::identify

@@ -75,5 +75,9 @@ struct SmoothedModel {
 };
 SmoothedModel resolve_coulomb_smoothing(const robot::RobotDescription& description, const robot::RobotModel& nominal, const LogColumns& log,
                                         const PipelineSettings& settings, bool weighted);
+// m.chosen made from `description` with m's choices (presliding displacements, Coulomb alphas), as
+// resolve_coulomb_smoothing makes it; null when there are none. A plan carried to another process
+// (job/identify_plan.hpp) holds the choices only.
+void make_chosen_model(const robot::RobotDescription& description, SmoothedModel& m);
 
 }  // namespace jacobid::identify

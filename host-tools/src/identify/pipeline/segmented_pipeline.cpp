@@ -35,103 +35,131 @@ SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const Pipelin
     } catch (const InputError& e) {
         throw InputError(fmt::format("{}: no {} is usable; the longest of the {}: {}", source.option, source.noun, segments.size(), e.what()));
     }
-    // The same imposition as a validation log gets (bandwidth, windows, cutoffs), plus the decimation factor.
-    plan.fixed = validation_settings(settings, plan.info);
-    plan.fixed.decimation = plan.info.decimation;
-    plan.fixed.progress = settings.progress;
+    plan.fixed = imposed_settings(settings, plan.info);
     return plan;
+}
+
+PipelineSettings imposed_settings(const PipelineSettings& settings, const PipelineInfo& info) {
+    // The same imposition as a validation log gets (bandwidth, windows, cutoffs), plus the decimation factor.
+    PipelineSettings fixed = validation_settings(settings, info);
+    fixed.decimation = info.decimation;
+    fixed.progress = settings.progress;
+    return fixed;
+}
+
+SegmentedOutput fold_segment(const robot::RobotModel& model, const LogColumns& piece, const PipelineSettings& fixed, double torque_delay) {
+    SegmentedOutput out;
+    out.used.push_back(false);
+    out.why.emplace_back();
+    out.rows.push_back(0);
+    try {
+        const ShiftedTorques aligned = shift_torques(piece, torque_delay);
+        out.merged = run_pipeline(model, aligned.log, fixed);
+    } catch (const InputError& e) {
+        out.why.back() = e.what();
+        return out;
+    }
+    out.used.back() = true;
+    out.used_count = 1;
+    out.rows.back() = out.merged.factors.rows.empty() ? 0 : out.merged.factors.rows.front();
+    return out;
+}
+
+void merge_segments(SegmentedOutput& total, SegmentedOutput part, std::size_t plot_rows) {
+    total.used.insert(total.used.end(), part.used.begin(), part.used.end());
+    total.why.insert(total.why.end(), part.why.begin(), part.why.end());
+    total.rows.insert(total.rows.end(), part.rows.begin(), part.rows.end());
+    if (part.used_count == 0) return;
+    PipelineInfo& info = total.merged.info;
+    const PipelineInfo& add = part.merged.info;
+    if (total.used_count == 0) {
+        info = add;  // the first used piece's info; its figures start the sums
+    } else {
+        info.samples += add.samples;
+        info.seconds_differentiate += add.seconds_differentiate;
+        info.seconds_regressor_filter += add.seconds_regressor_filter;
+        info.seconds_ls += add.seconds_ls;
+        info.joint_range.resize(std::max(info.joint_range.size(), add.joint_range.size()), 0.0);
+        for (std::size_t j = 0; j < add.joint_range.size(); ++j) info.joint_range[j] = std::max(info.joint_range[j], add.joint_range[j]);
+    }
+    total.used_count += part.used_count;
+    merge_factors(total.merged.factors, part.merged.factors);
+    part.merged.factors = JointFactors{};  // merged: free it before the next piece
+    // Plot rows of the pieces one after another, at their true times.
+    PlotRows& plot = total.merged.plot;
+    const PlotRows& more = part.merged.plot;
+    const std::size_t take = std::min(more.t.size(), plot_rows - std::min(plot_rows, plot.t.size()));
+    const std::size_t c = more.t.empty() ? 0 : more.w.front().size() / more.t.size();
+    plot.y.resize(std::max(plot.y.size(), more.y.size()));
+    plot.w.resize(std::max(plot.w.size(), more.w.size()));
+    plot.t.insert(plot.t.end(), more.t.begin(), more.t.begin() + static_cast<std::ptrdiff_t>(take));
+    for (std::size_t j = 0; j < more.y.size(); ++j) {
+        plot.y[j].insert(plot.y[j].end(), more.y[j].begin(), more.y[j].begin() + static_cast<std::ptrdiff_t>(take));
+        plot.w[j].insert(plot.w[j].end(), more.w[j].begin(), more.w[j].begin() + static_cast<std::ptrdiff_t>(take * c));
+    }
+}
+
+void OrderedMerge::add(SegmentedOutput part) {
+    stack_.emplace_back(0, std::move(part));
+    while (stack_.size() > 1 && stack_[stack_.size() - 1].first == stack_[stack_.size() - 2].first) {
+        auto [level, right] = std::move(stack_.back());
+        stack_.pop_back();
+        merge_segments(stack_.back().second, std::move(right), plot_rows_);
+        stack_.back().first = level + 1;
+    }
+}
+
+SegmentedOutput OrderedMerge::result() {
+    // The carried-up odd ones join from the right: the bracketing of a level-by-level pairing.
+    while (stack_.size() > 1) {
+        SegmentedOutput right = std::move(stack_.back().second);
+        stack_.pop_back();
+        merge_segments(stack_.back().second, std::move(right), plot_rows_);
+    }
+    SegmentedOutput out = stack_.empty() ? SegmentedOutput{} : std::move(stack_.back().second);
+    stack_.clear();
+    return out;
+}
+
+void finish_segments(SegmentedOutput& out, const SegmentPlan& plan) {
+    if (out.used_count == 0) {
+        throw InputError(fmt::format("{}: none of the {} {}s is usable: {}", plan.source.option, out.used.size(), plan.source.noun, joined_reasons(out.why)));
+    }
+    PipelineInfo& info = out.merged.info;
+    info.bandwidth_estimated = plan.info.bandwidth_estimated;
+    info.bandwidth_estimate = plan.info.bandwidth_estimate;
+    info.joint_moves.assign(info.joint_range.size(), false);
+    for (std::size_t j = 0; j < info.joint_range.size(); ++j) info.joint_moves[j] = info.joint_range[j] > plan.fixed.min_joint_motion;
 }
 
 SegmentedOutput run_segmented_pipeline(const robot::RobotModel& model, const std::vector<LogColumns>& segments, const SegmentPlan& plan,
                                        double torque_delay, int threads, const NextSegment& more) {
-    SegmentedOutput out;
-    PipelineInfo& info = out.merged.info;
-    PlotRows& plot = out.merged.plot;
-    std::size_t samples = 0;
-    double seconds_differentiate = 0.0, seconds_filter = 0.0, seconds_ls = 0.0;
-    std::vector<double> range;
+    OrderedMerge merged(plan.fixed.plot_rows);
     // Threads left over when there are fewer pieces than threads go inside each piece's pipeline.
     PipelineSettings fixed = plan.fixed;
     fixed.threads = std::max(1, threads / static_cast<int>(std::max<std::size_t>(1, segments.size())));
     // The Coulomb columns' velocity too is chosen once, on the longest piece with the model as smoothed:
     // each piece choosing from its own noise estimate made a log split at a gap differ from its halves.
     if (fixed.coulomb_velocity_ratios.empty()) fixed.coulomb_velocity_ratios = coulomb_velocity_ratios(&model, segments[plan.reference], fixed, plan.info);
-    // One piece's result, merged (or its reason for not being used recorded) in piece order.
-    const auto absorb = [&](PipelineOutput& part, const std::exception_ptr& error) {
-        out.used.push_back(false);
-        out.why.emplace_back();
-        out.rows.push_back(0);
-        if (error) {
-            try {
-                std::rethrow_exception(error);
-            } catch (const InputError& e) {
-                out.why.back() = e.what();
-                return;
-            }
-        }
-        if (out.used_count == 0) info = part.info;
-        out.used.back() = true;
-        ++out.used_count;
-        samples += part.info.samples;
-        seconds_differentiate += part.info.seconds_differentiate;
-        seconds_filter += part.info.seconds_regressor_filter;
-        seconds_ls += part.info.seconds_ls;
-        range.resize(part.info.joint_range.size(), 0.0);
-        for (std::size_t j = 0; j < range.size(); ++j) range[j] = std::max(range[j], part.info.joint_range[j]);
-        out.rows.back() = part.factors.rows.empty() ? 0 : part.factors.rows.front();
-        merge_factors(out.merged.factors, part.factors);
-        part.factors = JointFactors{};  // merged: free it before the next segment
-        // Plot rows of the segments one after another, at their true times.
-        const std::size_t take = std::min(part.plot.t.size(), plan.fixed.plot_rows - std::min(plan.fixed.plot_rows, plot.t.size()));
-        const std::size_t c = part.plot.t.empty() ? 0 : part.plot.w.front().size() / part.plot.t.size();
-        plot.y.resize(part.plot.y.size());
-        plot.w.resize(part.plot.w.size());
-        plot.t.insert(plot.t.end(), part.plot.t.begin(), part.plot.t.begin() + static_cast<std::ptrdiff_t>(take));
-        for (std::size_t j = 0; j < part.plot.y.size(); ++j) {
-            plot.y[j].insert(plot.y[j].end(), part.plot.y[j].begin(), part.plot.y[j].begin() + static_cast<std::ptrdiff_t>(take));
-            plot.w[j].insert(plot.w[j].end(), part.plot.w[j].begin(), part.plot.w[j].begin() + static_cast<std::ptrdiff_t>(take * c));
-        }
-    };
-    const auto identify_piece = [&](const LogColumns& piece) {
-        const ShiftedTorques aligned = shift_torques(piece, torque_delay);
-        return run_pipeline(model, aligned.log, fixed);
-    };
     {
-        // Each segment on its own (threads), then merged in segment order: the thread count changes no bit.
-        std::vector<PipelineOutput> parts(segments.size());
+        // Each segment on its own (threads), then merged in segment order (OrderedMerge): the thread count changes no bit.
+        std::vector<SegmentedOutput> parts(segments.size());
         ParallelForOptions pool;
         pool.threads = threads;
-        pool.stop_on_failure = false;
-        const std::vector<std::exception_ptr> errors = parallel_for(segments.size(), pool, [&](std::size_t s) { parts[s] = identify_piece(segments[s]); });
-        for (std::size_t s = 0; s < segments.size(); ++s) absorb(parts[s], errors[s]);
+        const std::vector<std::exception_ptr> errors =
+            parallel_for(segments.size(), pool, [&](std::size_t s) { parts[s] = fold_segment(model, segments[s], fixed, torque_delay); });
+        for (const auto& e : errors) {
+            if (e) std::rethrow_exception(e);  // not an InputError (fold_segment keeps those as the piece's reason): a bug
+        }
+        for (SegmentedOutput& part : parts) merged.add(std::move(part));
     }
     if (more) {
         fixed.threads = threads;
         LogColumns piece;
-        while (more(piece)) {
-            PipelineOutput part;
-            std::exception_ptr error;
-            try {
-                part = identify_piece(piece);
-            } catch (const InputError&) {
-                error = std::current_exception();
-            }
-            absorb(part, error);
-        }
+        while (more(piece)) merged.add(fold_segment(model, piece, fixed, torque_delay));
     }
-    const std::size_t count = out.used.size();
-    if (out.used_count == 0) {
-        throw InputError(fmt::format("{}: none of the {} {}s is usable: {}", plan.source.option, count, plan.source.noun, joined_reasons(out.why)));
-    }
-    info.samples = samples;
-    info.bandwidth_estimated = plan.info.bandwidth_estimated;
-    info.bandwidth_estimate = plan.info.bandwidth_estimate;
-    info.seconds_differentiate = seconds_differentiate;
-    info.seconds_regressor_filter = seconds_filter;
-    info.seconds_ls = seconds_ls;
-    info.joint_range = range;
-    info.joint_moves.assign(range.size(), false);
-    for (std::size_t j = 0; j < range.size(); ++j) info.joint_moves[j] = range[j] > plan.fixed.min_joint_motion;
+    SegmentedOutput out = merged.result();
+    finish_segments(out, plan);
     return out;
 }
 

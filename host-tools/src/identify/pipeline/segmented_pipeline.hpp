@@ -8,6 +8,7 @@
 // not used, with the pipeline's reason; only when no segment is usable is it an error.
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "identify/pipeline/pipeline.hpp"
@@ -30,6 +31,9 @@ struct SegmentPlan {
 
 // InputError (naming the longest segment) when even the longest segment cannot be planned.
 SegmentPlan plan_segments(const std::vector<LogColumns>& segments, const PipelineSettings& settings, const SegmentSource& source = {});
+// `settings` with the choices of a plan `info` imposed (what plan_segments puts in SegmentPlan::fixed), so that a
+// plan carried elsewhere (a fleet's worker, job/log_factor.hpp) is imposed the same way.
+PipelineSettings imposed_settings(const PipelineSettings& settings, const PipelineInfo& info);
 
 struct SegmentedOutput {
     // Factors of every used segment stacked; info of the first used segment with samples = the used
@@ -41,6 +45,38 @@ struct SegmentedOutput {
     std::vector<std::size_t> rows; // per segment: its equations (decimated rows per joint); 0 when not used
     std::size_t used_count = 0;
 };
+
+// One piece through the pipeline with the plan's settings `fixed`, its torques shifted by `torque_delay`: an
+// output of that one piece, used, or not used with the pipeline's reason (its InputError caught). Its
+// merged.info holds the piece's figures (samples, timings, joint ranges), which merge_segments adds up.
+SegmentedOutput fold_segment(const robot::RobotModel& model, const LogColumns& piece, const PipelineSettings& fixed, double torque_delay);
+
+// Appends `part`'s pieces after `total`'s: their factors stacked (merge_factors), the figures added up, the
+// info of the first used piece kept, plot rows up to `plot_rows`. Associative: any bracketing of the same
+// piece order gives the same pieces and figures, and the same factors up to rounding, so a tree reduction
+// over a fleet's logs is the same as the left fold run_segmented_pipeline does.
+void merge_segments(SegmentedOutput& total, SegmentedOutput part, std::size_t plot_rows);
+
+// Merges pieces in their order by an ordered binary tree: adjacent pairs, then adjacent pairs of those, an odd last
+// one carried up, whether the pieces come at once or one by one (a binary counter: at most log2(n) partial results
+// held). The merge of stacked triangles is associative only up to rounding, so one bracketing for every count is
+// what makes `identify --in ...` (run_segmented_pipeline) and a fleet's tree reduction on Dask
+// (python/jacobid/fleet.py, the same pairs) agree bit for bit.
+class OrderedMerge {
+public:
+    explicit OrderedMerge(std::size_t plot_rows) : plot_rows_(plot_rows) {}
+    void add(SegmentedOutput part);
+    // Everything added, merged (empty when nothing was).
+    SegmentedOutput result();
+
+private:
+    std::size_t plot_rows_;
+    std::vector<std::pair<int, SegmentedOutput>> stack_;  // (level, partial result) in piece order
+};
+
+// The merged output of every piece completed: InputError when none is usable (naming each one's reason), the
+// plan's bandwidth estimate, which joints move.
+void finish_segments(SegmentedOutput& out, const SegmentPlan& plan);
 
 // Pieces produced one at a time after the given ones (a long CSV log read piece by piece, io/csv_pieces.hpp):
 // fills `piece` and returns true, or returns false when none is left. Each piece is identified on every
