@@ -102,6 +102,84 @@ ModelSnapshot measure(const robot::RobotModel& model, const std::vector<identify
     return m;
 }
 
+// Effect values and honest standard deviations: the weighted LS of the final model on the identification
+// rows, covariance scaled by n / n_eff of its residual.
+std::vector<EffectEstimate> effect_estimates(const Diagnosis& d, const sim::AugmentedModel& augmented, const DecimatedRows& train,
+                                             const std::vector<double>& weight2) {
+    const std::vector<int> cols = catalogue_columns(augmented, train);
+    BlockedGrams grams(train, 1);
+    grams.set_y(train.shifted_ys(d.delay));
+    const SubsetFit fit = solve_subset(grams.sum(cols, weight2, -1, false));
+    double rows = 0.0, n_eff = 0.0, wrss = 0.0;
+    for (int j = 0; j < train.joints(); ++j) {
+        const auto& r = d.after.residual[static_cast<std::size_t>(j)];
+        rows += static_cast<double>(r.size());
+        n_eff += effective_sample_size(r);
+    }
+    wrss = fit.ok ? fit.rss : 0.0;
+    const double sigma2 = wrss / std::max(1.0, rows - static_cast<double>(cols.size()));
+    std::vector<EffectEstimate> effects;
+    for (const auto& accepted : d.selection.accepted) {
+        EffectEstimate e;
+        e.term = accepted.term;
+        e.test = accepted;
+        if (accepted.term.kind == sim::EffectKind::TorqueDelay) {
+            e.value = accepted.delay;
+            e.std = accepted.std;
+        } else if (fit.ok) {
+            std::size_t t = 0;
+            while (t < augmented.terms().size() && !augmented.terms()[t].same_as(e.term)) ++t;
+            const Eigen::Index first = augmented.term_column(t), k = e.term.column_count();
+            e.coefficients = fit.x.segment(first, k);
+            const Eigen::MatrixXd cov = sigma2 * (rows / n_eff) * fit.inverse.block(first, first, k, k);
+            e.value = sim::term_value(e.term, e.coefficients);
+            e.std = sim::term_value_std(e.term, e.coefficients, cov);
+        }
+        effects.push_back(e);
+    }
+    return effects;
+}
+
+// Why no effect was named: no candidate could be tested, or the strongest one and what it lacked, with whether the
+// residual left is noise (white to within the residual analysis's bound) or structure no candidate explains.
+std::string verdict_without_effects(const Diagnosis& d, const DiagnoseSettings& s) {
+    const auto& step = d.selection.steps.front();
+    if (step.top.empty()) return "no effect named: no candidate could be tested";
+    const CandidateTest& b = step.top.front();
+    std::string floor;
+    for (std::size_t j = 0; j < d.before.residual_rms.size(); ++j) {
+        floor += fmt::format("{}{:.3g}", j ? " / " : "", d.before.residual_rms[j]);
+    }
+    // "To the noise floor" only when what is left looks like noise: every joint's residual close to
+    // white (effective sample size at least a fifth of its rows, the residual analysis's own bound for
+    // "strongly correlated"). Otherwise the structure is there and no candidate of the catalogue names it.
+    std::string structured;
+    for (std::size_t j = 0; j < d.before.analysis.size(); ++j) {
+        const JointResidualAnalysis& a = d.before.analysis[j];
+        // A residual that is exactly zero (NaN effective size) has no structure either.
+        if (!strongly_correlated(a, static_cast<std::size_t>(d.before.residual[j].size())) || a.rms == 0.0) continue;
+        std::string where;
+        if (!a.velocity.empty()) {
+            const auto worst = std::max_element(a.velocity.begin(), a.velocity.end(),
+                                                [](const Bin& x, const Bin& y) { return std::abs(x.mean) < std::abs(y.mean); });
+            where = fmt::format(", largest mean residual {:+.3g} N.m at {}", worst->mean, worst->label);
+        }
+        structured += fmt::format("{}joint {} (rho_1 {:.2f}, effective sample size {:.0f} of {} rows{})", structured.empty() ? "" : "; ", j + 1,
+                                  a.autocorrelation.empty() ? 0.0 : a.autocorrelation.front(), a.n_eff, d.before.residual[j].size(), where);
+    }
+    const std::string what =
+        structured.empty() ? fmt::format("the data are explained by the nominal model to the noise floor (residual RMS {} N.m per joint, "
+                                         "white to within the residual analysis's bound)",
+                                         floor)
+                           : fmt::format("structure is left in the residual that no candidate explains (residual RMS {} N.m per joint): {}",
+                                         floor, structured);
+    return fmt::format(
+        "no effect named: {}. Strongest candidate {} (estimate {:.3g} +- {} {}): {}; held-out error {:+.1f} % ({} needed)", what,
+        b.label(), b.value, std::isfinite(b.std) ? fmt::format("{:.2g}", b.std) : "n/a", sim::effect_unit(b.term.kind),
+        b.significant ? "significant" : fmt::format("not significant (adjusted p = {:.2g} >= {:g})", b.adjusted_p, s.selection.alpha),
+        -100.0 * b.gain, fmt::format("-{:g} %", 100.0 * s.selection.min_gain));
+}
+
 }  // namespace
 
 Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectContext& context, const identify::LogColumns& log,
@@ -163,80 +241,8 @@ Diagnosis run_diagnosis(const robot::RobotModel& nominal, const sim::EffectConte
     const sim::AugmentedModel augmented(nominal, context, d.selection.terms);
     d.after = measure(augmented, logs, plan, d.delay, train, vrows.get(), horizon_logs, s, weight2);
 
-    // Effect values and honest standard deviations: the weighted LS of the final model on the identification
-    // rows, covariance scaled by n / n_eff of its residual.
-    const std::vector<int> cols = catalogue_columns(augmented, train);
-    BlockedGrams grams(train, 1);
-    grams.set_y(train.shifted_ys(d.delay));
-    const SubsetFit fit = solve_subset(grams.sum(cols, weight2, -1, false));
-    double rows = 0.0, n_eff = 0.0, wrss = 0.0;
-    for (int j = 0; j < train.joints(); ++j) {
-        const auto& r = d.after.residual[static_cast<std::size_t>(j)];
-        rows += static_cast<double>(r.size());
-        n_eff += effective_sample_size(r);
-    }
-    wrss = fit.ok ? fit.rss : 0.0;
-    const double sigma2 = wrss / std::max(1.0, rows - static_cast<double>(cols.size()));
-    for (const auto& accepted : d.selection.accepted) {
-        EffectEstimate e;
-        e.term = accepted.term;
-        e.test = accepted;
-        if (accepted.term.kind == sim::EffectKind::TorqueDelay) {
-            e.value = accepted.delay;
-            e.std = accepted.std;
-        } else if (fit.ok) {
-            std::size_t t = 0;
-            while (t < augmented.terms().size() && !augmented.terms()[t].same_as(e.term)) ++t;
-            const Eigen::Index first = augmented.term_column(t), k = e.term.column_count();
-            e.coefficients = fit.x.segment(first, k);
-            const Eigen::MatrixXd cov = sigma2 * (rows / n_eff) * fit.inverse.block(first, first, k, k);
-            e.value = sim::term_value(e.term, e.coefficients);
-            e.std = sim::term_value_std(e.term, e.coefficients, cov);
-        }
-        d.effects.push_back(e);
-    }
-    if (d.effects.empty()) {
-        const auto& step = d.selection.steps.front();
-        if (step.top.empty()) {
-            d.verdict = "no effect named: no candidate could be tested";
-        } else {
-            const CandidateTest& b = step.top.front();
-            std::string floor;
-            for (std::size_t j = 0; j < d.before.residual_rms.size(); ++j) {
-                floor += fmt::format("{}{:.3g}", j ? " / " : "", d.before.residual_rms[j]);
-            }
-            // "To the noise floor" only when what is left looks like noise: every joint's residual close to
-            // white (effective sample size at least a fifth of its rows, the residual analysis's own bound for
-            // "strongly correlated"). Otherwise the structure is there and no candidate of the catalogue names it.
-            std::string structured;
-            for (std::size_t j = 0; j < d.before.analysis.size(); ++j) {
-                const JointResidualAnalysis& a = d.before.analysis[j];
-                // A residual that is exactly zero (NaN effective size) has no structure either.
-                if (!strongly_correlated(a, static_cast<std::size_t>(d.before.residual[j].size())) || a.rms == 0.0) continue;
-                std::string where;
-                if (!a.velocity.empty()) {
-                    const auto worst = std::max_element(a.velocity.begin(), a.velocity.end(),
-                                                        [](const Bin& x, const Bin& y) { return std::abs(x.mean) < std::abs(y.mean); });
-                    where = fmt::format(", largest mean residual {:+.3g} N.m at {}", worst->mean, worst->label);
-                }
-                structured += fmt::format("{}joint {} (rho_1 {:.2f}, effective sample size {:.0f} of {} rows{})", structured.empty() ? "" : "; ", j + 1,
-                                          a.autocorrelation.empty() ? 0.0 : a.autocorrelation.front(), a.n_eff, d.before.residual[j].size(), where);
-            }
-            const std::string what =
-                structured.empty() ? fmt::format("the data are explained by the nominal model to the noise floor (residual RMS {} N.m per joint, "
-                                                 "white to within the residual analysis's bound)",
-                                                 floor)
-                                   : fmt::format("structure is left in the residual that no candidate explains (residual RMS {} N.m per joint): {}",
-                                                 floor, structured);
-            d.verdict = fmt::format(
-                "no effect named: {}. Strongest candidate {} (estimate {:.3g} +- {} {}): {}; held-out error {:+.1f} % ({} needed)", what,
-                b.label(), b.value, std::isfinite(b.std) ? fmt::format("{:.2g}", b.std) : "n/a", sim::effect_unit(b.term.kind),
-                b.significant ? "significant" : fmt::format("not significant (adjusted p = {:.2g} >= {:g})", b.adjusted_p, s.selection.alpha),
-                -100.0 * b.gain, fmt::format("-{:g} %", 100.0 * s.selection.min_gain));
-        }
-    } else {
-        d.verdict = fmt::format("{} effect{} named", d.effects.size(), d.effects.size() > 1 ? "s" : "");
-    }
+    d.effects = effect_estimates(d, augmented, train, weight2);
+    d.verdict = d.effects.empty() ? verdict_without_effects(d, s) : fmt::format("{} effect{} named", d.effects.size(), d.effects.size() > 1 ? "s" : "");
     d.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     say(fmt::format("done: {}", d.verdict));
     return d;

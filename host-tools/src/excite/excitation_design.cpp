@@ -10,6 +10,7 @@
 #include <random>
 #include <array>
 #include <atomic>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -177,30 +178,38 @@ LocalResult local_run(ExcitationProblem& problem, const Eigen::VectorXd& start, 
     return best;
 }
 
-}  // namespace
-
-Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& model, const Eigen::VectorXd& parameters,
-                         const std::vector<JointLimits>& limits, const DesignSettings& settings) {
-    const auto start_time = Clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start_time).count(); };
-    auto say = [&](const std::string& line) {
-        if (settings.progress) settings.progress(line);
-    };
-    Design d;
+// The limits the optimizer sees: the user's, kMargin inside them around the pose.
+std::vector<JointLimits> with_margin(const std::vector<JointLimits>& limits, const Eigen::VectorXd& pose) {
     std::vector<JointLimits> tightened = limits;
     for (std::size_t j = 0; j < tightened.size(); ++j) {
         JointLimits& l = tightened[j];
-        const double pose = problem.pose()[static_cast<Eigen::Index>(j)];
-        l.upper = pose + (l.upper - pose) * kMargin;
-        l.lower = pose - (pose - l.lower) * kMargin;
+        const double p = pose[static_cast<Eigen::Index>(j)];
+        l.upper = p + (l.upper - p) * kMargin;
+        l.lower = p - (p - l.lower) * kMargin;
         l.velocity *= kMargin, l.acceleration *= kMargin, l.torque *= kMargin;
     }
-    problem.set_limits(tightened);
-    // The workspace box (if any) with the same margin; `box` is the user's.
-    const std::optional<WorkspaceBox> box = problem.workspace() ? std::optional<WorkspaceBox>(problem.workspace()->box) : std::nullopt;
-    if (box) problem.set_workspace_box(scaled_box(*problem.workspace(), *box, [](int) { return kMargin; }));
-    // The starts on `threads` workers, each with its own copy of the problem (its caches are per instance; the
-    // model's regressor is const). Start s draws from seed + s, so the result does not depend on the threads.
+    return tightened;
+}
+
+// Each limit that the control-rate check found exceeded, tightened by its overshoot plus 1 %.
+void tighten_by_overshoot(std::vector<JointLimits>& tightened, const Eigen::VectorXd& pose, const LimitCheck& check) {
+    for (std::size_t j = 0; j < tightened.size(); ++j) {
+        JointLimits& l = tightened[j];
+        const double p = pose[static_cast<Eigen::Index>(j)];
+        auto shrink = [&](int kind) { return 1.0 / (1.01 * std::max(1.0, check.ratio(static_cast<Eigen::Index>(j), kind))); };
+        l.upper = p + (l.upper - p) * shrink(0);
+        l.lower = p - (p - l.lower) * shrink(1);
+        l.velocity *= shrink(2);
+        l.acceleration *= shrink(3);
+        l.torque *= shrink(4);
+    }
+}
+
+// The random starts on `threads` workers, each with its own copy of the problem (its caches are per instance;
+// the model's regressor is const). Start s draws from seed + s, so the result does not depend on the threads.
+// Returns the best feasible result; fills d's starts_run, start_criteria and evaluations.
+LocalResult best_of_starts(const ExcitationProblem& problem, const DesignSettings& settings, const std::function<double()>& elapsed,
+                           const std::function<void(const std::string&)>& say, Design& d) {
     const int workers = std::max(1, std::min(settings.threads, settings.starts));
     const int rounds_of_starts = (settings.starts + workers - 1) / workers;
     std::vector<LocalResult> results(static_cast<std::size_t>(settings.starts));
@@ -255,6 +264,25 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
     if (!std::isfinite(best.f)) {
         throw InputError(fmt::format("excite: no start met the limits ({} starts; the pose's gravity torque or the limits may leave no room)", d.starts_run));
     }
+    return best;
+}
+
+}  // namespace
+
+Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& model, const Eigen::VectorXd& parameters,
+                         const std::vector<JointLimits>& limits, const DesignSettings& settings) {
+    const auto start_time = Clock::now();
+    const std::function<double()> elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start_time).count(); };
+    const std::function<void(const std::string&)> say = [&](const std::string& line) {
+        if (settings.progress) settings.progress(line);
+    };
+    Design d;
+    std::vector<JointLimits> tightened = with_margin(limits, problem.pose());
+    problem.set_limits(tightened);
+    // The workspace box (if any) with the same margin; `box` is the user's.
+    const std::optional<WorkspaceBox> box = problem.workspace() ? std::optional<WorkspaceBox>(problem.workspace()->box) : std::nullopt;
+    if (box) problem.set_workspace_box(scaled_box(*problem.workspace(), *box, [](int) { return kMargin; }));
+    LocalResult best = best_of_starts(problem, settings, elapsed, say, d);
     // Every control sample: a limit missed between the optimizer's samples tightens that limit by the
     // overshoot (plus 1 %) and re-optimizes from the best point.
     // The workspace point too, against the user's box.
@@ -283,16 +311,7 @@ Design design_excitation(ExcitationProblem& problem, const robot::RobotModel& mo
                 return 1.0 / (1.01 * std::max(1.0, d.workspace->ratio[static_cast<std::size_t>(f)]));
             }));
         }
-        for (std::size_t j = 0; j < tightened.size(); ++j) {
-            JointLimits& l = tightened[j];
-            const double pose = problem.pose()[static_cast<Eigen::Index>(j)];
-            auto shrink = [&](int kind) { return 1.0 / (1.01 * std::max(1.0, d.check.ratio(static_cast<Eigen::Index>(j), kind))); };
-            l.upper = pose + (l.upper - pose) * shrink(0);
-            l.lower = pose - (pose - l.lower) * shrink(1);
-            l.velocity *= shrink(2);
-            l.acceleration *= shrink(3);
-            l.torque *= shrink(4);
-        }
+        tighten_by_overshoot(tightened, problem.pose(), d.check);
         problem.set_limits(tightened);
         const double left = std::max(2.0, (settings.time_limit - elapsed()) / (kMaxRounds - d.rounds + 1));
         const LocalResult r = local_run(problem, best.c, left, settings.max_evaluations, d.evaluations);

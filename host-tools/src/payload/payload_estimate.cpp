@@ -72,6 +72,49 @@ Inertial10 std_of(const Eigen::Matrix<double, 10, 10>& jac, const Matrix10& cov)
     return (jac * cov * jac.transpose()).diagonal().cwiseMax(0.0).cwiseSqrt();
 }
 
+// The estimate in the tool frame with its std (noise, arm, gains, total), the physical-consistency check, and
+// the warnings: what the motion does not determine, a poorly determined mass, runs that are not one trajectory.
+void describe_estimate(PayloadEstimate& out, const PayloadSettings& settings) {
+    out.inertial = to_inertial(out.standard, settings.tool);
+    const Eigen::Matrix<double, 10, 10> jac = inertial_jacobian(out.standard, settings.tool);
+    out.std_noise = std_of(jac, out.cov_noise);
+    out.std_arm = std_of(jac, out.cov_arm);
+    out.std_gain = std_of(jac, out.cov_gain);
+    out.std_total = std_of(jac, out.covariance());
+    const bool inertia_prior = std::any_of(out.status, out.status + 6, [](Status st) { return st == Status::Prior; });
+    if (inertia_prior) {
+        // A point mass has no inertia about its centre: the prior is not checked as a body, and its entries have no
+        // measured std (what the delta method gives is the centre of mass's, moved into them).
+        if (std::all_of(out.status, out.status + 6, [](Status st) { return st == Status::Prior; })) out.inertial.inertia.setZero();  // not rounding
+        for (int k = 4; k < 10; ++k) out.std_noise[k] = out.std_arm[k] = out.std_gain[k] = out.std_total[k] = std::nan("");
+        if (!(out.inertial.mass > 0.0)) out.violations.push_back(fmt::format("mass {:.4g} kg is not positive", out.inertial.mass));
+    } else {
+        out.violations = consistency_violations(out.inertial);
+    }
+    if (out.inertia_free_fit) {
+        const auto& i = out.inertia_free_fit->inertia;
+        out.warnings.push_back(fmt::format("the motion does not determine the inertia (free fit about the centre of mass: XX {:.3g} XY {:.3g} XZ {:.3g} "
+                                           "YY {:.3g} YZ {:.3g} ZZ {:.3g} kg.m^2, no body has it, and not significant): the six inertias are fixed "
+                                           "to the point-mass prior (zero about the centre of mass), mass and centre of mass solved again",
+                                           i[0], i[1], i[2], i[3], i[4], i[5]));
+    }
+    for (int k = 0; k < 10; ++k) {
+        if (out.status[k] == Status::Prior && !out.inertia_free_fit) {
+            out.warnings.push_back(fmt::format("{}: not determined by the motion; fixed to the point-mass prior ({:.4g})", standard_names()[static_cast<std::size_t>(k)],
+                                               out.standard[k]));
+        }
+    }
+    if (!out.violations.empty()) out.warnings.push_back("physically inconsistent: " + out.violations.front());
+    const double rel_mass = 100.0 * out.std_total[0] / std::abs(out.inertial.mass);
+    if (!settings.mass && rel_mass > 10.0) out.warnings.push_back(fmt::format("the mass is poorly determined (%sigma {:.1f})", rel_mass));
+    // A tenth of the motion: beyond the tracking error a load changes, the runs do not follow one trajectory.
+    if (out.alignment && out.alignment->position_rms > 0.1 * out.alignment->motion_rms) {
+        out.warnings.push_back(fmt::format("the runs' positions differ by {:.3g} rad RMS after the time shift, against a motion of {:.3g} rad RMS: "
+                                           "the same trajectory?",
+                                           out.alignment->position_rms, out.alignment->motion_rms));
+    }
+}
+
 }  // namespace
 
 const char* to_string(Status s) {
@@ -174,44 +217,7 @@ PayloadEstimate estimate_payload(const ArmModel& arm, const identify::LogColumns
 
     add_inherited_uncertainty(out, solved, f, arm, unloaded != nullptr, settings.gain_std);
 
-    out.inertial = to_inertial(out.standard, settings.tool);
-    const Eigen::Matrix<double, 10, 10> jac = inertial_jacobian(out.standard, settings.tool);
-    out.std_noise = std_of(jac, out.cov_noise);
-    out.std_arm = std_of(jac, out.cov_arm);
-    out.std_gain = std_of(jac, out.cov_gain);
-    out.std_total = std_of(jac, out.covariance());
-    const bool inertia_prior = std::any_of(out.status, out.status + 6, [](Status st) { return st == Status::Prior; });
-    if (inertia_prior) {
-        // A point mass has no inertia about its centre: the prior is not checked as a body, and its entries have no
-        // measured std (what the delta method gives is the centre of mass's, moved into them).
-        if (std::all_of(out.status, out.status + 6, [](Status st) { return st == Status::Prior; })) out.inertial.inertia.setZero();  // not rounding
-        for (int k = 4; k < 10; ++k) out.std_noise[k] = out.std_arm[k] = out.std_gain[k] = out.std_total[k] = std::nan("");
-        if (!(out.inertial.mass > 0.0)) out.violations.push_back(fmt::format("mass {:.4g} kg is not positive", out.inertial.mass));
-    } else {
-        out.violations = consistency_violations(out.inertial);
-    }
-    if (out.inertia_free_fit) {
-        const auto& i = out.inertia_free_fit->inertia;
-        out.warnings.push_back(fmt::format("the motion does not determine the inertia (free fit about the centre of mass: XX {:.3g} XY {:.3g} XZ {:.3g} "
-                                           "YY {:.3g} YZ {:.3g} ZZ {:.3g} kg.m^2, no body has it, and not significant): the six inertias are fixed "
-                                           "to the point-mass prior (zero about the centre of mass), mass and centre of mass solved again",
-                                           i[0], i[1], i[2], i[3], i[4], i[5]));
-    }
-    for (int k = 0; k < 10; ++k) {
-        if (out.status[k] == Status::Prior && !out.inertia_free_fit) {
-            out.warnings.push_back(fmt::format("{}: not determined by the motion; fixed to the point-mass prior ({:.4g})", standard_names()[static_cast<std::size_t>(k)],
-                                               out.standard[k]));
-        }
-    }
-    if (!out.violations.empty()) out.warnings.push_back("physically inconsistent: " + out.violations.front());
-    const double rel_mass = 100.0 * out.std_total[0] / std::abs(out.inertial.mass);
-    if (!settings.mass && rel_mass > 10.0) out.warnings.push_back(fmt::format("the mass is poorly determined (%sigma {:.1f})", rel_mass));
-    // A tenth of the motion: beyond the tracking error a load changes, the runs do not follow one trajectory.
-    if (out.alignment && out.alignment->position_rms > 0.1 * out.alignment->motion_rms) {
-        out.warnings.push_back(fmt::format("the runs' positions differ by {:.3g} rad RMS after the time shift, against a motion of {:.3g} rad RMS: "
-                                           "the same trajectory?",
-                                           out.alignment->position_rms, out.alignment->motion_rms));
-    }
+    describe_estimate(out, settings);
     return out;
 }
 
