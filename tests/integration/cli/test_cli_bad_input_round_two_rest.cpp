@@ -160,8 +160,8 @@ TEST(CliBadInputRest, TruthOfAnotherRobotOrParameterSetIsRefused) {
 TEST(CliBadInputRest, PositionOutsideTheJointLimitsNamesFileLineColumnValueAndLimit) {
     // One cell of 50 rad where the limits are +-2.5 rad: before, exit 0 with only a friction warning.
     const std::string log = log_with_cell("outlier.csv", 4000, 1, "50");
-    for (const std::string& command : {"identify", "diagnose"}) {
-        expect_refused_on_one_line(jacobid(command + " --quiet --robot " + planar_robot() + " --in " + log),
+    for (const char* command : {"identify", "diagnose"}) {
+        expect_refused_on_one_line(jacobid(std::string(command) + " --quiet --robot " + planar_robot() + " --in " + log),
                                    {"outlier.csv:4002: column 'q1': position 50 is outside joint 1 (j1)'s limits [-2.5, 2.5] by more than their range 5"});
     }
     // Within the limits plus the tolerance (their range, 5 rad): accepted, as real logs that pass their limits are.
@@ -342,7 +342,7 @@ TEST(CliBadInputRest, HugeGravityIsRefusedWhereItIsRead) {
                                   "model: mdh\ngravity: [1e308, 0, 0]\njoints:\n"
                                   "  - {name: j1, sigma: 0, alpha: 0, d: 0, theta: 0, r: 0}\n"
                                   "  - {name: j2, sigma: 0, alpha: 0, d: 0.5, theta: 0, r: 0}\n");
-    for (const std::string command : {"identify --print-base --robot " + mdh, "simulate --duration 1 -o " + scratch("g.csv").string() + " --robot " + mdh}) {
+    for (const std::string& command : {"identify --print-base --robot " + mdh, "simulate --duration 1 -o " + scratch("g.csv").string() + " --robot " + mdh}) {
         expect_refused_on_one_line(jacobid(command), {"gravity.yaml:2:", "gravity", "at most 1000 m/s^2"});
     }
 }

@@ -67,7 +67,7 @@ TEST(InformationCriterion, PredictedStdIsTheSpreadOfWlsEstimatesOnSimulatedNoise
     std::normal_distribution<double> normal;
     const int joints = 2, samples = 60, p = 5;
     Eigen::MatrixXd W(samples * joints, p);
-    for (Eigen::Index i = 0; i < W.size(); ++i) W.data()[i] = normal(rng) * (1.0 + (i % 3));
+    for (Eigen::Index i = 0; i < W.size(); ++i) W.data()[i] = normal(rng) * (1.0 + static_cast<double>(i % 3));
     const Eigen::Vector2d sigma(0.3, 0.05);
     const Eigen::VectorXd scale = Eigen::VectorXd::Constant(p, 2.0);
     const excite::Prediction predicted = excite::predict(excite::information_matrix(W, joints, sigma, 1.0), scale);

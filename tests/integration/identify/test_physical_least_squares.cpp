@@ -234,7 +234,9 @@ TEST(PhysicalLeastSquares, UnexcitedDirectionsWithoutAPriorStayAtTheProjectedSol
         const double scale = fit.projected_standard.head<6>().cwiseAbs().maxCoeff();
         EXPECT_LT(fit.standard.head<6>().cwiseAbs().maxCoeff(), 3.0 * scale) << "weight " << weight;
         // Every direction the log sees keeps its least-squares value when no prior competes with it.
-        if (weight == 0.0) EXPECT_LT((fit.base - pr.unconstrained).cwiseAbs().maxCoeff(), 1e-4);
+        if (weight == 0.0) {
+            EXPECT_LT((fit.base - pr.unconstrained).cwiseAbs().maxCoeff(), 1e-4);
+        }
     }
 }
 

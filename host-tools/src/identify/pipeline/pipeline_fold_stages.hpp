@@ -19,8 +19,6 @@
 
 namespace jacobid::identify {
 
-using Lowpass = signal::ButterworthSos;
-
 // One fold: the set-up (chunk geometry, column slots, the Coulomb columns' filter), then per chunk its stages
 // (regressor, Coulomb columns, F_p, the filtered torque to the sink, rows into the factors, rows kept), then the
 // factors. Work is split over threads (settings.threads) in three stages per chunk: the regressor by sample
@@ -84,7 +82,7 @@ private:
     // positions, then written into every row before F_p, so they are filtered and decimated like the rest.
     std::size_t history_size_ = 0;
     std::vector<double> history_;
-    Lowpass fp_{};
+    signal::ButterworthSos fp_{};
     std::size_t margin_ = 0, a0_ = 0, a1_ = 0, keep0_ = 0, keep1_ = 0, d_ = 1, chunk_ = 0;
     std::vector<RunningQr> qr_;
     std::vector<LaggedProducts> lagged_;  // residual autocorrelation, for the std (residual_correlation.hpp)
@@ -99,7 +97,7 @@ private:
     std::vector<int> coulomb_columns_;  // RobotModel::coulomb_column_indices, when their velocity is given (StateEstimates::qd_coulomb)
     std::vector<std::vector<double>> coulomb_raw_;
     std::size_t full_length_ = 0;
-    Lowpass coulomb_fq_{};
+    signal::ButterworthSos coulomb_fq_{};
     std::vector<double> row_;
     DecimatedRow decimated_;
     std::vector<const double*> torque_piece_;

@@ -152,14 +152,14 @@ private:
             dqdd(lane(j), j) += mine[0];
             dqd(lane(j), j) += mine[1] + r_.coulomb(j).slope(qd[j]) * mine[2];
         }
-        const V3 base_vd = -r_.gravity();
         for (int j = n - 1; j >= 0; --j) {
             const auto k = static_cast<std::size_t>(j);
             const ChainJoint& joint = r_.chain().joint(j);
             const auto& link = links[k];
             const bool at_base = joint.antecedent < 0, revolute = joint.type == JointType::Revolute;
             const auto* parent = at_base ? nullptr : &links[static_cast<std::size_t>(joint.antecedent)];
-            const V3 w_a = at_base ? V3::Zero() : parent->w, wd_a = at_base ? V3::Zero() : parent->wd, vd_a = at_base ? base_vd : parent->vd;
+            // t = vd_a + wd_a x p + w_a x (w_a x p) is linear in vd_a: its adjoint needs the values of w_a and wd_a only.
+            const V3 w_a = at_base ? V3::Zero() : parent->w, wd_a = at_base ? V3::Zero() : parent->wd;
             const M3& R = link.R;
             const V3& p = link.p;
             const V3 w_in = R.transpose() * w_a, rate = joint.axis * qd[j];
