@@ -5,12 +5,14 @@
 
 #include <cmath>
 
+#include "identify/report/json_number.hpp"
+
 namespace jacobid::payload {
 namespace {
 
 using nlohmann::json;
 
-json finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+using identify::finite_json;
 
 double rel_percent(double std, double value) { return value != 0.0 ? 100.0 * std / std::abs(value) : std::nan(""); }
 
@@ -88,11 +90,11 @@ json payload_json(const PayloadEstimate& e) {
     json q = json::object();
     for (int k = 0; k < 10; ++k) {
         q[inertial_names()[static_cast<std::size_t>(k)]] = {{"value", v[k]},
-                                                             {"std", finite(e.std_total[k])},
-                                                             {"rel_std_percent", finite(rel_percent(e.std_total[k], v[k]))},
-                                                             {"std_noise", finite(e.std_noise[k])},
-                                                             {"std_arm", finite(e.std_arm[k])},
-                                                             {"std_gain", finite(e.std_gain[k])},
+                                                             {"std", finite_json(e.std_total[k])},
+                                                             {"rel_std_percent", finite_json(rel_percent(e.std_total[k], v[k]))},
+                                                             {"std_noise", finite_json(e.std_noise[k])},
+                                                             {"std_arm", finite_json(e.std_arm[k])},
+                                                             {"std_gain", finite_json(e.std_gain[k])},
                                                              {"status", inertial_status(e, k)}};
     }
     j["payload"] = q;
@@ -118,7 +120,7 @@ json payload_json(const PayloadEstimate& e) {
     j["equations"] = e.solution.equations;
     j["weighting"] = e.solution.weighted ? "wls" : "ols";
     j["std_method"] = identify::to_string(e.solution.std_method);
-    j["relative_error_norm"] = finite(e.solution.relative_error_norm);
+    j["relative_error_norm"] = finite_json(e.solution.relative_error_norm);
     j["settings"] = {{"bandwidth_hz", e.info.bandwidth}, {"decimation_cutoff_hz", e.info.decimation_cutoff}, {"decimation", e.info.decimation},
                      {"torque_delay_applied_seconds", e.delay.applied()}, {"torque_delay_from_arm", e.delay_from_arm}};
     if (e.alignment) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "identify/physical/physical_identification.hpp"
+#include "identify/report/json_number.hpp"
 #include "identify/report/report.hpp"
 
 namespace jacobid::identify {
@@ -11,12 +12,9 @@ namespace {
 
 using nlohmann::json;
 
-// NaN and infinities are not JSON: they are written as null.
-json finite(double d) { return std::isfinite(d) ? json(d) : json(nullptr); }
-
 json finite_list(const std::vector<double>& values) {
     json a = json::array();
-    for (double x : values) a.push_back(finite(x));
+    for (double x : values) a.push_back(finite_json(x));
     return a;
 }
 
@@ -25,9 +23,9 @@ json parameters_json(const LsSolution& sol, const ReportContext& ctx) {
     for (std::size_t p = 0; p < sol.names.size(); ++p) {
         const auto i = static_cast<Eigen::Index>(p);
         json e;
-        e["value"] = finite(sol.x[i]);
-        e["std"] = finite(sol.std_dev[i]);
-        e["rel_std_percent"] = finite(sol.rel_std_percent[i]);
+        e["value"] = finite_json(sol.x[i]);
+        e["std"] = finite_json(sol.std_dev[i]);
+        e["rel_std_percent"] = finite_json(sol.rel_std_percent[i]);
         e["identified"] = static_cast<bool>(sol.identified[p]);
         if (sol.removed[p]) e["removed"] = true;
         const auto it = ctx.truth.find(sol.names[p]);
@@ -41,7 +39,7 @@ json parameters_json(const LsSolution& sol, const ReportContext& ctx) {
 // and standard deviations").
 void add_fit_statistics(json& j, const MethodResult& r) {
     const auto& sol = r.solution;
-    j["cond"] = finite(sol.cond);
+    j["cond"] = finite_json(sol.cond);
     j["equations"] = sol.equations;
     j["rank"] = sol.rank;
     j["relative_error_norm"] = sol.relative_error_norm;
@@ -98,7 +96,7 @@ json static_validation_json(const StaticValidationResult& v) {
 }
 
 json torque_delay_json(const TorqueDelayResult& d) {
-    return {{"seconds", d.estimate.delay},      {"std", finite(d.estimate.std_dev)},
+    return {{"seconds", d.estimate.delay},      {"std", finite_json(d.estimate.std_dev)},
             {"estimated", !d.given},           {"compensated", d.estimate.compensated},
             {"at_bound", d.estimate.at_bound}, {"applied_seconds", d.applied()},
             {"samples_used", d.estimate.samples_used}};
@@ -141,11 +139,11 @@ json bandwidth_estimate_json(const BandwidthEstimate& b) {
     json joints = json::array();
     for (const auto& jb : b.joints) {
         joints.push_back({{"name", jb.name},
-                          {"frequency_hz", finite(jb.frequency)},
-                          {"energy_frequency_hz", finite(jb.energy_frequency)},
-                          {"noise_limit_hz", finite(jb.noise_limit)},
-                          {"noise_rms", finite(jb.noise_rms)},
-                          {"floor_fraction", finite(jb.floor_fraction)},
+                          {"frequency_hz", finite_json(jb.frequency)},
+                          {"energy_frequency_hz", finite_json(jb.energy_frequency)},
+                          {"noise_limit_hz", finite_json(jb.noise_limit)},
+                          {"noise_rms", finite_json(jb.noise_rms)},
+                          {"floor_fraction", finite_json(jb.floor_fraction)},
                           {"quantization_step", jb.quantization_step},
                           {"jumps", jb.jumps},
                           {"moving", jb.moving},
@@ -154,22 +152,22 @@ json bandwidth_estimate_json(const BandwidthEstimate& b) {
     json torque_joints = json::array();
     for (const auto& jt : b.torque.joints) {
         torque_joints.push_back({{"name", jt.name},
-                                 {"frequency_hz", finite(jt.frequency)},
-                                 {"noise_rms", finite(jt.noise_rms)},
-                                 {"floor_fraction", finite(jt.floor_fraction)},
+                                 {"frequency_hz", finite_json(jt.frequency)},
+                                 {"noise_rms", finite_json(jt.noise_rms)},
+                                 {"floor_fraction", finite_json(jt.floor_fraction)},
                                  {"moving", jt.moving},
                                  {"used", jt.used}});
     }
-    return {{"frequency_hz", finite(b.frequency)},         {"energy_frequency_hz", finite(b.energy_frequency)},
-            {"noise_limit_hz", finite(b.noise_limit)},     {"noise_limited", b.noise_limited},
+    return {{"frequency_hz", finite_json(b.frequency)},         {"energy_frequency_hz", finite_json(b.energy_frequency)},
+            {"noise_limit_hz", finite_json(b.noise_limit)},     {"noise_limited", b.noise_limited},
             {"jumps", b.jumps},                            {"resolution_hz", b.resolution},
             {"description", b.description},                {"joints", joints},
-            {"torque_bandwidth_hz", finite(b.torque.frequency)},
-            {"differentiator_bandwidth_hz", finite(b.differentiator_frequency)},
+            {"torque_bandwidth_hz", finite_json(b.torque.frequency)},
+            {"differentiator_bandwidth_hz", finite_json(b.differentiator_frequency)},
             {"torque_wider", b.torque_wider},
             {"torque_noise_limited", b.torque_noise_limited},
             {"torque_resolution_hz", b.torque.resolution},
-            {"torque_highest_hz", finite(b.torque.highest)},
+            {"torque_highest_hz", finite_json(b.torque.highest)},
             {"torque_joints", torque_joints}};
 }
 
