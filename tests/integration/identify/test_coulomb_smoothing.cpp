@@ -13,6 +13,7 @@
 
 #include "identify/friction/coulomb_smoothing.hpp"
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -32,8 +33,8 @@ std::string robot_file(const std::string& name, const std::string& alpha) {
 std::string simulated_log() {
     const std::string log = path("two_alphas.csv");
     if (std::filesystem::exists(log)) return log;
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot_file("truth.yaml", "[30, 300]") + " --out " + log +
-                               " --duration 60 --seed 3 --noise-seed 4 --torque-noise 0.02,0.005");
+    const auto r = jacobid::test::simulated_log(log, "--quiet --robot " + robot_file("truth.yaml", "[30, 300]") +
+                                       " --duration 60 --seed 3 --noise-seed 4 --torque-noise 0.02,0.005");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return log;
 }

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "command_cache.hpp"
+#include "simulated_log.hpp"
 #include "identification_bars.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
@@ -41,18 +41,14 @@ void write(const std::string& name, const std::string& text) { std::ofstream(wor
 
 const char* kRobot = "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
 
-// Simulates once per log name and arguments for all the test processes (tests/support/command_cache.hpp:
+// Simulates once per log name and arguments for all the test processes (tests/support/simulated_log.hpp:
 // each case runs in a process of its own, and five read noisy1k); copies the log and its truth here and
-// returns the log's path. Every log here is of the simulator's default robot, so the arguments are the key.
+// returns the log's path.
 std::string simulate(const std::string& name, const std::string& args) {
     const std::string log = path(name + ".csv");
     if (!fs::exists(log)) {
-        const auto c = jacobid::test::cached_command(std::string(JACOBID_EXECUTABLE) + " simulate --quiet --out {dir}/" + name + ".csv " + args,
-                                                     JACOBID_EXECUTABLE);
-        EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
-        for (const std::string& file : {name + ".csv", name + ".truth.json"}) {
-            if (fs::exists(c.dir / file)) fs::copy_file(c.dir / file, path(file), fs::copy_options::overwrite_existing);
-        }
+        const auto r = jacobid::test::simulated_log(log, "--quiet " + args);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
     }
     return log;
 }

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -40,7 +41,7 @@ std::string robot_file(const std::string& name, const std::string& load, const s
 std::string simulated(const std::string& name, const std::string& robot, const std::string& seeds, const std::string& duration) {
     const std::string log = path(name);
     if (std::filesystem::exists(log)) return log;
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot + " --out " + log + " --duration " + duration + " " + seeds +
+    const auto r = jacobid::test::simulated_log(log, "--quiet --robot " + robot + " --duration " + duration + " " + seeds +
                                " --torque-noise 0.02,0.005");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return log;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -37,8 +38,8 @@ struct Log {
     Log() {
         std::ofstream(robot) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
         const std::string simulated = path("simulated.csv");
-        const auto r = jacobid_cli("simulate --quiet --robot " + robot + " --out " + simulated +
-                                   " --duration 60 --seed 3 --noise-seed 13 --encoder-counts 65536 --torque-noise 0.05,0.01");
+        const auto r = jacobid::test::simulated_log(simulated, "--quiet --robot " + robot +
+                                           " --duration 60 --seed 3 --noise-seed 13 --encoder-counts 65536 --torque-noise 0.05,0.01");
         EXPECT_EQ(r.exit_code, 0) << r.err;
         std::ifstream in(simulated);
         std::getline(in, header);

@@ -14,6 +14,7 @@
 
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -33,7 +34,7 @@ std::string simulated(const std::string& name, const std::string& seeds, const s
     const std::string log = path(name);
     if (std::filesystem::exists(log)) return log;
     const std::string truth = robot_file("truth.yaml", ", presliding: dahl, presliding_displacement: 5e-4", "parameters: {FD1: 0.3, FD2: 0.1}\n");
-    const auto r = jacobid_cli("simulate --quiet --robot " + truth + " --out " + log + " --duration " + duration + " " + seeds +
+    const auto r = jacobid::test::simulated_log(log, "--quiet --robot " + truth + " --duration " + duration + " " + seeds +
                                " --torque-noise 0.02,0.005");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return log;

@@ -23,6 +23,7 @@
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 #include "stacked_rows.hpp"
 
@@ -43,7 +44,7 @@ struct Logs {
         std::ofstream(robot) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
         for (const auto& [file, args] : {std::pair<std::string, std::string>{a, "--duration 20 --seed 1 --noise-seed 11"},
                                          std::pair<std::string, std::string>{b, "--duration 12 --seed 2 --noise-seed 12"}}) {
-            const auto r = jacobid_cli("simulate --quiet --robot " + robot + " --out " + file + " --encoder-counts 65536 --torque-noise 0.05,0.01 " + args);
+            const auto r = test::simulated_log(file, "--quiet --robot " + robot + " --encoder-counts 65536 --torque-noise 0.05,0.01 " + args);
             EXPECT_EQ(r.exit_code, 0) << r.err;
         }
     }

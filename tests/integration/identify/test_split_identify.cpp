@@ -22,6 +22,7 @@
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 #include "stacked_rows.hpp"
 
@@ -40,8 +41,7 @@ std::string log_without(const std::string& name, const std::vector<std::pair<dou
     if (!std::ifstream(full)) {
         std::ofstream(path("robot.yaml")) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
         std::ofstream(path("format.yaml")) << "header: true\ntime: {column: t}\npositions: [q1, q2]\ntorques: [tau1, tau2]\n";
-        const auto r = jacobid_cli("simulate --quiet --robot " + path("robot.yaml") + " --out " + full +
-                                   " --duration 60 --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 1");
+        const auto r = test::simulated_log(full, "--quiet --robot " + path("robot.yaml") + " --duration 60 --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 1");
         EXPECT_EQ(r.exit_code, 0) << r.err;
     }
     std::ifstream in(full);

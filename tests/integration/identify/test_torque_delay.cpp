@@ -22,6 +22,7 @@
 #include "io/time_axis.hpp"
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -47,7 +48,7 @@ std::string robot() {
 std::string half_sample_lead_log() {
     const std::string fine = path("fine.csv"), lead = path("lead.csv");
     if (fs::exists(lead)) return lead;
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --rate 2000 --control-rate 2000 --out " + fine + kNoise);
+    const auto r = jacobid::test::simulated_log(fine, "--quiet --robot " + robot() + " --rate 2000 --control-rate 2000" + kNoise);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::ifstream in(fine);
     std::string header;
@@ -105,7 +106,7 @@ TEST(TorqueDelay, HalfSampleLeadIsEstimatedCompensatedAndReported) {
 
 TEST(TorqueDelay, TwoMillisecondsLateAndAGivenDelay) {
     const std::string log = path("late.csv");
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
+    const auto r = jacobid::test::simulated_log(log, "--quiet --robot " + robot() + kNoise + " --effect torque_delay:value=0.002");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const json j = identify(log, "");
     EXPECT_NEAR(j["torque_delay"]["seconds"].get<double>(), 0.002, 0.00005) << j["torque_delay"].dump();
@@ -130,7 +131,7 @@ struct LateLog {
 };
 std::unique_ptr<LateLog> late_log(const std::string& name) {
     const std::string log = path(name);
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot() + " --out " + log + kNoise + " --effect torque_delay:value=0.002");
+    const auto r = jacobid::test::simulated_log(log, "--quiet --robot " + robot() + kNoise + " --effect torque_delay:value=0.002");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     auto l = std::make_unique<LateLog>();
     l->description = jacobid::robot::load_robot_description(robot());

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: MIT
+#pragma once
+// `jacobid simulate` made once per run for every test case that asks for the same log (command_cache.hpp):
+// gtest_discover_tests gives each case its own process and scratch folder, so the cases of a suite that
+// share a log used to simulate it again each (a 60 s 2R log costs ~4 s of CPU under ASan, and the sanitizer
+// stage runs hundreds of such cases). The cache key is the command with the scratch folder left out, the
+// jacobid executable, and the contents of every file the arguments name that exists when asked (the robot
+// description, a trajectory, a log format): a case with another description gets its own simulation.
+//
+// The log and what simulate writes beside it (`<stem>.truth.json`) are copied into the caller's folder, so a
+// case may change its copy. Arguments that name other output files (--states, --truth elsewhere) are refused:
+// the first process would write them into its own scratch folder only.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command_cache.hpp"
+#include "run_command.hpp"
+
+namespace jacobid::test {
+
+// Runs `jacobid simulate --out <out> <args>` through the command cache; the result is simulate's own
+// (exit code, output), and on success `out` and `<out stem>.truth.json` exist.
+inline CommandResult simulated_log(const std::string& out, const std::string& args) {
+    namespace fs = std::filesystem;
+    if (args.find("--states") != std::string::npos || args.find("--truth") != std::string::npos) {
+        ADD_FAILURE() << "simulated_log: --states and --truth write outside the cached folder; run simulate directly: " << args;
+        return {};
+    }
+    std::vector<std::string> inputs;
+    std::istringstream tokens(args);
+    for (std::string token; tokens >> token;) {
+        if (token.find('/') != std::string::npos && fs::is_regular_file(token)) inputs.push_back(token);
+    }
+    const fs::path target(out);
+    const std::string name = target.filename().string();
+    const CachedCommand c = cached_command(std::string(JACOBID_EXECUTABLE) + " simulate --out {dir}/" + name + " " + args,
+                                           JACOBID_EXECUTABLE, inputs);
+    if (c.result.exit_code != 0) return c.result;
+    for (const std::string& file : {name, target.stem().string() + ".truth.json"}) {
+        if (fs::exists(c.dir / file)) fs::copy_file(c.dir / file, target.parent_path() / file, fs::copy_options::overwrite_existing);
+    }
+    return c.result;
+}
+
+}  // namespace jacobid::test
