@@ -7,9 +7,8 @@
 // jacobid executable, and the contents of every file the arguments name that exists when asked (the robot
 // description, a trajectory, a log format): a case with another description gets its own simulation.
 //
-// The log and what simulate writes beside it (`<stem>.truth.json`) are copied into the caller's folder, so a
-// case may change its copy. Arguments that name other output files (--states, --truth elsewhere) are refused:
-// the first process would write them into its own scratch folder only.
+// The log and what simulate writes beside it (`<stem>.truth.json`, and the files --states and --truth name, which
+// must lie in the log's folder) are copied into the caller's folder, so a case may change its copy.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -23,24 +22,31 @@
 namespace jacobid::test {
 
 // Runs `jacobid simulate --out <out> <args>` through the command cache; the result is simulate's own
-// (exit code, output), and on success `out` and `<out stem>.truth.json` exist.
+// (exit code, output), and on success `out`, its truth JSON and the --states file, if asked for, exist.
 inline CommandResult simulated_log(const std::string& out, const std::string& args) {
     namespace fs = std::filesystem;
-    if (args.find("--states") != std::string::npos || args.find("--truth") != std::string::npos) {
-        ADD_FAILURE() << "simulated_log: --states and --truth write outside the cached folder; run simulate directly: " << args;
-        return {};
-    }
-    std::vector<std::string> inputs;
+    const fs::path target(out);
+    std::vector<std::string> inputs, outputs{target.filename().string(), target.stem().string() + ".truth.json"};
+    std::string command = std::string(JACOBID_EXECUTABLE) + " simulate --out {dir}/" + outputs.front();
     std::istringstream tokens(args);
     for (std::string token; tokens >> token;) {
+        if (token == "--states" || token == "--truth") {
+            std::string file;
+            tokens >> file;
+            if (fs::path(file).parent_path() != target.parent_path()) {
+                ADD_FAILURE() << "simulated_log: " << token << " " << file << " must lie beside " << out;
+                return {};
+            }
+            outputs.push_back(fs::path(file).filename().string());
+            command += " " + token + " {dir}/" + outputs.back();
+            continue;
+        }
         if (token.find('/') != std::string::npos && fs::is_regular_file(token)) inputs.push_back(token);
+        command += " " + token;
     }
-    const fs::path target(out);
-    const std::string name = target.filename().string();
-    const CachedCommand c = cached_command(std::string(JACOBID_EXECUTABLE) + " simulate --out {dir}/" + name + " " + args,
-                                           JACOBID_EXECUTABLE, inputs);
+    const CachedCommand c = cached_command(command, JACOBID_EXECUTABLE, inputs);
     if (c.result.exit_code != 0) return c.result;
-    for (const std::string& file : {name, target.stem().string() + ".truth.json"}) {
+    for (const std::string& file : outputs) {
         if (fs::exists(c.dir / file)) fs::copy_file(c.dir / file, target.parent_path() / file, fs::copy_options::overwrite_existing);
     }
     return c.result;

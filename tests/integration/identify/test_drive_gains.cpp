@@ -20,6 +20,7 @@
 #include "realdata.hpp"
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -78,9 +79,9 @@ Pair simulated_pair(const std::string& name) {
     const fs::path dir = jacobid::test::scratch_directory() / name;
     fs::create_directories(dir);
     Pair p{(dir / "unloaded.csv").string(), (dir / "loaded.csv").string()};
-    const std::string common = " simulate --quiet --duration 30 --seed 3 --torque-noise 0.3";
-    EXPECT_EQ(run_command(kJacobid + common + " --noise-seed 4 --robot " + kRobot + " -o " + p.unloaded).exit_code, 0);
-    EXPECT_EQ(run_command(kJacobid + common + " --noise-seed 5 --robot " + loaded_robot(dir) + " -o " + p.loaded).exit_code, 0);
+    const std::string common = "--quiet --duration 30 --seed 3 --torque-noise 0.3";
+    EXPECT_EQ(jacobid::test::simulated_log(p.unloaded, common + " --noise-seed 4 --robot " + kRobot).exit_code, 0);
+    EXPECT_EQ(jacobid::test::simulated_log(p.loaded, common + " --noise-seed 5 --robot " + loaded_robot(dir)).exit_code, 0);
     std::vector<double> currents;
     for (double g : kGains) currents.push_back(1.0 / g);
     scale_torques(p.unloaded, currents);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "run_command.hpp"
+#include "simulated_log.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -41,8 +42,8 @@ std::string log_with_velocity(const std::string& name, double scale) {
     std::ifstream probe(log);
     if (!probe) {
         std::ofstream(path("robot.yaml")) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
-        const auto r = jacobid_cli("simulate --quiet --robot " + path("robot.yaml") + " --out " + log + " --states " + states +
-                                   " --duration 60 --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 1");
+        const auto r = jacobid::test::simulated_log(log, "--quiet --robot " + path("robot.yaml") + " --states " + states +
+                                                    " --duration 60 --encoder-counts 65536 --torque-noise 0.05,0.01 --seed 1");
         EXPECT_EQ(r.exit_code, 0) << r.err;
     }
     const auto measured = read_rows(log), truth = read_rows(states);
@@ -95,8 +96,8 @@ TEST(MeasuredVelocity, LoggedVelocityIdentifiesTheTruthAndIsReallyUsed) {
 TEST(MeasuredVelocity, ExactLoggedVelocityGivesUnbiasedFrictionInTheJacobiMethod) {
     const std::string log = path("mv_exact.csv"), states = path("mv_exact.states.csv"), robot = path("robot_exact.yaml");
     std::ofstream(robot) << "model: planar2r\nL1: 0.5\nfriction: {coulomb: smooth, alpha: 100}\n";
-    const auto r = jacobid_cli("simulate --quiet --robot " + robot + " --out " + log + " --states " + states +
-                               " --duration 40 --encoder-counts 0 --torque-noise 0 --seed 3");
+    const auto r = jacobid::test::simulated_log(log, "--quiet --robot " + robot + " --states " + states +
+                                                " --duration 40 --encoder-counts 0 --torque-noise 0 --seed 3");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto measured = read_rows(log), truth = read_rows(states);
     const std::string exact = path("mv_exact_qd.csv");
