@@ -19,7 +19,7 @@ FirmwareMonitorLoad load_firmware_monitor(const firmware::FirmwareConfig& config
         throw InputError(fmt::format("{}: estimator.type: {}: the controller runs the momentum observer; calibrate with --estimator observer",
                                      mc.thresholds, to_string(file.estimator.estimator)));
     }
-    const MonitorModel m = load_monitor_model(mc.robot, file.standing_velocity, file.standing_time, config.sample_period());
+    const MonitorModel m = load_monitor_model(mc.robot, file.standing_velocity, file.standing_time, config.sample_period(), file.band_margin);
     if (static_cast<std::size_t>(m.joints()) != joints) {
         throw InputError(fmt::format("{}: {} joints, but {} has {} (monitor.robot must describe fw.yaml's joints, in their order)", mc.robot,
                                      m.joints(), config.source, joints));

@@ -52,6 +52,8 @@ MonitorFile parse_monitor_file(const std::string& text, const std::string& sourc
     }
     f.standing_time = s.number("standing_time", f.standing_time, "s");
     if (!(f.standing_time >= 0.0)) s.fail("standing_time", "must be >= 0 s");
+    f.band_margin = s.number("band_margin", f.band_margin);
+    if (!(f.band_margin >= 0.0)) s.fail("band_margin", "must be >= 0");
     f.false_alarm_rate = s.number("false_alarm_rate", f.false_alarm_rate);
     if (!(f.false_alarm_rate >= 0.0 && f.false_alarm_rate < 1.0)) s.fail("false_alarm_rate", "must be in [0, 1) (per sample)");
     f.margin = s.number("margin", f.margin);
@@ -103,6 +105,7 @@ std::string to_yaml(const MonitorFile& f) {
         out << YAML::Flow << f.standing_velocity;
     }
     out << YAML::Key << "standing_time" << YAML::Value << f.standing_time;
+    out << YAML::Key << "band_margin" << YAML::Value << f.band_margin;
     out << YAML::Key << "false_alarm_rate" << YAML::Value << f.false_alarm_rate;
     out << YAML::Key << "margin" << YAML::Value << f.margin;
     out << YAML::Key << "hold" << YAML::Value << f.hold;

@@ -34,7 +34,8 @@ robot::RobotDescription chain_description(robot::RobotDescription d) {
 
 }  // namespace
 
-MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period) {
+MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period,
+                                double band_margin) {
     MonitorModel m;
     m.description = robot::load_robot_description(path);
     const robot::RobotDescription& d = m.description;
@@ -76,6 +77,8 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
         if (!standing_velocity.empty()) p.standing_velocity = standing_velocity[standing_velocity.size() == 1 ? 0 : static_cast<std::size_t>(j)];
         p.standing_samples = std::max(1, static_cast<int>(std::lround(standing_time / sample_period)));
         if (!(p.standing_velocity >= 0.0)) throw InputError(fmt::format("--standing-velocity: {} rad/s must be >= 0", p.standing_velocity));
+        if (!(band_margin >= 0.0)) throw InputError(fmt::format("--band-margin: {} must be >= 0", band_margin));
+        p.band_margin = band_margin;
         m.friction.set_joint(j, p);
     }
     return m;

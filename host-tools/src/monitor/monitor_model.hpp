@@ -28,7 +28,8 @@ struct MonitorModel {
 
 // InputError naming the file for a description that is not a serial robot (mdh, urdf) or is too large.
 // `standing_velocity`: rad/s per joint below which a joint stands (one value for all, or one per joint),
-// for at least `standing_time` s of samples `sample_period` apart.
-MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period);
+// for at least `standing_time` s of samples `sample_period` apart; its band is (1 + band_margin) x its Coulomb level.
+MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period,
+                                double band_margin = 0.0);
 
 }  // namespace jacobid::monitor

@@ -72,6 +72,10 @@ void add_monitor_calibrate_options(CLI::App* cal, MonitorCalibrateOptions& c) {
     cal->add_option("--standing-time", c.file.standing_time, "s below the standing velocity before a joint stands (a reversal in mid-motion does not)")
         ->check(non_negative_number())
         ->capture_default_str();
+    cal->add_option("--band-margin", c.file.band_margin,
+                    "a standing joint's band is (1 + band margin) x its Coulomb level: it breaks away above its sliding friction")
+        ->check(non_negative_number())
+        ->capture_default_str();
     cal->add_option("--confirm", c.file.confirm, "consecutive samples in contact before an event starts (1: at once; more rejects one-sample glitches)")
         ->check(whole_number_in(1, 1000))
         ->capture_default_str();
@@ -95,7 +99,8 @@ MonitorRun run_monitor_calibrate(MonitorCalibrateOptions o) {
     for (const auto& path : o.logs) {
         const monitor::MonitorLog log = read_monitor_log(o, path, robot);
         // The standstill is counted in samples of this log's period.
-        const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, o.file.standing_velocity, o.file.standing_time, log.sample_period);
+        const monitor::MonitorModel model =
+            monitor::load_monitor_model(o.robot, o.file.standing_velocity, o.file.standing_time, log.sample_period, o.file.band_margin);
         if (replays.empty()) print_notes(model);
         replays.push_back(monitor::replay(model, o.file.estimator, log));
         o.file.calibrated_from.push_back(path);
@@ -118,7 +123,7 @@ MonitorRun run_monitor_replay(const MonitorReplayOptions& o) {
     inputs.push_back({"--monitor", o.monitor});
     check_outputs({{"--plot", o.plot}, {"--estimates", o.estimates}}, inputs);
     const monitor::MonitorLog log = read_monitor_log(o, o.logs.front(), robot);
-    const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, file.standing_velocity, file.standing_time, log.sample_period);
+    const monitor::MonitorModel model = monitor::load_monitor_model(o.robot, file.standing_velocity, file.standing_time, log.sample_period, file.band_margin);
     print_notes(model);
     const monitor::Replay replay = monitor::replay(model, file.estimator, log);
     const auto events = monitor::contact_events(replay, file.thresholds, file.hold, file.confirm);

@@ -42,7 +42,7 @@ struct MonitorReplayOptions : MonitorInputs {
 // those, the Python functions take them as arguments).
 void add_monitor_log_options(CLI::App* cmd, MonitorInputs& o);
 // calibrate's own: --out, --false-alarm-rate, --margin, --estimator, --gain, the windows, --xi, --standing-*,
-// --confirm, --hold, --no-measured-velocity.
+// --band-margin, --confirm, --hold, --no-measured-velocity.
 void add_monitor_calibrate_options(CLI::App* cmd, MonitorCalibrateOptions& o);
 // monitor's own: --plot, --estimates (not --monitor: an argument of the Python function).
 void add_monitor_replay_options(CLI::App* cmd, MonitorReplayOptions& o);

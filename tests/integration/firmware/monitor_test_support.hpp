@@ -24,15 +24,16 @@ inline std::string planar2r_mdh_yaml() {
            "parameters: {ZZ1: 2.996, M2: 2.0, FV1: 0.248, FC1: 0.431, ZZ2: 0.059, MX2: 0.124, MY2: 0.0019, FV2: 0.0144, FC2: 0.1268}\n";
 }
 
-// Per joint, N.m: moving, and beyond the Coulomb band standing.
+// Per joint, N.m: moving, and beyond the Coulomb band standing; the band margin (monitor YAML band_margin).
 struct Thresholds {
     std::array<double, 2> moving{3.0, 1.0}, standing{1.0, 0.5};
+    double band_margin = 0.0;
 };
 
 // The observer's gain 100/s; the windows of chain_config()'s estimator.
 inline std::string monitor_yaml(const Thresholds& t) {
     std::string s = "estimator: {type: observer, gain: 100, velocity_window: 0.05, xi: 0}\n"
-                    "standing_velocity: 0.02\nstanding_time: 0.1\nconfirm: 1\njoints:\n";
+                    "standing_velocity: 0.02\nstanding_time: 0.1\nconfirm: 1\nband_margin: " + std::to_string(t.band_margin) + "\njoints:\n";
     for (std::size_t j = 0; j < 2; ++j) s += "  - {moving: " + std::to_string(t.moving[j]) + ", standing: " + std::to_string(t.standing[j]) + "}\n";
     return s;
 }

@@ -263,6 +263,20 @@ TEST(FirmwareMonitor, ActionFlagOnlyFlags) {
     EXPECT_TRUE(bench.enable.level);
 }
 
+TEST(FirmwareMonitorConfig, BandMarginOfTheMonitorFileWidensTheControllersStandstillBand) {
+    // planar2r_mdh_yaml: FC1 = 0.431, FC2 = 0.1268 N.m; band_margin 0.2: the arm at rest holds 1.2 x FC.
+    test::Thresholds t;
+    t.band_margin = 0.2;
+    const firmware::FirmwareConfig c = test::monitored_chain_config("band_margin", "flag", "", t);
+    firmware::CycleMonitor monitor;
+    ASSERT_EQ(monitor.configure(c.monitor.model, 2, c.sample_period()), "");
+    const firmware::CycleMonitor::Joints zero = firmware::CycleMonitor::Joints::Zero();
+    for (int k = 0; k < 200; ++k) monitor.step(zero, zero, zero, true, true);  // the plane is horizontal: no gravity torque
+    ASSERT_TRUE(monitor.estimate().standing[0] && monitor.estimate().standing[1]);
+    EXPECT_NEAR(monitor.estimate().band[0], 1.2 * 0.431, 1e-12);
+    EXPECT_NEAR(monitor.estimate().band[1], 1.2 * 0.1268, 1e-12);
+}
+
 TEST(FirmwareMonitorConfig, BadSectionsAndFilesAreOneLineNamingTheKeyOrFile) {
     const auto parse_error = [](const std::string& monitor) {
         try {

@@ -214,18 +214,28 @@ TEST(RigidBodyTerms, CoriolisTransposeSatisfiesTheMomentumBalance) {
     for (int j = 0; j < kN; ++j) EXPECT_NEAR(pdot[j], tau[j] + ct[j] - g[j], 1e-6 * (1.0 + std::abs(tau[j])));
 }
 
+// The standstill tests' pose (q_j = 0.2 j), the torque that holds the arm still there (gravity and FOFF), and a
+// detector with thresholds 0.5 N.m moving, 0.3 N.m beyond the band standing.
+struct RestingPose {
+    Joints q, g;
+    ContactDetector<kN> detector;
+    explicit RestingPose(const Arm& arm) {
+        for (int j = 0; j < kN; ++j) q[j] = 0.2 * j;
+        arm.regressor.inverse_dynamics(q, Joints::Zero(), Joints::Zero(), arm.X, g);
+        for (int j = 0; j < kN; ++j) detector.set_joint(j, {0.5, 0.3});
+    }
+};
+
 TEST(ContactDetector, TorqueInsideTheCoulombBandAtStandstillIsNoContact) {
     // The arm at rest: the motor holds gravity plus x; friction holds any x inside the band [-FC, FC].
     const Arm arm;
     const RigidBodyTerms<kN> terms(arm.regressor, arm.X);
     JointFriction<kN> friction(arm.regressor, arm.X);
     DirectResidual<kN> residual(terms, friction);
-    ContactDetector<kN> detector;
-    for (int j = 0; j < kN; ++j) detector.set_joint(j, {0.5, 0.3});
-    Joints q;
-    for (int j = 0; j < kN; ++j) q[j] = 0.2 * j;
-    Joints g;
-    arm.regressor.inverse_dynamics(q, Joints::Zero(), Joints::Zero(), arm.X, g);  // gravity and FOFF
+    RestingPose rest(arm);
+    const Joints& q = rest.q;
+    const Joints& g = rest.g;
+    ContactDetector<kN>& detector = rest.detector;
     // The articulated-body side agrees that this torque holds the arm still.
     EXPECT_LT(arm.accelerations(q, Joints::Zero(), g, Joints::Zero()).norm(), 1e-9);
     ExternalTorqueEstimate<kN> e;
@@ -249,6 +259,28 @@ TEST(ContactDetector, TorqueInsideTheCoulombBandAtStandstillIsNoContact) {
     residual.step(q, qd, Joints::Zero(), tau, e);
     EXPECT_FALSE(e.standing[1]);
     EXPECT_DOUBLE_EQ(detector.threshold(e, 1), 0.5);
+}
+
+TEST(ContactDetector, BandMarginWidensTheStandstillBandAboveTheCoulombLevel) {
+    // A joint breaks away above its sliding Coulomb level: with band_margin 0.2 it holds up to 1.2 FC at rest.
+    const Arm arm;
+    const RigidBodyTerms<kN> terms(arm.regressor, arm.X);
+    JointFriction<kN> friction(arm.regressor, arm.X);
+    JointFrictionParameters p = friction.joint(1);
+    p.band_margin = 0.2;
+    friction.set_joint(1, p);
+    DirectResidual<kN> residual(terms, friction);
+    const RestingPose rest(arm);
+    const double fc1 = arm.X[arm.regressor.layout().column(1, ParameterKind::FC)];
+    ExternalTorqueEstimate<kN> e;
+    for (const double x : {1.15 * fc1, -1.15 * fc1, 1.01 * (1.2 * fc1 + 0.3)}) {
+        Joints tau = rest.g;
+        tau[1] += x;
+        ASSERT_EQ(residual.step(rest.q, Joints::Zero(), Joints::Zero(), tau, e), EstimatorStatus::Ok);
+        EXPECT_NEAR(e.band[1], 1.2 * fc1, 1e-12);
+        EXPECT_NEAR(e.band[2], arm.X[arm.regressor.layout().column(2, ParameterKind::FC)], 1e-12);  // the others keep FC
+        EXPECT_EQ(rest.detector.detect(e, kN), std::abs(x) > 1.2 * fc1 + 0.3 ? 1u << 1 : 0u) << x;
+    }
 }
 
 TEST(ContactDetector, ConfirmsAContactAfterTheGivenNumberOfConsecutiveSamples) {

@@ -15,7 +15,9 @@
 // reference the host's LoadFrictionModel takes for a description), when FCL is identified; at standstill the band
 // is the whole Coulomb level FC + FCL l(g), the friction a loaded joint holds. With presliding the sliding level is
 // FC + FD (z saturates at +-1), so a standing joint holds up to that, while the model says FD z: the band is
-// FC + FCL l(g) + |FD| (1 + |z|), what the residual held - FD z can reach.
+// FC + FCL l(g) + |FD| (1 + |z|), what the residual held - FD z can reach. The band is that level times
+// (1 + band_margin): a joint breaks away above its sliding Coulomb level (static friction), by an amount the
+// sliding fit cannot see (UR10e joint 1 holds 16 % above FC before it slips, docs/real-data.md).
 // Fixed-size, allocation-free.
 #include <Eigen/Core>
 #include <algorithm>
@@ -42,6 +44,7 @@ struct JointFrictionParameters {
     // passes through 0 too, with the acceleration (and the model's error) at its largest, and friction holds
     // nothing there.
     int standing_samples = 1;
+    double band_margin = 0.0;  // the band is (1 + band_margin) x the Coulomb level (break-away above sliding)
 };
 
 template <int N>
@@ -107,7 +110,7 @@ public:
                 coulomb += p.load * (p.load_square ? g * g : std::abs(g));
             }
             f[j] = p.offset + p.presliding * z + p.viscous * qd[j] + coulomb * p.sign(qd[j]);
-            if (standing[js]) band[j] = coulomb + std::abs(p.presliding) * (1.0 + std::abs(z));
+            if (standing[js]) band[j] = (1.0 + p.band_margin) * (coulomb + std::abs(p.presliding) * (1.0 + std::abs(z)));
         }
     }
 
