@@ -113,15 +113,21 @@ private:
     std::vector<JointLimits> limits_;
     ProblemSettings settings_;
     int joints_ = 0, columns_ = 0, samples_ = 0;
-    // At every sample: basis values (size() x samples), q/qd/qdd (joints x samples), torque.
-    Eigen::MatrixXd psi_, dpsi_, ddpsi_;
+    // At every sample: basis values (size() x samples), q/qd/qdd (joints x samples), torque. bases_ = [psi_ dpsi_
+    // ddpsi_] side by side (size() x 3 samples): a gradient in (q, qd, qdd) stacked the same way over the samples
+    // goes to the coefficients in one product.
+    Eigen::MatrixXd psi_, dpsi_, ddpsi_, bases_;
     Eigen::MatrixXd q_, qd_, qdd_, tau_;
     Eigen::MatrixXd W_;                 // (samples * joints) x columns
     std::unique_ptr<RegressorDerivatives> derivatives_;
     double value_ = 0.0;                // the criterion at derivatives_for_
     Eigen::MatrixXd GW_;                // dF/dW there (W_'s shape; kept so that its storage is reused)
-    Eigen::MatrixXd dphi_;              // 3 * joints x samples: d<dF/dW_i, Y_i>/d(q, qd, qdd)
-    std::vector<Eigen::MatrixXd> dtau_; // per sample, joints x 3 * joints: d tau / d(q, qd, qdd) (when torque_limited())
+    Eigen::MatrixXd dphi_;              // samples x 3 * joints: d<dF/dW_i, Y_i>/d(q, qd, qdd) (row i)
+    // When torque_limited(): d tau_j / dz_(kind, a) at sample i in row kind * samples + i, column j * joints + a
+    // (kind 0, 1, 2: q, qd, qdd), so that joint j's columns, each sample's rows scaled by its KS weight, times
+    // bases_ are that torque constraint's Jacobian row; weighted_ holds them scaled.
+    Eigen::MatrixXd dtau_, weighted_;
+    Eigen::MatrixXd sample_dtau_;       // one sample's joints x 3 * joints (the derivatives' output, reused)
     Eigen::VectorXd derivatives_for_;
     bool dtau_ready_ = false;           // dtau_ holds derivatives_for_'s
     std::optional<Workspace> workspace_;

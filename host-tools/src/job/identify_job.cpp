@@ -212,7 +212,7 @@ IdentifyJobResult run_identify(const robot::RobotDescription& robot, const robot
         identify::SolveOptions solve = resolved.solve;
         if (out.periodic) {
             settings = identify::periodic_settings(settings, *out.periodic);
-            solve.joint_noise = out.periodic->torque_noise;
+            if (solve.joint_noise.empty()) solve.joint_noise = out.periodic->torque_noise;  // --joint-noise first
         }
         refuse_estimator_combinations(resolved, inputs, pieces, physical, o);
         identify::IdentifiedLog fit;

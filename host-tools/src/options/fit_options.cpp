@@ -48,6 +48,13 @@ void add_fit_options(CLI::App* cmd, FitOptions& o) {
         ->capture_default_str();
     cmd->add_flag("--weighted", o.weighted, "the same as --weighting wls (kept for scripts)");
     cmd->add_flag("--unweighted", o.unweighted, "the same as --weighting ols");
+    // The residuals' sigma also holds the model's and the pipeline's error, unevenly across the joints; a noise
+    // known from elsewhere (a simulation, excite's --torque-noise) gives the weights the prediction assumes.
+    cmd->add_option("--joint-noise", o.joint_noise,
+                    "wls: weight each joint's rows by 1 / this torque noise std (N.m or N, one per joint) instead of 1 / sigma_j of its "
+                    "OLS residual (which also holds model and pipeline error); only the ratios matter")
+        ->delimiter(',')
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--std", o.std_method,
                     "how sigma_X is computed: joint-hac (per-joint residual variances and serial correlation of the decimated rows, "
                     "Newey-West weights; the default) or pooled (sigma_rho^2 (W^T W)^-1, rows independent)")
@@ -128,6 +135,8 @@ identify::IdentifySettings identify_settings(const FitOptions& o, identify::Meth
     }
     s.estimator.estimator = o.estimator.empty() ? identify::parse_estimator(weighting) : identify::parse_estimator(o.estimator);
     s.solve.weighted = weighting == "wls";
+    if (!o.joint_noise.empty() && !s.solve.weighted) throw InputError("--joint-noise gives the WLS weights: it contradicts ols");
+    s.solve.joint_noise = o.joint_noise;
     s.solve.std_method = o.std_method == "pooled" ? identify::StdMethod::Pooled : identify::StdMethod::JointHac;
     s.solve.rank_tolerance = o.rank_tolerance;
     s.torque_delay = given_torque_delay(o);

@@ -28,9 +28,11 @@ struct FitOptions {
     const CLI::Option* weighting_option = nullptr;  // to tell an explicit --weighting from its default
     std::string std_method = "joint-hac";  // joint-hac | pooled
     double rank_tolerance = 1e-7;
+    std::vector<double> joint_noise;   // --joint-noise: WLS weights 1 / noise per joint (N.m); empty: from the OLS residuals
 };
 
-// --bandwidth ... --min-motion, --torque-delay, --estimator, --weighting (--weighted, --unweighted), --std, --std-lags, --rank-tolerance.
+// --bandwidth ... --min-motion, --torque-delay, --estimator, --weighting (--weighted, --unweighted), --joint-noise, --std, --std-lags,
+// --rank-tolerance.
 void add_fit_options(CLI::App* cmd, FitOptions& o);
 
 // --bandwidth, --cutoff, --decimation-cutoff, --decimation (the pipeline's rates, also diagnose's).

@@ -179,6 +179,24 @@ TEST(IdentifyAcceptance, WeightedAndEssentialParameters) {
     EXPECT_TRUE(e["essential"]["final"]["MY2"]["removed"].get<bool>());
 }
 
+// --joint-noise: the WLS weights are 1 / the given noise (the simulation's own), not the residuals' sigma, and
+// the fit still finds the truth; a noise per joint is required, and it contradicts OLS.
+TEST(IdentifyAcceptance, JointNoiseGivesTheWeights) {
+    const std::string log = simulate("noisy1k", kNoisy + " --rate 1000");
+    const json w = identify_json(log, "--joint-noise 0.05,0.01");
+    EXPECT_TRUE(w["weighted"].get<bool>());
+    EXPECT_NEAR(w["joint_weights"][0].get<double>(), 1.0 / 0.05, 1e-9);
+    EXPECT_NEAR(w["joint_weights"][1].get<double>(), 1.0 / 0.01, 1e-9);
+    EXPECT_LT(jacobid::test::relative_error(w, "ZZ1R", 3.496), 0.01);
+    write("robot.yaml", kRobot);
+    const CliRun one = jacobid("identify --robot " + path("robot.yaml") + " --in " + log + " --joint-noise 0.05");
+    EXPECT_NE(one.exit_code, 0);
+    EXPECT_NE(one.err.find("--joint-noise needs one value per joint: 1 given for 2 joints"), std::string::npos) << one.err;
+    const CliRun ols = jacobid("identify --robot " + path("robot.yaml") + " --in " + log + " --joint-noise 0.05,0.01 --weighting ols");
+    EXPECT_NE(ols.exit_code, 0);
+    EXPECT_NE(ols.err.find("--joint-noise"), std::string::npos) << ols.err;
+}
+
 TEST(IdentifyAcceptance, ReportWritesMarkdownAndPlots) {
     const std::string log = simulate("short1k", "--duration 8 --torque-noise 0.05,0.01");
     write("robot.yaml", kRobot);

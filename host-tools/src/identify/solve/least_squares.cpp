@@ -213,6 +213,11 @@ void fill_statistics(const JointFactors& factors, const std::vector<int>& column
 LsSolution solve_least_squares(const JointFactors& factors, const std::vector<std::string>& names, const SolveOptions& options) {
     const int all = static_cast<int>(names.size());
     const std::size_t joints = factors.r.size();
+    // Here, where every command that fits (identify, montecarlo, payload, drive gains) passes: a short list would
+    // weigh the joints past its end by their residuals and the others by the noise.
+    if (!options.joint_noise.empty() && options.joint_noise.size() != joints) {
+        throw InputError(fmt::format("--joint-noise needs one value per joint: {} given for {} joints", options.joint_noise.size(), joints));
+    }
     LsSolution s;
     s.names = names;
     s.x = Eigen::VectorXd::Constant(all, kNaN);

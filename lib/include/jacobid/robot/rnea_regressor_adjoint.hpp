@@ -64,7 +64,7 @@ public:
     void gradient(const Joints& qd, const Links& links, const Weights& H, Joints& gq, Joints& gqd, Joints& gqdd) const noexcept {
         const auto& layout = r_.layout();
         Eigen::Matrix<double, 1, N> dq, dqd, dqdd;
-        pass<1>(
+        pass<1, false>(
             qd, links, [&](int i, int j) { return H.row(i).template segment<kInertialKinds>(layout.column(j, ParameterKind::XX)).transpose(); },
             [&](int j) { return own_weights(j, [&](int column) { return H(j, column); }); }, [](int) { return 0; }, dq, dqd, dqdd);
         gq = dq.transpose(), gqd = dqd.transpose(), gqdd = dqdd.transpose();
@@ -78,7 +78,7 @@ public:
     // n lanes (lane i: tau_i), where gradient() would take n passes.
     void torque_gradient(const Joints& qd, const Links& links, const Parameters& X, Square& dq, Square& dqd, Square& dqdd) const noexcept {
         const auto& layout = r_.layout();
-        pass<N>(
+        pass<N, true>(
             qd, links, [&](int, int j) { return X.template segment<kInertialKinds>(layout.column(j, ParameterKind::XX)); },
             [&](int j) { return own_weights(j, [&](int column) { return X[column]; }); }, [](int i) { return i; }, dq, dqd, dqdd);
     }
@@ -92,10 +92,31 @@ private:
         return {ia >= 0 ? weight(ia) : 0.0, weight(layout.column(j, ParameterKind::FV)), weight(layout.column(j, ParameterKind::FC))};
     }
 
+    // Whether every weight is exactly 0 (that pair then costs nothing): a plain loop, which the compiler inlines,
+    // where (h.array() == 0.0).all() stayed a call of ~150 instructions per pair (3 % of an evaluation, callgrind).
+    static bool all_zero(const Eigen::Matrix<double, kInertialKinds, 1>& h) noexcept {
+        bool zero = true;
+        for (int k = 0; k < kInertialKinds; ++k) zero = zero && h[k] == 0.0;
+        return zero;
+    }
+
+    // K_j h without forming K_j (Regression::wrench_matrix): the force and moment of link j's motion for the
+    // inertial parameters h = (XX, XY, XZ, YY, YZ, ZZ, MX, MY, MZ, M): (wd x s + w x (w x s) + m vd, I wd + w x (I w) + s x vd).
+    static Eigen::Matrix<double, 6, 1> link_wrench(const typename Regression::LinkState& link, const Eigen::Matrix<double, kInertialKinds, 1>& h) noexcept {
+        Eigen::Matrix3d I;
+        I << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
+        const Eigen::Vector3d s = h.template segment<3>(6), Iw = I * link.w;
+        Eigen::Matrix<double, 6, 1> f;
+        f.template head<3>() = link.wd.cross(s) + link.w.cross(link.w.cross(s)) + h[9] * link.vd;
+        f.template tail<3>() = I * link.wd + link.w.cross(Iw) + s.cross(link.vd);
+        return f;
+    }
+
     // One adjoint pass for L contractions: weights(i, j) the 10 inertial weights of carrier i's row on link j's columns,
     // lane(i) the contraction they belong to, own(j) joint j's own (IA, FV, FC) weights (in lane(j)). Out: (l, j) =
-    // d phi_l / d(q_j, qd_j, qdd_j).
-    template <int L, typename PairWeights, typename OwnWeights, typename Lane>
+    // d phi_l / d(q_j, qd_j, qdd_j). kSameForEveryCarrier: weights(i, j) does not depend on i (the torques: X), so
+    // what follows from them alone (K_j h and its base-frame halves) is computed once per link, not once per pair.
+    template <int L, bool kSameForEveryCarrier, typename PairWeights, typename OwnWeights, typename Lane>
     void pass(const Joints& qd, const Links& links, PairWeights weights, OwnWeights own, Lane lane, Eigen::Matrix<double, L, N>& dq,
               Eigen::Matrix<double, L, N>& dqd, Eigen::Matrix<double, L, N>& dqdd) const noexcept {
         using V3 = Eigen::Vector3d;
@@ -113,19 +134,36 @@ private:
         for (int j = 0; j < n; ++j) {
             const auto k = static_cast<std::size_t>(j);
             const auto& link = links[k];
-            const Eigen::Matrix<double, 6, kInertialKinds> K = Regression::wrench_matrix(link);
+            // K_j h for each carrier's h; with the same h for every carrier, that one wrench directly (link_wrench).
+            Eigen::Matrix<double, 6, kInertialKinds> K;
+            if constexpr (!kSameForEveryCarrier) K = Regression::wrench_matrix(link);
             const V3& w = link.w;
+            Eigen::Matrix<double, kInertialKinds, 1> h;
+            V3 a, b;  // R0_j times the halves of f = K_j h, the adjoint of e_ij
+            bool ready = false;
             for (int i = j; i >= 0; i = r_.chain().joint(i).antecedent) {
-                const Eigen::Matrix<double, kInertialKinds, 1> h = weights(i, j);
-                if ((h.array() == 0.0).all()) continue;
+                if (!kSameForEveryCarrier || !ready) {
+                    h = weights(i, j);
+                    if (all_zero(h)) {
+                        if (kSameForEveryCarrier) break;
+                        continue;
+                    }
+                    Eigen::Matrix<double, 6, 1> f;
+                    if constexpr (kSameForEveryCarrier) {
+                        f = link_wrench(link, h);
+                    } else {
+                        f.noalias() = K * h;
+                    }
+                    a.noalias() = link.R0 * f.template head<3>();
+                    b.noalias() = link.R0 * f.template tail<3>();
+                    ready = true;
+                }
                 const auto c = static_cast<std::size_t>(i);
                 const int l = lane(i);
                 const auto& carrier = links[c];
-                const Eigen::Matrix<double, 6, 1> f = K * h;  // the adjoint of e_ij
-                const V3 a = link.R0 * f.template head<3>();
                 V3 ef, en;
                 if (r_.chain().joint(i).type == JointType::Revolute) {
-                    const V3 d = link.o0 - carrier.o0, u = carrier.z0.cross(d), b = link.R0 * f.template tail<3>(), moved = a.cross(carrier.z0);
+                    const V3 d = link.o0 - carrier.o0, u = carrier.z0.cross(d), moved = a.cross(carrier.z0);
                     ef.noalias() = link.R0.transpose() * u;
                     en.noalias() = link.R0.transpose() * carrier.z0;
                     rho[k].col(l) += a.cross(u) + b.cross(carrier.z0);
