@@ -59,6 +59,16 @@ def test_plan_factor_merge_is_identify_in_a_in_b(cli_json, fleet_logs):
     assert right.logs == fleet_logs[4:] and chain.logs == fleet_logs
 
 
+def test_a_factor_travels_exactly(fleet_logs):
+    # What a worker receives (the matrices' non-zero entries and where they are, the plan once per process) merges
+    # to the same bits as the factors it was made from.
+    plan = jacobid.plan(ROBOT, fleet_logs[0], quiet=True)
+    factors = [jacobid.factor(ROBOT, log, plan) for log in fleet_logs[:3]]
+    travelled = [pickle.loads(pickle.dumps(f)) for f in factors]
+    assert all(t.plan.nbytes == plan.nbytes for t in travelled)
+    assert_same_json(jacobid.merge(travelled), jacobid.merge(factors), rel=0, abs=0, ignored=lambda key: key.endswith("seconds"))
+
+
 def test_the_fleets_tree_brackets_as_identify():
     from jacobid._fleet_tree import OrderedTree
 
