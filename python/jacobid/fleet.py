@@ -14,6 +14,7 @@ import re
 from collections import namedtuple
 
 import jacobid
+from jacobid._fleet_tree import OrderedTree
 
 __all__ = ["identify", "montecarlo"]
 
@@ -53,17 +54,6 @@ def _describe_task(result):
     if isinstance(result, Failed):
         return ("failed", result.message)
     return ("ok", result.nbytes)
-
-
-def _tree(client, items):
-    """The ordered tree reduction of futures `items`: adjacent pairs merged level by level (a future, or None)."""
-    level = list(items)
-    if not level:
-        return None
-    while len(level) > 1:
-        level = [client.submit(_merge_task, level[i], level[i + 1], pure=False) if i + 1 < len(level) else level[i]
-                 for i in range(0, len(level), 2)]
-    return level[0]
 
 
 def _plan_on_cluster(client, robot, logs, options, failed):
@@ -163,28 +153,38 @@ def identify(robot, logs, client=None, by_robot=None, *, plan=None, threshold=5.
             plan = _plan_on_cluster(client, robot, logs, options, failed)
         factors = [client.submit(_factor_task, robot, log, plan, pure=False) for log in logs]
         described = [client.submit(_describe_task, f, pure=False) for f in factors]
-        if progress is not None:
-            by_key = {f.key: log for log, f in zip(logs, factors)}
-            pending = set(factors)
-            while pending:
-                done, pending = distributed.wait(pending, timeout=timeout, return_when="FIRST_COMPLETED")
-                for future in done:
-                    progress(by_key[future.key], future)
-        # Only the small descriptions come to the driver; the factors stay on the workers. The trees are built
-        # over the logs that gave a factor, so that they pair them as identify --in pairs those logs.
-        distributed.wait(described, timeout=timeout)
-        statuses = client.gather(described)
+        # Only the small descriptions come to the driver; the factors stay on the workers. As soon as the logs
+        # before one are known, its factor joins the trees (pooled, its robot's), which merge while the other logs
+        # are still factored: over the logs that gave a factor, paired as identify --in pairs those logs.
+        def merge(left, right):
+            return client.submit(_merge_task, left, right, pure=False)
+
+        trees = {"pooled": OrderedTree(merge)}
+        groups = {}
+        statuses = [None] * len(logs)
+        joined = 0  # the logs before this one are in the trees (or in failed)
+        position = {d.key: k for k, d in enumerate(described)}
+        pending = set(described)
+        while pending:
+            done, pending = distributed.wait(pending, timeout=timeout, return_when="FIRST_COMPLETED")
+            done = sorted(done, key=lambda d: position[d.key])
+            for d, status in zip(done, client.gather(done)):
+                statuses[position[d.key]] = status
+                if progress is not None:
+                    progress(logs[position[d.key]], factors[position[d.key]])
+            while joined < len(logs) and statuses[joined] is not None:
+                log, future, (status, _) = logs[joined], factors[joined], statuses[joined]
+                joined += 1
+                if status != "ok":
+                    continue
+                trees["pooled"].add(future)
+                if by_robot is not None:
+                    groups.setdefault(by_robot[log], []).append((log, future))
+                    trees.setdefault(by_robot[log], OrderedTree(merge)).add(future)
         factor_bytes = {}
         for log, (status, value) in zip(logs, statuses):
             (failed if status == "failed" else factor_bytes)[_name(log)] = value
-        good = [(log, f) for log, f, (status, _) in zip(logs, factors, statuses) if status == "ok"]
-        solves = {"pooled": client.submit(_solve_task, _tree(client, [f for _, f in good]), pure=False)}
-        groups = {}
-        if by_robot is not None:
-            for log, future in good:
-                groups.setdefault(by_robot[log], []).append((log, future))
-            for rid, members in groups.items():
-                solves[rid] = client.submit(_solve_task, _tree(client, [f for _, f in members]), pure=False)
+        solves = {key: client.submit(_solve_task, tree.result(), pure=False) for key, tree in trees.items()}
         distributed.wait(list(solves.values()), timeout=timeout)
         keys = list(solves)
         solved = dict(zip(keys, client.gather([solves[k] for k in keys])))

@@ -8,6 +8,9 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <memory>
 #include <set>
 
@@ -130,6 +133,25 @@ std::shared_ptr<Plan> plan_of_state(const py::tuple& state) {
     p->reference = state[3].cast<std::string>();
     p->sample_period = state[4].cast<double>();
     p->grid_period = state[5].cast<double>();
+    return p;
+}
+
+// Plans unpickled in this process, by their pickled state and the text of their robot description: a Dask worker
+// receives the plan with every task and with every factor moved to it, and making it again (the description's
+// YAML and model, the options, the smoothed models) took 2-6 ms each time (docs/fleet.md). A plan does not change
+// once made; one is kept while something holds it.
+std::shared_ptr<Plan> cached_plan_of_state(const py::tuple& state) {
+    static std::map<std::string, std::weak_ptr<Plan>> cache;  // used with the GIL held
+    std::string key = py::module_::import("pickle").attr("dumps")(state).cast<std::string>();
+    if (state.size() == 6 && !state[0].is_none()) {
+        std::ifstream in(path_text(state[0], "robot"), std::ios::binary);
+        if (!in) return plan_of_state(state);  // unreadable: plan_of_state says why
+        key += '\0' + std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    if (const std::shared_ptr<Plan> known = cache[key].lock()) return known;
+    std::shared_ptr<Plan> p = plan_of_state(state);
+    for (auto it = cache.begin(); it != cache.end();) it = it->second.expired() ? cache.erase(it) : std::next(it);
+    cache[key] = p;
     return p;
 }
 
@@ -266,7 +288,7 @@ void bind_fleet(py::module_& m) {
         .def_property_readonly("sample_period", [](const Plan& p) { return p.sample_period; }, "s, of every log of the plan")
         .def_property_readonly("methods", &method_names, "the methods (jacobi, butterworth), one set-up each")
         .def_property_readonly("nbytes", [](const Plan& p) { return p.bytes.size(); }, "bytes of the resolved set-up as it travels")
-        .def(py::pickle(&plan_state, &plan_of_state))
+        .def(py::pickle(&plan_state, &cached_plan_of_state))
         .def("__repr__", [](const Plan& p) {
             return text_of(fmt::format("Plan(methods={}, reference={}, sample_period={:g}, nbytes={})", joined(method_names(p)), p.reference,
                                        p.sample_period, p.bytes.size()));

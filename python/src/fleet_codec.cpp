@@ -12,18 +12,44 @@
 // Every field of every struct below is listed: a field left out would be lost on the way to a worker (the
 // equality of a fleet's result with the command line's, tests/python/test_fleet.py, would then fail).
 namespace nlohmann {
+// A matrix as its size, a bitmap of the entries that are not +0.0 (bit pattern zero) and those entries' raw doubles
+// in column-major order: exact (-0.0, infinities and NaN are kept as they are), and a PUMA 560 factor travels as
+// 0.7 MB instead of 2.3 MB (71 % of its lagged products' entries are zero: a joint's torque does not depend on
+// the links before it, docs/fleet.md).
 template <>
 struct adl_serializer<Eigen::MatrixXd> {
     static void to_json(json& j, const Eigen::MatrixXd& m) {
-        std::vector<std::uint8_t> bytes(static_cast<std::size_t>(m.size()) * sizeof(double));
-        if (!bytes.empty()) std::memcpy(bytes.data(), m.data(), bytes.size());
-        j = {{"rows", m.rows()}, {"cols", m.cols()}, {"data", json::binary(std::move(bytes))}};
+        const auto n = static_cast<std::size_t>(m.size());
+        std::vector<std::uint8_t> mask((n + 7) / 8, 0);
+        std::vector<std::uint8_t> values;
+        values.reserve(n * sizeof(double));
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint64_t bits = 0;
+            std::memcpy(&bits, m.data() + i, sizeof bits);
+            if (bits == 0) continue;
+            mask[i / 8] = static_cast<std::uint8_t>(mask[i / 8] | (1U << (i % 8)));
+            const auto* bytes = reinterpret_cast<const std::uint8_t*>(&bits);
+            values.insert(values.end(), bytes, bytes + sizeof bits);
+        }
+        j = {{"rows", m.rows()}, {"cols", m.cols()}, {"nonzero", json::binary(std::move(mask))}, {"data", json::binary(std::move(values))}};
     }
     static void from_json(const json& j, Eigen::MatrixXd& m) {
         m.resize(j.at("rows").get<Eigen::Index>(), j.at("cols").get<Eigen::Index>());
-        const auto& bytes = j.at("data").get_binary();
-        if (bytes.size() != static_cast<std::size_t>(m.size()) * sizeof(double)) throw jacobid::InputError("factor: a matrix of the wrong size");
-        if (!bytes.empty()) std::memcpy(m.data(), bytes.data(), bytes.size());
+        const auto n = static_cast<std::size_t>(m.size());
+        const auto& mask = j.at("nonzero").get_binary();
+        const auto& values = j.at("data").get_binary();
+        if (mask.size() != (n + 7) / 8) throw jacobid::InputError("factor: a matrix of the wrong size");
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint64_t bits = 0;
+            if ((mask[i / 8] >> (i % 8)) & 1U) {
+                if ((k + 1) * sizeof bits > values.size()) throw jacobid::InputError("factor: a matrix of the wrong size");
+                std::memcpy(&bits, values.data() + k * sizeof bits, sizeof bits);
+                ++k;
+            }
+            std::memcpy(m.data() + i, &bits, sizeof bits);
+        }
+        if (k * sizeof(double) != values.size()) throw jacobid::InputError("factor: a matrix of the wrong size");
     }
 };
 }  // namespace nlohmann

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
-// The bytes a plan and a factor travel as (pickle, hence Dask): CBOR of their fields, the factors' matrices as raw
-// doubles, infinities and NaN kept exactly. A decoded plan or factor gives the same numbers as the original, so a
+// The bytes a plan and a factor travel as (pickle, hence Dask): CBOR of their fields, each matrix as a bitmap of its
+// non-zero entries and their raw doubles (-0.0, infinities and NaN kept exactly). A decoded plan or factor gives the same numbers as the original, so a
 // fleet's workers and the driver compute what one process computes (tests/python/test_fleet.py).
 #include <string>
 #include <vector>

@@ -59,6 +59,31 @@ def test_plan_factor_merge_is_identify_in_a_in_b(cli_json, fleet_logs):
     assert right.logs == fleet_logs[4:] and chain.logs == fleet_logs
 
 
+def test_a_factor_travels_exactly(fleet_logs):
+    # What a worker receives (the matrices' non-zero entries and where they are, the plan once per process) merges
+    # to the same bits as the factors it was made from.
+    plan = jacobid.plan(ROBOT, fleet_logs[0], quiet=True)
+    factors = [jacobid.factor(ROBOT, log, plan) for log in fleet_logs[:3]]
+    travelled = [pickle.loads(pickle.dumps(f)) for f in factors]
+    assert all(t.plan.nbytes == plan.nbytes for t in travelled)
+    assert_same_json(jacobid.merge(travelled), jacobid.merge(factors), rel=0, abs=0, ignored=lambda key: key.endswith("seconds"))
+
+
+def test_the_fleets_tree_brackets_as_identify():
+    from jacobid._fleet_tree import OrderedTree
+
+    def level_by_level(items):  # identify's bracketing: adjacent pairs, then adjacent pairs of those, an odd last one carried up
+        while len(items) > 1:
+            items = [(items[i], items[i + 1]) if i + 1 < len(items) else items[i] for i in range(0, len(items), 2)]
+        return items[0] if items else None
+
+    for n in range(34):
+        tree = OrderedTree(lambda left, right: (left, right))
+        for k in range(n):
+            tree.add(k)
+        assert tree.result() == level_by_level(list(range(n))), n
+
+
 def test_merge_refuses_what_identify_would_not_count(fleet_logs):
     plan = jacobid.plan(ROBOT, fleet_logs[0], quiet=True)
     other = jacobid.plan(ROBOT, fleet_logs[0], quiet=True, bandwidth=3)
