@@ -61,7 +61,7 @@ void merge_segments(SegmentedOutput& total, SegmentedOutput part, std::size_t pl
 // one carried up, whether the pieces come at once or one by one (a binary counter: at most log2(n) partial results
 // held). The merge of stacked triangles is associative only up to rounding, so one bracketing for every count is
 // what makes `identify --in ...` (run_segmented_pipeline) and a fleet's tree reduction on Dask
-// (python/jacobid/fleet.py, the same pairs) agree bit for bit.
+// (python/jacobid/_fleet_tree.py, the same pairs) agree bit for bit.
 class OrderedMerge {
 public:
     explicit OrderedMerge(std::size_t plot_rows) : plot_rows_(plot_rows) {}
