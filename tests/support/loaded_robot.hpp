@@ -43,8 +43,12 @@ inline std::string write_loaded_robot(const std::string& robot, const std::files
         ++found;
     }
     EXPECT_EQ(found, add.size()) << robot << " no longer lists link " << link << "'s ten inertial parameters";
+    std::filesystem::create_directories(dir);
     const std::string path = (dir / "loaded.yaml").string();
-    std::ofstream(path) << jacobid::robot::to_yaml(d);
+    std::ofstream out(path);
+    out << jacobid::robot::to_yaml(d);
+    out.close();
+    EXPECT_TRUE(out.good()) << "could not write " << path;
     return path;
 }
 

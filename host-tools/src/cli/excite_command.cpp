@@ -337,6 +337,7 @@ void run(ExciteOptions o) {
     ds.starts = o.starts;
     ds.threads = o.threads;
     ds.time_limit = o.time_limit;
+    ds.max_evaluations = o.max_evaluations;
     ds.seed = o.seed;
     ds.control_rate = o.rate;
     if (!o.quiet) ds.progress = [](const std::string& line) { fmt::print(stderr, "excite: {}\n", line); };

@@ -20,7 +20,7 @@ struct DesignSettings {
     double time_limit = 60.0;   // s, all starts and rounds together
     std::uint64_t seed = 1;
     double control_rate = 1000.0;  // Hz: the rate at which every sample is checked
-    int max_evaluations = 3000;    // per local run
+    int max_evaluations = 3000;    // per optimizer run (a start, a restart, a tightening round): --max-evaluations
     std::function<void(const std::string&)> progress;  // one line per start and round; null: silent
 };
 

@@ -106,6 +106,7 @@ void check(const ExciteOptions& o) {
     if (o.threads < 1) throw InputError(fmt::format("--threads {}: expected >= 1", o.threads));
     if (o.starts < 1) throw InputError(fmt::format("--starts {}: expected >= 1", o.starts));
     if (!(o.time_limit > 0.0)) throw InputError(fmt::format("--time-limit {}: expected > 0 s", o.time_limit));
+    if (o.max_evaluations < 1) throw InputError(fmt::format("--max-evaluations {}: expected >= 1", o.max_evaluations));
     if (o.samples < 0) throw InputError(fmt::format("--samples {}: expected >= 0 (0: automatic)", o.samples));
     // Fewer samples per period than 2 x harmonics + 1 alias the highest harmonic: the optimizer's constraints
     // are then blind to where the trajectory peaks, and the tightening rounds chase crossings they cannot see.
@@ -194,6 +195,11 @@ void add_excite_options(CLI::App* cmd, ExciteOptions& o_) {
         ->capture_default_str();
     cmd->add_option("--starts", o->starts, "random starts of the optimizer (the best feasible one is kept)")->check(whole_number_from(1))->capture_default_str();
     cmd->add_option("--time-limit", o->time_limit, "s for all starts together")->check(positive_number())->capture_default_str();
+    cmd->add_option("--max-evaluations", o->max_evaluations,
+                    "criterion evaluations per optimizer run (each start, restart and tightening round); when they, not --time-limit, end "
+                    "every run, the design depends on --seed only, not on the machine's speed")
+        ->check(whole_number_in(1, 1e9))
+        ->capture_default_str();
     cmd->add_option("--threads", o->threads, "starts optimized side by side (default: the machine's cores)")->check(whole_number_in(1, 4096))->capture_default_str();
     cmd->add_option("--seed", o->seed, "seed of the random starts")->check(whole_number_from(0))->capture_default_str();
     cmd->add_option("--workspace-frame", o->workspace_frame,

@@ -44,6 +44,7 @@ struct ExciteOptions {
     int starts = 4;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     double time_limit = 60.0;
+    int max_evaluations = 3000;  // per optimizer run (excite/excitation_design.hpp)
     std::uint64_t seed = 1;
     bool quiet = false;
     // Optional workspace box (excite/workspace_box.hpp): all three or none (the point defaults to the origin).

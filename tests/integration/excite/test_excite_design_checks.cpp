@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "cli_refusal.hpp"
@@ -73,6 +76,31 @@ TEST(ExciteDesignChecks, TheCommandRefusesLimitsWithoutRoomAndNamesTheBaseFreque
                    {"--base-frequency 1e-09 Hz: a period of 1e+09 s is 1e+12 samples at --rate 1000 Hz, more than the 1e+08"});
     expect_refused(excite_cli("--duration 1e-3"), {"the automatic base frequency 2000 Hz (--duration 0.001 s in 2 periods): a period of 0.0005 s holds 0.5 "
                                                    "samples at --rate 1000 Hz, fewer than 2 x 3 harmonics + 1 = 7"});
+}
+
+// --max-evaluations: runs that stop on their evaluation budget, not on the time, give the same design again (the
+// starts draw from --seed, whatever the threads), and the budget bounds the evaluations the JSON reports: each start
+// and each tightening round runs the optimizer at most 3 times (a run that stalls restarts from its best iterate).
+TEST(ExciteDesignChecks, AnEvaluationBudgetGivesTheSameDesignAgainAndBoundsTheEvaluations) {
+    const auto design = [](const std::string& name, const std::string& threads) {
+        const std::string csv = (test::scratch_directory() / (name + ".csv")).string(), json = (test::scratch_directory() / (name + ".json")).string();
+        const auto r = test::run_command(std::string(JACOBID_EXECUTABLE) + " excite --quiet --robot " + kTwoLink +
+                                         " --duration 10 --velocity-limit 2 --acceleration-limit 8 --starts 3 --time-limit 600 --max-evaluations 40 --threads " +
+                                         threads + " -o " + csv + " --json " + json);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        std::ifstream in(csv);
+        std::stringstream text;
+        text << in.rdbuf();
+        return std::make_pair(text.str(), nlohmann::json::parse(std::ifstream(json)));
+    };
+    const auto [one, one_json] = design("budget_one_thread", "1");
+    const auto [two, two_json] = design("budget_two_threads", "2");
+    EXPECT_FALSE(one.empty());
+    EXPECT_EQ(one, two);
+    const int rounds = one_json["tightening_rounds"].get<int>();
+    EXPECT_LE(one_json["evaluations"].get<int>(), 40 * 3 * (3 + rounds));
+    EXPECT_GT(one_json["evaluations"].get<int>(), 3);  // every start evaluated
+    expect_refused(excite_cli("--max-evaluations 0"), {"--max-evaluations: expected a whole number in [1, 1e+09], got '0'"});
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "cli_refusal.hpp"
+#include "command_cache.hpp"
 #include "excite/information_criterion.hpp"
 #include "excite/payload_target.hpp"
 #include "excite_test_support.hpp"
@@ -84,15 +85,18 @@ struct Designs {
 };
 
 // The arm's own design and the payload design of the same 10 s, limits and noise (the payload's with --compare the arm's).
+// Made once for both test processes (tests/support/command_cache.hpp). The optimizer stops on an evaluation budget,
+// not a time limit, so the designs are the same on any machine and in the sanitizer build; 300 evaluations per run
+// reach within 1 of the log det a 20 s time limit reached (docs/excite.md).
 const Designs& designs() {
     static const Designs d = [] {
-        Designs r{scratch("payload.csv"), scratch("arm.csv"), {}};
-        const std::string common = kJacobid + " excite --quiet --robot " + kUr5 + kLimits + " --starts 2 --threads 2 --time-limit 20";
-        const auto arm = run_command(common + " --duration 10 -o " + r.arm_csv);
-        EXPECT_EQ(arm.exit_code, 0) << arm.err;
-        const auto payload = run_command(common + kPayload + " --compare " + r.arm_csv + " -o " + r.payload_csv + " --json " + scratch("payload.json"));
-        EXPECT_EQ(payload.exit_code, 0) << payload.err;
-        if (payload.exit_code == 0) r.payload = nlohmann::json::parse(std::ifstream(scratch("payload.json")));
+        const std::string common = kJacobid + " excite --quiet --robot " + kUr5 + kLimits + " --starts 2 --threads 2 --time-limit 600 --max-evaluations 300";
+        const auto c = test::cached_command(common + " --duration 10 -o {dir}/arm.csv && " + common + kPayload +
+                                                " --compare {dir}/arm.csv -o {dir}/payload.csv --json {dir}/payload.json",
+                                            kJacobid, {kUr5});
+        EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
+        Designs r{(c.dir / "payload.csv").string(), (c.dir / "arm.csv").string(), {}};
+        if (c.result.exit_code == 0) r.payload = nlohmann::json::parse(std::ifstream(c.dir / "payload.json"));
         return r;
     }();
     return d;
