@@ -268,7 +268,7 @@ TEST(ExciteCli, PriorFromIdentifyCompareAndTheWarningWhenTheDesignLoses) {
     ASSERT_EQ(run_command(kJacobid + " simulate --quiet --robot " + kTwoLink + " --duration 120 --velocity-limit 2 --acceleration-limit 8 -o " + longer).exit_code, 0);
     const std::string json_path = scratch("design.json"), traj = scratch("design.csv");
     const auto r = run_command(kJacobid + " excite --robot " + kTwoLink + " --duration 20 --velocity-limit 2 --acceleration-limit 8 --prior " + prior +
-                               " --compare " + longer + " --time-limit 10 --starts 2 -o " + traj + " --json " + json_path);
+                               " --compare " + longer + " --time-limit 600 --max-evaluations 200 --starts 2 -o " + traj + " --json " + json_path);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(json_path));
     EXPECT_EQ(j["criterion"], "d-optimal");
@@ -288,11 +288,11 @@ TEST(ExciteCli, PriorFromIdentifyCompareAndTheWarningWhenTheDesignLoses) {
     EXPECT_NE(r.err.find("excite: warning: the design is worse than --compare " + longer), std::string::npos) << r.err;
     // The text table lists every base parameter with both stds.
     for (const auto& name : j["parameters"]) EXPECT_NE(r.err.find("\n" + name.get<std::string>() + " "), std::string::npos) << name;
-    // The first design's table given to --compare (of another design: the optimizer is time-limited) predicts what
+    // The first design's table given to --compare (of another design, with one start) predicts what
     // the first design predicted from its own samples (the CSV holds them to 17 digits).
     const std::string same = scratch("same.json");
     const auto s = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " --duration 20 --velocity-limit 2 --acceleration-limit 8 --prior " +
-                               prior + " --compare " + traj + " --time-limit 5 --starts 1 -o " + scratch("same.csv") + " --json " + same);
+                               prior + " --compare " + traj + " --time-limit 600 --max-evaluations 200 --starts 1 -o " + scratch("same.csv") + " --json " + same);
     ASSERT_EQ(s.exit_code, 0) << s.err;
     const nlohmann::json sj = nlohmann::json::parse(std::ifstream(same));
     EXPECT_NEAR(sj["compare"]["predicted"]["log_det_information"].get<double>(), j["predicted"]["log_det_information"].get<double>(), 1e-9);
