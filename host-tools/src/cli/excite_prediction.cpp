@@ -60,9 +60,9 @@ ExcitePrior resolve_prior(const robot::RobotDescription& robot, const robot::Rob
 }
 
 CompareMotion read_compare_motion(const std::string& path, const robot::RobotDescription& robot, const robot::RobotModel& model,
-                                  const LogFormatOptions& format, bool quiet) {
+                                  const options::LogFormatOptions& format, bool quiet) {
     const int n = model.joint_count();
-    const io::CsvTable table = format.file.empty() ? io::read_csv(path) : read_log_table(path, format, robot_column_names(robot, "t"), quiet);
+    const io::CsvTable table = format.file.empty() ? io::read_csv(path) : read_log_table(path, format, options::robot_column_names(robot, "t"), quiet);
     CompareMotion c;
     if (format.file.empty() && has_trajectory_columns(table, n)) {
         for (int j = 1; j <= n; ++j) {

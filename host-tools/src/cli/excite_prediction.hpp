@@ -40,7 +40,7 @@ struct CompareMotion {
     std::string how;        // "trajectory table" or "log, differentiated like identify (...)"
 };
 CompareMotion read_compare_motion(const std::string& path, const robot::RobotDescription& robot, const robot::RobotModel& model,
-                                  const LogFormatOptions& format, bool quiet);
+                                  const options::LogFormatOptions& format, bool quiet);
 
 // One criterion figure for a predicted motion (lower is better), comparable between two motions:
 // d-optimal -log det A, a-relative log sum C_kk / s_k^2, e-relative log max; cond/logdet: log of the worst relative std.

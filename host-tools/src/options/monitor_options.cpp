@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include "core/errors.hpp"
 #include "options/option_checks.hpp"
 #include "options/output_file.hpp"
 #include "options/robot_files.hpp"

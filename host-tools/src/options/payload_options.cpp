@@ -6,6 +6,7 @@
 
 #include <optional>
 
+#include "core/errors.hpp"
 #include "options/option_checks.hpp"
 #include "identify/plan/log_columns.hpp"
 #include "io/distinct_inputs.hpp"

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/core.h>
+
+#include "core/errors.hpp"
 #include "identify/pipeline/pipeline_fold_stages.hpp"
 #include "signal/fft_convolver.hpp"
 #include "signal/kernel_design_checked.hpp"
