@@ -186,7 +186,7 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
         e.std_dev = std::sqrt(score.variance) / (0.5 * curvature);
     } else {
         // The rows were not kept (a log whose rows exceed keep.max_values): the independent-rows std, which the
-        // rows' serial correlation makes about 2 x too small (std_lags 0 says so; docs/method.md).
+        // rows' serial correlation makes about 2 x too small (std_lags 0; docs/method.md).
         const double dof = static_cast<double>(equations) - static_cast<double>(parameters) - 1.0;
         const double sigma2 = dof > 0.0 ? e.rss[best] / dof : std::numeric_limits<double>::infinity();
         e.std_dev = curvature > 0.0 ? std::sqrt(2.0 * sigma2 / curvature) : std::numeric_limits<double>::infinity();

@@ -46,7 +46,9 @@ struct TorqueDelaySettings {
 struct TorqueDelayEstimate {
     double delay = 0.0;        // s, the least-squares estimate
     double std_dev = 0.0;      // s
-    int std_lags = 0;          // Bartlett lags of std_dev's long-run variance (0: rows taken as independent)
+    // Bartlett lags of std_dev's long-run variance (0: rows taken as independent). Not in the JSON yet: the
+    // fleet's plan codec (python/src/fleet_codec.cpp) would have to carry it for the fleet's JSON to match.
+    int std_lags = 0;
     bool compensated = false;  // the identification used the shifted torques
     bool at_bound = false;     // the minimum lies at +-max_delay: the true offset may be larger
     int evaluations = 0;       // identifications run

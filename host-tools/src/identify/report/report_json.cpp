@@ -99,7 +99,7 @@ json torque_delay_json(const TorqueDelayResult& d) {
     return {{"seconds", d.estimate.delay},      {"std", finite_json(d.estimate.std_dev)},
             {"estimated", !d.given},           {"compensated", d.estimate.compensated},
             {"at_bound", d.estimate.at_bound}, {"applied_seconds", d.applied()},
-            {"samples_used", d.estimate.samples_used}, {"std_lags", d.estimate.std_lags}};
+            {"samples_used", d.estimate.samples_used}};
 }
 
 json presliding_json(const PreslidingDisplacementChoice& p) {
