@@ -14,8 +14,18 @@ using Section = yaml::YamlSection<InputError>;
 
 double non_negative(Section& s, const YAML::Node& n, const std::string& key, const std::string& unit) {
     const double v = s.number_element(n, key, unit);
-    if (!(v >= 0.0)) s.fail(n, key, fmt::format("must be >= 0 ({}), got {}", unit, v));
+    if (!(v >= 0.0)) s.fail(n, key, unit.empty() ? fmt::format("must be >= 0, got {}", v) : fmt::format("must be >= 0 ({}), got {}", unit, v));
     return v;
+}
+
+// `key`: one number >= 0 for every joint, or a list of one per joint.
+std::vector<double> one_or_per_joint(Section& s, const std::string& key, const std::string& unit, std::size_t joints) {
+    const YAML::Node n = s.get(key);
+    std::vector<double> values;
+    if (!n.IsSequence()) return {non_negative(s, n, key, unit)};
+    if (n.size() != joints) s.fail(key, fmt::format("must be one number or a list of {} (one per joint)", joints));
+    for (const auto& v : n) values.push_back(non_negative(s, v, key, unit));
+    return values;
 }
 
 }  // namespace
@@ -40,20 +50,10 @@ MonitorFile parse_monitor_file(const std::string& text, const std::string& sourc
         if (!(f.estimator.xi >= -1.0 && f.estimator.xi <= 1.0)) e.fail("xi", "must be in [-1, 1]");
         e.reject_unknown();
     }
-    if (s.has("standing_velocity")) {
-        const YAML::Node n = s.get("standing_velocity");
-        f.standing_velocity.clear();
-        if (n.IsSequence()) {
-            if (n.size() != joints) s.fail("standing_velocity", fmt::format("must be one number or a list of {} (one per joint)", joints));
-            for (const auto& v : n) f.standing_velocity.push_back(non_negative(s, v, "standing_velocity", "rad/s"));
-        } else {
-            f.standing_velocity.push_back(non_negative(s, n, "standing_velocity", "rad/s"));
-        }
-    }
+    if (s.has("standing_velocity")) f.standing_velocity = one_or_per_joint(s, "standing_velocity", "rad/s", joints);
     f.standing_time = s.number("standing_time", f.standing_time, "s");
     if (!(f.standing_time >= 0.0)) s.fail("standing_time", "must be >= 0 s");
-    f.band_margin = s.number("band_margin", f.band_margin);
-    if (!(f.band_margin >= 0.0)) s.fail("band_margin", "must be >= 0");
+    if (s.has("band_margin")) f.band_margin = one_or_per_joint(s, "band_margin", "", joints);
     f.false_alarm_rate = s.number("false_alarm_rate", f.false_alarm_rate);
     if (!(f.false_alarm_rate >= 0.0 && f.false_alarm_rate < 1.0)) s.fail("false_alarm_rate", "must be in [0, 1) (per sample)");
     f.margin = s.number("margin", f.margin);
@@ -105,7 +105,12 @@ std::string to_yaml(const MonitorFile& f) {
         out << YAML::Flow << f.standing_velocity;
     }
     out << YAML::Key << "standing_time" << YAML::Value << f.standing_time;
-    out << YAML::Key << "band_margin" << YAML::Value << f.band_margin;
+    out << YAML::Key << "band_margin" << YAML::Value;
+    if (f.band_margin.size() == 1) {
+        out << f.band_margin.front();
+    } else {
+        out << YAML::Flow << f.band_margin;
+    }
     out << YAML::Key << "false_alarm_rate" << YAML::Value << f.false_alarm_rate;
     out << YAML::Key << "margin" << YAML::Value << f.margin;
     out << YAML::Key << "hold" << YAML::Value << f.hold;

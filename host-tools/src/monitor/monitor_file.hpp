@@ -6,7 +6,8 @@
 //   estimator: {type: observer, gain: 100, velocity_window: 0.02, acceleration_window: 0.04, measured_velocity: true}
 //   standing_velocity: 0.02         # rad/s: a joint slower than this ...
 //   standing_time: 0.1              # s: ... for this long stands (one value or one per joint)
-//   band_margin: 0.2                # a standing joint's band is (1 + band_margin) x its Coulomb level (optional, 0)
+//   band_margin: 0.2                # a standing joint's band is (1 + band_margin) x its Coulomb level (optional, 0;
+//                                   # one value or one per joint)
 //   false_alarm_rate: 1e-4          # per sample, the calibration's (1 - a) quantile
 //   margin: 0.25                    # thresholds = (1 + margin) x quantile
 //   hold: 0.05                      # s: an event ends this long after its last sample in contact
@@ -29,7 +30,7 @@ struct MonitorFile {
     EstimatorSettings estimator;
     std::vector<double> standing_velocity{0.02};
     double standing_time = 0.1;  // s below the standing velocity before a joint stands
-    double band_margin = 0.0;    // a standing joint's band is (1 + band_margin) x its Coulomb level (break-away)
+    std::vector<double> band_margin{0.0};  // a standing joint's band is (1 + band_margin) x its Coulomb level (break-away); one or one per joint
     double false_alarm_rate = 1e-4;
     double margin = 0.25;
     double hold = 0.05;

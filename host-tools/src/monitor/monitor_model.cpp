@@ -35,7 +35,7 @@ robot::RobotDescription chain_description(robot::RobotDescription d) {
 }  // namespace
 
 MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period,
-                                double band_margin) {
+                                const std::vector<double>& band_margin) {
     MonitorModel m;
     m.description = robot::load_robot_description(path);
     const robot::RobotDescription& d = m.description;
@@ -49,6 +49,9 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
     const int n = serial->joint_count();
     if (!standing_velocity.empty() && standing_velocity.size() != 1 && static_cast<int>(standing_velocity.size()) != n) {
         throw InputError(fmt::format("--standing-velocity: {} values for {} joints (expected 1 or {})", standing_velocity.size(), n, n));
+    }
+    if (!band_margin.empty() && band_margin.size() != 1 && static_cast<int>(band_margin.size()) != n) {
+        throw InputError(fmt::format("--band-margin: {} values for {} joints (expected 1 or {})", band_margin.size(), n, n));
     }
     const auto regressor = robot::make_rnea_regressor<kJoints>(serial->config());
     const Eigen::VectorXd standard = robot::standard_values(chain, *serial);
@@ -77,8 +80,8 @@ MonitorModel load_monitor_model(const std::string& path, const std::vector<doubl
         if (!standing_velocity.empty()) p.standing_velocity = standing_velocity[standing_velocity.size() == 1 ? 0 : static_cast<std::size_t>(j)];
         p.standing_samples = std::max(1, static_cast<int>(std::lround(standing_time / sample_period)));
         if (!(p.standing_velocity >= 0.0)) throw InputError(fmt::format("--standing-velocity: {} rad/s must be >= 0", p.standing_velocity));
-        if (!(band_margin >= 0.0)) throw InputError(fmt::format("--band-margin: {} must be >= 0", band_margin));
-        p.band_margin = band_margin;
+        if (!band_margin.empty()) p.band_margin = band_margin[band_margin.size() == 1 ? 0 : static_cast<std::size_t>(j)];
+        if (!(p.band_margin >= 0.0)) throw InputError(fmt::format("--band-margin: {} must be >= 0", p.band_margin));
         m.friction.set_joint(j, p);
     }
     return m;

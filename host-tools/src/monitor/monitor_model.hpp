@@ -28,8 +28,9 @@ struct MonitorModel {
 
 // InputError naming the file for a description that is not a serial robot (mdh, urdf) or is too large.
 // `standing_velocity`: rad/s per joint below which a joint stands (one value for all, or one per joint),
-// for at least `standing_time` s of samples `sample_period` apart; its band is (1 + band_margin) x its Coulomb level.
+// for at least `standing_time` s of samples `sample_period` apart; its band is (1 + band_margin) x its Coulomb level
+// (one band margin for all, or one per joint).
 MonitorModel load_monitor_model(const std::string& path, const std::vector<double>& standing_velocity, double standing_time, double sample_period,
-                                double band_margin = 0.0);
+                                const std::vector<double>& band_margin = {0.0});
 
 }  // namespace jacobid::monitor

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -105,9 +106,13 @@ std::string calibration_text(const std::vector<JointCalibration>& joints, const 
         s += fmt::format("{:>5}  {:<16}  {:>10.3f}  {:>10.3f}  {:>9.3f}  {:>9}  {:>9}{}\n", j + 1, robot.joints[j].name, c.thresholds.moving, c.thresholds.standing,
                          c.max_band, c.moving_samples, c.standing_samples, c.note.empty() ? "" : "  (" + c.note + ")");
     }
-    s += monitor.band_margin > 0.0 ? fmt::format("N.m; band: the joint's Coulomb level x {:g} (band margin), standing: beyond it, so the smallest contact "
-                                                 "told at rest is band + standing\n", 1.0 + monitor.band_margin)
-                                   : "N.m; standing: beyond the joint's Coulomb band, so the smallest contact told at rest is band + standing\n";
+    const auto& bm = monitor.band_margin;
+    const bool widened = std::any_of(bm.begin(), bm.end(), [](double b) { return b > 0.0; });
+    std::string factors;
+    for (const double b : bm) factors += fmt::format("{}{:g}", factors.empty() ? "" : ", ", 1.0 + b);
+    s += widened ? fmt::format("N.m; band: the joint's Coulomb level x {} (band margin{}), standing: beyond it, so the smallest contact "
+                               "told at rest is band + standing\n", factors, bm.size() > 1 ? ", per joint" : "")
+                 : "N.m; standing: beyond the joint's Coulomb band, so the smallest contact told at rest is band + standing\n";
     return s;
 }
 
@@ -115,7 +120,11 @@ nlohmann::json calibration_json(const std::vector<JointCalibration>& joints, con
     nlohmann::json j;
     j["false_alarm_rate"] = monitor.false_alarm_rate;
     j["margin"] = monitor.margin;
-    j["band_margin"] = monitor.band_margin;
+    if (monitor.band_margin.size() == 1) {
+        j["band_margin"] = monitor.band_margin.front();
+    } else {
+        j["band_margin"] = monitor.band_margin;
+    }
     j["estimator"] = to_string(monitor.estimator.estimator);
     j["logs"] = monitor.calibrated_from;
     j["joints"] = nlohmann::json::array();

@@ -74,7 +74,8 @@ void add_monitor_calibrate_options(CLI::App* cal, MonitorCalibrateOptions& c) {
         ->check(non_negative_number())
         ->capture_default_str();
     cal->add_option("--band-margin", c.file.band_margin,
-                    "a standing joint's band is (1 + band margin) x its Coulomb level: it breaks away above its sliding friction")
+                    "a standing joint's band is (1 + band margin) x its Coulomb level: it breaks away above its sliding friction; one value or one per joint")
+        ->delimiter(',')
         ->check(non_negative_number())
         ->capture_default_str();
     cal->add_option("--confirm", c.file.confirm, "consecutive samples in contact before an event starts (1: at once; more rejects one-sample glitches)")

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "identify/solve/least_squares.hpp"
 #include "identify/solve/residual_correlation.hpp"
@@ -103,6 +104,41 @@ TEST(JointHac, StdMatchesTheSpreadWithUnequalCorrelatedNoise) {
     double worst = 1.0;
     for (int p = 0; p < params; ++p) worst = std::max({worst, pooled_std[p] / ols_spread[p], ols_spread[p] / pooled_std[p]});
     EXPECT_GT(worst, 1.25);
+}
+
+// The torque delay's score variance (torque_delay_std.hpp): Bartlett's sum against the double sum it stands
+// for, sum_s sum_t max(0, 1 - |s - t| / (L + 1)) g_s g_t, written out pair by pair.
+TEST(BartlettLongRunVariance, EqualsTheWeightedDoubleSum) {
+    std::mt19937 rng(3);
+    std::normal_distribution<double> n(0, 1);
+    std::vector<double> g(37);
+    for (double& x : g) x = n(rng) + 0.3;
+    for (const int lags : {0, 1, 3, 10, 36, 80}) {
+        double expected = 0.0;
+        for (std::size_t s = 0; s < g.size(); ++s) {
+            for (std::size_t t = 0; t < g.size(); ++t) {
+                const double gap = std::abs(static_cast<double>(s) - static_cast<double>(t));
+                expected += std::max(0.0, 1.0 - gap / (lags + 1.0)) * g[s] * g[t];
+            }
+        }
+        EXPECT_NEAR(bartlett_long_run_variance(g, lags), expected, 1e-12 * std::abs(expected) + 1e-12) << lags << " lags";
+    }
+}
+
+// An AR(1) series g_t = phi g_{t-1} + u_t: Var(sum g) / n tends to sigma_u^2 / (1 - phi)^2 = 4 (phi = 0.5), which
+// 200 lags recover up to Bartlett's bias (2 / 201) sum_l l gamma_l = 0.7 % and the estimate's own spread,
+// sqrt((4 / 3) 200 / 400 000) = 2.6 %. Without lags it is the variance, 4 / 3.
+TEST(BartlettLongRunVariance, RecoversTheLongRunVarianceOfAnAr1Series) {
+    const double phi = 0.5;
+    const std::size_t n = 400'000;
+    std::mt19937 rng(5);
+    std::normal_distribution<double> u(0, 1);
+    std::vector<double> g(n);
+    double x = 0.0;
+    for (double& v : g) v = x = phi * x + u(rng);
+    const double rows = static_cast<double>(n);
+    EXPECT_NEAR(bartlett_long_run_variance(g, 200) / rows, 1.0 / ((1.0 - phi) * (1.0 - phi)), 0.08 * 4.0);
+    EXPECT_NEAR(bartlett_long_run_variance(g, 0) / rows, 1.0 / (1.0 - phi * phi), 0.02 * 4.0 / 3.0);
 }
 
 }  // namespace

@@ -168,6 +168,7 @@ TEST(MonitorRefusals, BadInputIsOneLineNamingWhatWasExpected) {
         {" monitor calibrate --robot " + kRobot + " --in " + free + " --out " + scratch("m.yaml") + " --false-alarm-rate 1.5", "--false-alarm-rate"},
         {" monitor calibrate --robot " + kRobot + " --in " + free + " --out " + scratch("m.yaml") + " --estimator kalman", "--estimator"},
         {" monitor calibrate --robot " + kRobot + " --in " + free + " --out " + scratch("m.yaml") + " --band-margin -1", "--band-margin"},
+        {" monitor calibrate --robot " + kRobot + " --in " + free + " --out " + scratch("m.yaml") + " --band-margin 0.1,0.2", "--band-margin: 2 values for 6 joints"},
         {" simulate --robot " + kRobot + " --out " + scratch("x.csv") + " --effect external:joint=2,start=1,value=3", "external needs 'duration'"},
         {" simulate --robot " + kRobot + " --out " + scratch("x.csv") + " --effect external:joint=2,start=1,duration=1,value=nan", "'nan' is not a finite number"},
     };

@@ -91,7 +91,7 @@ TEST(MonitorFile, RoundTripsAndRefusesWhatItCannotUse) {
     f.estimator.xi = 0.5;
     f.standing_velocity = {0.01, 0.02};
     f.confirm = 2;
-    f.band_margin = 0.2;
+    f.band_margin = {0.2, 0.4};
     f.thresholds = {{1.5, 0.25}, {3.0, 0.0}};
     f.calibrated_from = {"a.csv", "b.csv"};
     const MonitorFile g = parse_monitor_file(to_yaml(f), "m.yaml", 2);
@@ -100,8 +100,10 @@ TEST(MonitorFile, RoundTripsAndRefusesWhatItCannotUse) {
     EXPECT_DOUBLE_EQ(g.estimator.xi, 0.5);
     EXPECT_EQ(g.standing_velocity, f.standing_velocity);
     EXPECT_EQ(g.confirm, 2);
-    EXPECT_DOUBLE_EQ(g.band_margin, 0.2);
-    EXPECT_DOUBLE_EQ(parse_monitor_file("joints: [{moving: 1, standing: 0}, {moving: 1, standing: 0}]\n", "m.yaml", 2).band_margin, 0.0);  // optional
+    EXPECT_EQ(g.band_margin, f.band_margin);  // one per joint
+    EXPECT_EQ(parse_monitor_file("joints: [{moving: 1, standing: 0}, {moving: 1, standing: 0}]\n", "m.yaml", 2).band_margin, std::vector<double>{0.0});  // optional
+    EXPECT_EQ(parse_monitor_file("band_margin: 0.2\njoints: [{moving: 1, standing: 0}, {moving: 1, standing: 0}]\n", "m.yaml", 2).band_margin,
+              std::vector<double>{0.2});  // one for all
     ASSERT_EQ(g.thresholds.size(), 2u);
     EXPECT_DOUBLE_EQ(g.thresholds[0].moving, 1.5);
     EXPECT_DOUBLE_EQ(g.thresholds[0].standing, 0.25);
@@ -118,6 +120,8 @@ TEST(MonitorFile, RoundTripsAndRefusesWhatItCannotUse) {
     EXPECT_NE(error_of("joints: [{moving: 1, standing: 0}, {moving: 1}]\n").find("joints[1].standing: missing"), std::string::npos);
     EXPECT_NE(error_of("estimator: {type: kalman}\njoints: [{moving: 1, standing: 0}, {moving: 1, standing: 0}]\n").find("estimator.type: expected observer or residual"), std::string::npos);
     EXPECT_NE(error_of("band_margin: -0.1\njoints: [{moving: 1, standing: 0}, {moving: 1, standing: 0}]\n").find("band_margin: must be >= 0"), std::string::npos);
+    EXPECT_NE(error_of("band_margin: [0.1, 0.2, 0.3]\njoints: [{moving: 1, standing: 0}, {moving: 1, standing: 0}]\n").find("band_margin: must be one number or a list of 2"),
+              std::string::npos);
     EXPECT_NE(error_of("gain: 3\njoints: [{moving: 1, standing: 0}, {moving: 1, standing: 0}]\n").find("gain"), std::string::npos);
 }
 

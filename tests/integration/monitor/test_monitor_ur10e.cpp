@@ -29,7 +29,7 @@ using jacobid::test::run_command;
 
 const std::string kJacobid = JACOBID_EXECUTABLE;
 // examples/07_monitor_ur10e.sh's calibration (docs/real-data.md, "Break-away and ringing").
-const std::string kCalibration = "--false-alarm-rate 1e-4 --margin 0.5 --confirm 2 --standing-time 0.3 --band-margin 0.2";
+const std::string kCalibration = "--false-alarm-rate 1e-4 --margin 0.5 --confirm 2 --standing-time 0.3 --band-margin 0.2,0.2,0.4,0.2,0.2,0.2";
 constexpr double kGains[6] = {10.0, 10.6956, 8.4566, 9.0029, 9.48, 10.1232};  // N.m/A, the README's
 
 struct Ur10eFiles {

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
+#include "identify/friction/torque_delay_std.hpp"
 #include "identify/pipeline/row_collector.hpp"
 #include "identify/pipeline/running_qr.hpp"
 #include "identify/validation/validation.hpp"
@@ -132,13 +134,14 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
     std::size_t equations = 0;
     int parameters = 0;
     JointFactors shifted;
+    std::map<int, LsSolution> fits;  // by shift in samples: the std needs the minimum's and its neighbours'
     const auto rss_at = [&](double d) {
         ++e.evaluations;
         const int samples = static_cast<int>(std::lround(d / h));
         const JointFactors& factors = d == 0.0                        ? first.factors
                                       : shifted_factors(rows, samples, shifted) ? shifted
                                                                        : (shifted = run_pipeline(model, shift_torques(log, d).log, quiet).factors);
-        const LsSolution s = solve_least_squares(factors, names, solve);
+        const LsSolution& s = fits[samples] = solve_least_squares(factors, names, solve);
         equations = s.equations;
         parameters = s.identified_count;
         return s.residual_norm * s.residual_norm;
@@ -172,9 +175,22 @@ TorqueDelayEstimate estimate_torque_delay(const robot::RobotModel& model, const 
             curvature = den / (h * h);
         }
     }
-    const double dof = static_cast<double>(equations) - static_cast<double>(parameters) - 1.0;
-    const double sigma2 = dof > 0.0 ? e.rss[best] / dof : std::numeric_limits<double>::infinity();
-    e.std_dev = curvature > 0.0 ? std::sqrt(2.0 * sigma2 / curvature) : std::numeric_limits<double>::infinity();
+    DelayScoreVariance score;
+    if (curvature > 0.0) {
+        const int shift = static_cast<int>(std::lround(e.grid[best] / h));
+        const ShiftedFit around[3] = {{shift - 1, &fits.at(shift - 1)}, {shift, &fits.at(shift)}, {shift + 1, &fits.at(shift + 1)}};
+        score = torque_delay_score_variance(rows, around, h, e.delay, curvature);
+    }
+    if (score.rows > 0) {
+        e.std_lags = score.lags;
+        e.std_dev = std::sqrt(score.variance) / (0.5 * curvature);
+    } else {
+        // The rows were not kept (a log whose rows exceed keep.max_values): the independent-rows std, which the
+        // rows' serial correlation makes about 2 x too small (std_lags 0; docs/method.md).
+        const double dof = static_cast<double>(equations) - static_cast<double>(parameters) - 1.0;
+        const double sigma2 = dof > 0.0 ? e.rss[best] / dof : std::numeric_limits<double>::infinity();
+        e.std_dev = curvature > 0.0 ? std::sqrt(2.0 * sigma2 / curvature) : std::numeric_limits<double>::infinity();
+    }
     e.compensated = std::abs(e.delay) > settings.significance * e.std_dev;
     return e;
 }

@@ -2,6 +2,7 @@
 #include "identify/solve/residual_correlation.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace jacobid::identify {
 
@@ -55,6 +56,23 @@ double long_run_variance_factor(const std::vector<Eigen::MatrixXd>& gamma, const
     for (std::size_t l = 1; l <= rho.size(); ++l) f += 2.0 * (1.0 - static_cast<double>(l) / (lags + 1.0)) * rho[l - 1];
     // Bartlett weights make the estimate a non-negative spectral estimate; a floor guards rounding.
     return std::max(f, 1e-3);
+}
+
+double bartlett_long_run_variance(const std::vector<double>& g, int lags) {
+    const std::size_t n = g.size();
+    double sum = 0.0;
+    for (std::size_t t = 0; t < n; ++t) sum += g[t] * g[t];
+    const int max_lag = std::max(lags, 0);
+    for (int l = 1; l <= max_lag && static_cast<std::size_t>(l) < n; ++l) {
+        double gamma = 0.0;
+        for (std::size_t t = static_cast<std::size_t>(l); t < n; ++t) gamma += g[t] * g[t - static_cast<std::size_t>(l)];
+        sum += 2.0 * (1.0 - static_cast<double>(l) / (max_lag + 1.0)) * gamma;
+    }
+    return std::max(sum, 0.0);
+}
+
+int newey_west_lags(std::size_t rows) {
+    return static_cast<int>(std::floor(4.0 * std::pow(static_cast<double>(rows) / 100.0, 2.0 / 9.0)));
 }
 
 }  // namespace jacobid::identify

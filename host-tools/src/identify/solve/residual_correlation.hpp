@@ -45,4 +45,15 @@ double long_run_variance_factor(const std::vector<Eigen::MatrixXd>& gamma, const
 // The lag-l residual autocorrelations rho_1..rho_L (for reports and tests).
 std::vector<double> residual_autocorrelation(const std::vector<Eigen::MatrixXd>& gamma, const Eigen::VectorXd& u, double gamma0);
 
+// Newey-West estimate of Var(sum_t g_t) for a serially correlated series g (a score, zero-mean by
+// construction, so not centred): sum_{|l| <= L} (1 - |l| / (L + 1)) Gamma_l with Gamma_l = sum_t g_t g_{t-l}.
+// Bartlett weights keep it non-negative; L = 0 is the independent-rows sum of squares. The torque delay's std
+// uses it on its per-row score (docs/method.md, "Torque delay").
+double bartlett_long_run_variance(const std::vector<double>& g, int lags);
+
+// Newey and West's (1994) lag rule for Bartlett weights, floor(4 (n / 100)^(2/9)) for n rows: 4 lags for
+// 100 to 272 rows, 7 for 2 000. The estimate's downward bias grows with lags / rows and its spread with
+// sqrt(lags / rows), so a score of a few hundred rows needs few lags (docs/method.md, "Torque delay").
+int newey_west_lags(std::size_t rows);
+
 }  // namespace jacobid::identify
