@@ -27,6 +27,9 @@
 #    end-to-end tests (each two time-limited designs of 20 s, whose comparison needs the evaluations a native run
 #    gets, and 8 simulated runs through jacobid payload: 33-47 s natively): its criterion and projection run
 #    sanitized in ExcitePayload.PayloadColumns..., its options in ExcitePayload.BadPayloadOptions....
+#    And TorqueDelay.StdMatchesTheSpreadOnDelayFreeLogs (40 simulated logs, each searched for a delay: 19 s
+#    natively): the delay's search and its Newey-West std run sanitized in the other TorqueDelay.* tests and in
+#    BartlettLongRunVariance.*.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${JACOBID_HARDENING_BUILD_DIR:-$root/build-hardening}"
@@ -54,7 +57,7 @@ if [ -f "$native_costs" ] && [ ! -f "$build/Testing/Temporary/CTestCostData.txt"
     mkdir -p "$build/Testing/Temporary" && cp "$native_costs" "$build/Testing/Temporary/CTestCostData.txt"
 fi
 status=0
-acceptance_scale='^(SerialIdentify\.Puma560MeetsTheIssueAcceptance|DriveGains\.SimulatedPairGivesTheGainsBack|Payload\.MonteCarloStdCoversTheTruth|ExcitePayload\.DesignGivesThePayloadMoreInformationThanTheArmsDesignOfTheSameDuration|ExcitePayload\.PredictedStdIsTheSpreadOfJacobidPayloadOnSimulatedRuns)$'
+acceptance_scale='^(SerialIdentify\.Puma560MeetsTheIssueAcceptance|DriveGains\.SimulatedPairGivesTheGainsBack|Payload\.MonteCarloStdCoversTheTruth|ExcitePayload\.DesignGivesThePayloadMoreInformationThanTheArmsDesignOfTheSameDuration|ExcitePayload\.PredictedStdIsTheSpreadOfJacobidPayloadOnSimulatedRuns|TorqueDelay\.StdMatchesTheSpreadOnDelayFreeLogs)$'
 ctest --test-dir "$build" -j "$jobs" -LE '^(vcan|vm|gpio|examples|end-to-end)$' -E "$acceptance_scale" --output-on-failure --timeout 900 || status=$?
 # A report that did not fail its test (e.g. in a child process whose exit code was not checked) still
 # shows in the logs: fail on any.
