@@ -11,10 +11,10 @@
 #  - no benchmarks, no examples: the sanitizer run does not run them (scripts/sanitize-test.sh).
 #  - shared libraries (JACOBID_SHARED_LIBRARIES, CMakeLists.txt): a change to one library source relinks that
 #    library only, not the ~150 ASan test executables that link it.
-#  - no unity batches (JACOBID_UNITY_HOST_TOOLS=OFF, unlike the native build): a changed source recompiles alone.
-#    In a batch of 16 it recompiled all 16: identify/report/report.cpp alone takes 4.6 s of CPU here, its batch 52 s
-#    (219 s of wall in a warm CI run, beside the emulated steps). A clean build pays about twice the CPU for
-#    jacobid::host instead (docs/performance.md, "Build time (CI)").
+#  - unity batches of 4 sources (JACOBID_UNITY_BATCH_SIZE; the native build's are 16): a changed source recompiles
+#    with 3 neighbours. In a batch of 16 it recompiled all 16: identify/report/report.cpp alone takes 4.6 s of CPU,
+#    its batch of 16 52 s (219 s of wall in a warm CI run, beside the emulated steps). Without batches a clean
+#    sanitizer build took 1 299 s instead of ~880 s (docs/performance.md, "Build time (CI)").
 #  - Debug build type without NDEBUG: assert() and Eigen's index and size checks stay on.
 #  - lld links (-fuse-ld=lld): about 200 executables and libraries are linked in every fresh clone (links are not
 #    cached), 0.55 s each with GNU ld against 0.18 s with lld (test_identify_cli, libjacobid_host.so).
@@ -42,7 +42,7 @@ configure_hardening() {
     -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS_DEBUG="-O2 -gline-tables-only" -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags -fuse-ld=lld" -DCMAKE_SHARED_LINKER_FLAGS="$flags -fuse-ld=lld" \
-    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_EXAMPLES=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=OFF -DJACOBID_PYTHON=OFF -DJACOBID_SHARED_LIBRARIES=ON >/dev/null
+    -DJACOBID_BUILD_FUZZERS=ON -DJACOBID_BUILD_BENCHMARKS=OFF -DJACOBID_BUILD_EXAMPLES=OFF -DJACOBID_VM_TESTS=OFF -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_UNITY_BATCH_SIZE=4 -DJACOBID_PYTHON=OFF -DJACOBID_SHARED_LIBRARIES=ON >/dev/null
 }
 
 # Leaks inside system libraries we cannot fix (urdfdom on a cyclic URDF), each documented in the file.

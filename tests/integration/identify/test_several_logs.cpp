@@ -93,6 +93,8 @@ TEST(SeveralLogs, EqualTheLeastSquaresOfBothLogsRowsStackedByHand) {
     EXPECT_EQ(pieces[0]["samples"], 20001);
     EXPECT_TRUE(pieces[0]["used"].get<bool>() && pieces[1]["used"].get<bool>());
     const auto text = jacobid_cli(logs.identify("--in " + logs.a + " --in " + logs.b));
+    // Once (CI's sanitizer stage, 2026-12-06) this output was empty and the run is not reproduced: say why if again.
+    EXPECT_EQ(text.exit_code, 0) << text.err;
     EXPECT_NE(text.out.find(fmt::format("Jacobi segments: 2 of 2 used\n  {} (20 s, 20001 samples): {} equations per joint", logs.a, per_log[0])),
               std::string::npos)
         << text.out;
