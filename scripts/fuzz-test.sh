@@ -33,7 +33,7 @@ configure_hardening "$root" "$build"
 mapfile -t all_targets < <(grep -v '^$' "$build/fuzz/fuzzers.txt" | cut -d' ' -f1)
 mapfile -t frame_targets < <(grep ' frame$' "$build/fuzz/fuzzers.txt" | cut -d' ' -f1)
 read -r -a targets <<< "${FUZZ_TARGETS:-${all_targets[*]}}"
-cmake --build "$build" -j "$(nproc)" --target "${targets[@]/#/fuzz_}"  # built already by sanitize-test.sh in run-tests.sh
+nice -n 10 cmake --build "$build" -j "$(nproc)" --target "${targets[@]/#/fuzz_}"
 echo "fuzz-test: built ${#targets[@]} targets in $(( $(date +%s) - start )) s"
 
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:abort_on_error=1:symbolize=1"

@@ -41,10 +41,7 @@ configure_hardening "$root" "$build"
 # Every executable except the static ones in tests/vm (ninja lists each output with its rule); the fuzz
 # targets too, so that scripts/fuzz-test.sh finds them built.
 mapfile -t executables < <(ninja -C "$build" -t targets all | grep -E ': CXX_EXECUTABLE_LINKER' | cut -d: -f1 | grep -v '^tests/vm/')
-# Not niced: the emulated steps (scripts/run-tests.sh) run beside this build, and under `nice -n 10` it got a tenth of
-# a core against them. In a warm run the one batch that changed (4 sources) then took 186 s of wall, the whole run's
-# longest step, while the VM step, done long before the sanitizer stage, did not need the priority.
-ninja -C "$build" -j "$jobs" "${executables[@]}"
+nice -n 10 ninja -C "$build" -j "$jobs" "${executables[@]}"
 built=$(date +%s)
 echo "sanitize-test: built ${#executables[@]} executables in $(( built - start )) s"
 
