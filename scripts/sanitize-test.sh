@@ -41,6 +41,9 @@ configure_hardening "$root" "$build"
 # Every executable except the static ones in tests/vm (ninja lists each output with its rule); the fuzz
 # targets too, so that scripts/fuzz-test.sh finds them built.
 mapfile -t executables < <(ninja -C "$build" -t targets all | grep -E ': CXX_EXECUTABLE_LINKER' | cut -d: -f1 | grep -v '^tests/vm/')
+# Under nice: the emulated steps (scripts/run-tests.sh) run beside it. Without nice (tried, docs/performance.md
+# "Issue 37, seventh part") the build ended sooner but its tests then ran beside the VM step's qemu threads, and the
+# warm run took 945 s instead of 881 s.
 nice -n 10 ninja -C "$build" -j "$jobs" "${executables[@]}"
 built=$(date +%s)
 echo "sanitize-test: built ${#executables[@]} executables in $(( built - start )) s"
