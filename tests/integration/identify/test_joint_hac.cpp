@@ -121,7 +121,7 @@ TEST(BartlettLongRunVariance, EqualsTheWeightedDoubleSum) {
                 expected += std::max(0.0, 1.0 - gap / (lags + 1.0)) * g[s] * g[t];
             }
         }
-        EXPECT_NEAR(bartlett_long_run_variance(g, lags), expected, 1e-12 * std::abs(expected) + 1e-12) << lags << " lags";
+        EXPECT_NEAR(bartlett_long_run_variance(Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size())), lags), expected, 1e-12 * std::abs(expected) + 1e-12) << lags << " lags";
     }
 }
 
@@ -137,8 +137,8 @@ TEST(BartlettLongRunVariance, RecoversTheLongRunVarianceOfAnAr1Series) {
     double x = 0.0;
     for (double& v : g) v = x = phi * x + u(rng);
     const double rows = static_cast<double>(n);
-    EXPECT_NEAR(bartlett_long_run_variance(g, 200) / rows, 1.0 / ((1.0 - phi) * (1.0 - phi)), 0.08 * 4.0);
-    EXPECT_NEAR(bartlett_long_run_variance(g, 0) / rows, 1.0 / (1.0 - phi * phi), 0.02 * 4.0 / 3.0);
+    EXPECT_NEAR(bartlett_long_run_variance(Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size())), 200) / rows, 1.0 / ((1.0 - phi) * (1.0 - phi)), 0.08 * 4.0);
+    EXPECT_NEAR(bartlett_long_run_variance(Eigen::Map<const Eigen::VectorXd>(g.data(), static_cast<Eigen::Index>(g.size())), 0) / rows, 1.0 / (1.0 - phi * phi), 0.02 * 4.0 / 3.0);
 }
 
 }  // namespace

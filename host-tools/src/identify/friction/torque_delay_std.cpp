@@ -21,17 +21,6 @@ Eigen::VectorXd coefficients(const LsSolution& s) {
     return x;
 }
 
-// sum over |t - u| <= lags of (1 - |t - u| / (lags + 1)) x_t . y_u (rows of x and y).
-double band_sum(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, int lags) {
-    const Eigen::Index n = x.rows();
-    double s = x.cwiseProduct(y).sum();
-    for (Eigen::Index l = 1; l <= lags && l < n; ++l) {
-        const double w = 1.0 - static_cast<double>(l) / (lags + 1.0);
-        s += w * (x.bottomRows(n - l).cwiseProduct(y.topRows(n - l)).sum() + x.topRows(n - l).cwiseProduct(y.bottomRows(n - l)).sum());
-    }
-    return s;
-}
-
 // Per joint (columns) and row: the residual at the estimate, de/dd, and the score's factor a (de/dd without
 // the parameters' noise term under WLS), with the identified columns of W and the joints' weights.
 struct ScoreParts {
@@ -115,11 +104,11 @@ double hac_leverage_factor(const Eigen::MatrixXd& a, const Eigen::MatrixXd& de, 
     if (k > 0) {
         // E[g_t g_u] of e = (I - P) eps: Lambda - P Lambda - Lambda P^T + P Lambda P^T; row t of z is v_t^T A^-1.
         const Eigen::MatrixXd z = gram.ldlt().solve(v.transpose()).transpose();
-        shortfall += 2.0 * band_sum(z, v_noise, lags) - band_sum(z * meat, z, lags);
+        shortfall += 2.0 * bartlett_cross_sum(z, v_noise, lags) - bartlett_cross_sum(z * meat, z, lags);
     }
     // e at the estimate is e0 - c de with c = a^T e0 / S': E[c g0_t] = sum_j lambda_j a_jt^2 / S', E[c^2] = V / S'^2.
     const Eigen::VectorXd along = a.cwiseProduct(de).rowwise().sum();
-    shortfall += 2.0 * band_sum(a1, along, lags) / curvature_half - variance * band_sum(along, along, lags) / (curvature_half * curvature_half);
+    shortfall += 2.0 * bartlett_cross_sum(a1, along, lags) / curvature_half - variance * bartlett_cross_sum(along, along, lags) / (curvature_half * curvature_half);
     // Restores at most 4 x: past it the rows hold too little beyond what was fitted for any HAC sum.
     const double left = variance - shortfall;
     return left > 0.25 * variance ? std::max(variance / left, 1.0) : 4.0;
@@ -133,11 +122,10 @@ DelayScoreVariance torque_delay_score_variance(const RowCollector& rows, const S
     r.rows = rows.rows();
     r.lags = newey_west_lags(r.rows);
     const Eigen::VectorXd g = parts.e.cwiseProduct(parts.a).rowwise().sum();
-    const double hac = bartlett_long_run_variance(std::vector<double>(g.data(), g.data() + g.size()), r.lags);
+    const double hac = bartlett_long_run_variance(g, r.lags);
     std::vector<double> lambda;  // each joint's long-run residual variance per row
     for (Eigen::Index j = 0; j < parts.e.cols(); ++j) {
-        const auto col = parts.e.col(j);
-        lambda.push_back(bartlett_long_run_variance(std::vector<double>(col.data(), col.data() + col.size()), r.lags) / static_cast<double>(r.rows));
+        lambda.push_back(bartlett_long_run_variance(parts.e.col(j), r.lags) / static_cast<double>(r.rows));
     }
     r.leverage_factor = hac_leverage_factor(parts.a, parts.de, parts.w, parts.s2, lambda, r.lags, 0.5 * curvature);
     r.variance = hac * r.leverage_factor;

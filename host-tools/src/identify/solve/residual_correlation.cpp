@@ -58,18 +58,17 @@ double long_run_variance_factor(const std::vector<Eigen::MatrixXd>& gamma, const
     return std::max(f, 1e-3);
 }
 
-double bartlett_long_run_variance(const std::vector<double>& g, int lags) {
-    const std::size_t n = g.size();
-    double sum = 0.0;
-    for (std::size_t t = 0; t < n; ++t) sum += g[t] * g[t];
-    const int max_lag = std::max(lags, 0);
-    for (int l = 1; l <= max_lag && static_cast<std::size_t>(l) < n; ++l) {
-        double gamma = 0.0;
-        for (std::size_t t = static_cast<std::size_t>(l); t < n; ++t) gamma += g[t] * g[t - static_cast<std::size_t>(l)];
-        sum += 2.0 * (1.0 - static_cast<double>(l) / (max_lag + 1.0)) * gamma;
+double bartlett_cross_sum(const Eigen::Ref<const Eigen::MatrixXd>& x, const Eigen::Ref<const Eigen::MatrixXd>& y, int lags) {
+    const Eigen::Index n = x.rows();
+    double s = x.cwiseProduct(y).sum();
+    for (Eigen::Index l = 1; l <= lags && l < n; ++l) {
+        const double w = 1.0 - static_cast<double>(l) / (lags + 1.0);
+        s += w * (x.bottomRows(n - l).cwiseProduct(y.topRows(n - l)).sum() + x.topRows(n - l).cwiseProduct(y.bottomRows(n - l)).sum());
     }
-    return std::max(sum, 0.0);
+    return s;
 }
+
+double bartlett_long_run_variance(const Eigen::Ref<const Eigen::VectorXd>& g, int lags) { return std::max(bartlett_cross_sum(g, g, lags), 0.0); }
 
 int newey_west_lags(std::size_t rows) {
     return static_cast<int>(std::floor(4.0 * std::pow(static_cast<double>(rows) / 100.0, 2.0 / 9.0)));

@@ -45,11 +45,15 @@ double long_run_variance_factor(const std::vector<Eigen::MatrixXd>& gamma, const
 // The lag-l residual autocorrelations rho_1..rho_L (for reports and tests).
 std::vector<double> residual_autocorrelation(const std::vector<Eigen::MatrixXd>& gamma, const Eigen::VectorXd& u, double gamma0);
 
+// sum over |t - u| <= lags of (1 - |t - u| / (lags + 1)) x_t . y_u, over the rows of x and y (same shape): the
+// Bartlett-weighted band of cross products every HAC sum below is made of.
+double bartlett_cross_sum(const Eigen::Ref<const Eigen::MatrixXd>& x, const Eigen::Ref<const Eigen::MatrixXd>& y, int lags);
+
 // Newey-West estimate of Var(sum_t g_t) for a serially correlated series g (a score, zero-mean by
-// construction, so not centred): sum_{|l| <= L} (1 - |l| / (L + 1)) Gamma_l with Gamma_l = sum_t g_t g_{t-l}.
-// Bartlett weights keep it non-negative; L = 0 is the independent-rows sum of squares. The torque delay's std
-// uses it on its per-row score (docs/method.md, "Torque delay").
-double bartlett_long_run_variance(const std::vector<double>& g, int lags);
+// construction, so not centred): sum_{|l| <= L} (1 - |l| / (L + 1)) Gamma_l with Gamma_l = sum_t g_t g_{t-l},
+// i.e. bartlett_cross_sum(g, g, L). Bartlett weights keep it non-negative; L = 0 is the independent-rows sum of
+// squares. The torque delay's std uses it on its per-row score (docs/method.md, "Torque delay").
+double bartlett_long_run_variance(const Eigen::Ref<const Eigen::VectorXd>& g, int lags);
 
 // Newey and West's (1994) lag rule for Bartlett weights, floor(4 (n / 100)^(2/9)) for n rows: 4 lags for
 // 100 to 272 rows, 7 for 2 000. The estimate's downward bias grows with lags / rows and its spread with
