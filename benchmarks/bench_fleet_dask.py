@@ -9,7 +9,8 @@ of other work on the machine falls on both alike); each is started before its ru
 and identify once untimed (a new worker's first logs are slower, which would favour 2 workers), and it is closed
 after it, so that neither its start nor the other cluster's idle processes (their monitors and profilers take
 ~0.05 of a core, which the 2-worker run, needing both cores, would lose) are in the figures.
---keep-clusters keeps both up all along instead (the setting of the earlier figures in docs/fleet.md). Timed per run:
+The clusters are jacobid.fleet.local_cluster's (its worker settings); --dask-defaults makes them with Dask's
+defaults instead, the comparison of docs/fleet.md. --keep-clusters keeps both up all along instead (the setting of the earlier figures in docs/fleet.md). Timed per run:
 
   - map + reduce: fleet.identify with the plan resolved beforehand (plan=): reading, factoring, merging, solving;
   - end to end: fleet.identify resolving the plan too (one task on one worker, which no second worker shortens).
@@ -31,7 +32,7 @@ from pathlib import Path
 
 import psutil
 
-from distributed import Client, LocalCluster
+from distributed import Client
 
 import jacobid
 import jacobid.fleet
@@ -84,8 +85,12 @@ def timed(function):
 
 
 @contextlib.contextmanager
-def local_client(workers):
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, Client(cluster) as client:
+def local_client(workers, dask_defaults=False):
+    import distributed
+
+    make = (lambda n: distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0")) \
+        if dask_defaults else jacobid.fleet.local_cluster
+    with make(workers) as cluster, Client(cluster) as client:
         client.run(lambda: __import__("jacobid.fleet"))  # the module imported by every worker before timing
         yield client
 
@@ -96,17 +101,19 @@ def main():
     parser.add_argument("--duration", type=int, default=60, help="s per log, at 1 kHz")
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--limit", type=float, default=1.7)
+    parser.add_argument("--dask-defaults", action="store_true",
+                        help="clusters with Dask's default worker settings instead of jacobid.fleet.worker_settings()")
     parser.add_argument("--keep-clusters", action="store_true", help="both clusters up all along (the earlier setting)")
     args = parser.parse_args()
     with contextlib.ExitStack() as kept:
-        kept_clients = {n: kept.enter_context(local_client(n)) for n in (1, 2)} if args.keep_clusters else {}
-        with contextlib.nullcontext(kept_clients[2]) if kept_clients else local_client(2) as client:
+        kept_clients = {n: kept.enter_context(local_client(n, args.dask_defaults)) for n in (1, 2)} if args.keep_clusters else {}
+        with contextlib.nullcontext(kept_clients[2]) if kept_clients else local_client(2, args.dask_defaults) as client:
             robot, logs = simulated_logs(args.logs, args.duration, client)
         plan = jacobid.plan(robot, logs[0], quiet=True, threads=1)
         results = {(n, kind): [] for n in (1, 2) for kind in ("map_reduce", "end_to_end")}
         for run in range(args.repeat):
             for n in (1, 2):
-                with contextlib.nullcontext(kept_clients[n]) if kept_clients else local_client(n) as client:
+                with contextlib.nullcontext(kept_clients[n]) if kept_clients else local_client(n, args.dask_defaults) as client:
                     if not kept_clients:  # an untimed run first: a new worker's first logs are slower (a cold process)
                         jacobid.fleet.identify(robot, logs, client=client, plan=plan, quiet=True)
                     load = os.getloadavg()[0]

@@ -17,7 +17,7 @@ import sys
 import time
 from pathlib import Path
 
-from distributed import Client, LocalCluster, get_task_stream
+from distributed import Client, get_task_stream
 
 import jacobid
 import jacobid.fleet
@@ -50,7 +50,7 @@ def main():
         sys.exit(f"{args.logs}: {len(logs)} logs of {args.duration} s, expected 16 (run benchmarks/bench_fleet_dask.py first)")
     robot = str(SOURCE / "examples" / "robots" / "puma560.yaml")
     plan = jacobid.plan(robot, logs[0], quiet=True, threads=1)
-    with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, Client(cluster) as client:
+    with jacobid.fleet.local_cluster(args.workers) as cluster, Client(cluster) as client:
         jacobid.fleet.identify(robot, logs, client=client, plan=plan, quiet=True)  # every worker has imported and run it once
         tails = []
         for run in range(args.repeat):

@@ -17,7 +17,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from distributed import Client, LocalCluster
+from distributed import Client
 
 import jacobid
 import jacobid.fleet
@@ -67,7 +67,7 @@ def largest_difference(mine, reference, where="$"):
 
 def main():
     with tempfile.TemporaryDirectory() as folder, \
-            LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, Client(cluster) as client:
+            jacobid.fleet.local_cluster(2) as cluster, Client(cluster) as client:
         drifted = drifted_description(folder)
         logs, by_robot, runs = [], {}, []
         for r, name in enumerate(ROBOTS):

@@ -16,7 +16,7 @@ from collections import namedtuple
 import jacobid
 from jacobid._fleet_tree import OrderedTree
 
-__all__ = ["identify", "montecarlo"]
+__all__ = ["identify", "montecarlo", "local_cluster", "worker_settings"]
 
 # A log that could not be factored: its name and the one-line reason (jacobid.InputError's message).
 Failed = namedtuple("Failed", "log message")
@@ -28,6 +28,40 @@ def _name(log):
         return os.fsdecode(log)
     except TypeError:
         return "--in"
+
+
+def worker_settings():
+    """The Dask settings fleet's own LocalCluster runs with (docs/fleet.md, "Worker settings"), to pass to
+    ``dask.config.set``; the same keys serve ``dask worker`` hosts as DASK_* environment variables.
+
+    - The nanny no longer sets MALLOC_TRIM_THRESHOLD_ in the workers (Dask's default sets 65536). Any value turns
+      off glibc's adaptive mmap threshold, so a factor's multi-megabyte buffers are mapped and zeroed afresh for
+      every log: 14 % of a worker's time on the PUMA 560 logs of benchmarks/bench_fleet_dask.py. The memory
+      returns to the heap and the next log reuses it.
+    - No statistical profiler (it feeds only the dashboard's profile page), and the memory and system monitors
+      every 1 s and 2 s instead of 0.1 s and 0.5 s: with one worker per core, each worker's event loop takes its
+      CPU from the other worker's core.
+    """
+    import dask
+
+    environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ", {}).items() if k != "MALLOC_TRIM_THRESHOLD_"}
+    return {"distributed.nanny.pre-spawn-environ": environ,
+            "distributed.worker.profile.enabled": False,
+            "distributed.worker.memory.monitor-interval": "1s",
+            "distributed.admin.system-monitor.interval": "2s"}
+
+
+def local_cluster(n_workers=None, **cluster_options):
+    """A ``distributed.LocalCluster`` of single-threaded worker processes (one per core when n_workers is None)
+    with :func:`worker_settings`: the cluster identify and montecarlo start when given no client.
+    cluster_options: LocalCluster's other keywords."""
+    import dask
+    import distributed
+
+    options = {"threads_per_worker": 1, "processes": True, "dashboard_address": ":0", **cluster_options}
+    # The nanny reads the settings when it is made and hands them to its worker process.
+    with dask.config.set(worker_settings()):
+        return distributed.LocalCluster(n_workers=n_workers, **options)
 
 
 def _factor_task(robot, log, plan):
@@ -146,7 +180,7 @@ def identify(robot, logs, client=None, by_robot=None, *, plan=None, threshold=5.
     options.setdefault("threads", 1)
     own_cluster = client is None
     if own_cluster:
-        client = distributed.Client(distributed.LocalCluster(threads_per_worker=1, processes=True, dashboard_address=":0"))
+        client = distributed.Client(local_cluster())
     try:
         failed = {}
         if plan is None:
@@ -230,7 +264,7 @@ def montecarlo(robot=None, client=None, *, runs_per_task=1, format="table", time
         robot = os.path.abspath(os.fsdecode(robot))
     own_cluster = client is None
     if own_cluster:
-        client = distributed.Client(distributed.LocalCluster(threads_per_worker=1, processes=True, dashboard_address=":0"))
+        client = distributed.Client(local_cluster())
     try:
         start = time.monotonic()
         if runs < 2:  # the command's message, before any task

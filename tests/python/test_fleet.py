@@ -5,6 +5,7 @@
 import os
 import pickle
 import signal
+from pathlib import Path
 
 import pytest
 
@@ -103,9 +104,37 @@ def test_merge_refuses_what_identify_would_not_count(fleet_logs):
 @pytest.fixture(scope="module")
 def client():
     distributed = pytest.importorskip("distributed", reason="python3-distributed (Dask) is not installed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
-            distributed.Client(cluster) as c:
+    import jacobid.fleet
+
+    with jacobid.fleet.local_cluster(2) as cluster, distributed.Client(cluster) as c:
         yield c
+
+
+def _worker_state():
+    """What a worker process runs with: the nanny's malloc variable, the profiler, the memory monitor's period."""
+    import distributed
+
+    worker = distributed.get_worker()
+    return (os.environ.get("MALLOC_TRIM_THRESHOLD_"), "profile" in worker.periodic_callbacks,
+            worker.periodic_callbacks["memory_monitor"].callback_time if "memory_monitor" in worker.periodic_callbacks else None)
+
+
+def test_the_fleets_own_cluster_runs_its_workers_with_the_worker_settings(client):
+    import dask
+    import jacobid.fleet
+
+    # Dask's defaults, which the settings must change: otherwise this test would pass on any cluster
+    assert "MALLOC_TRIM_THRESHOLD_" in dask.config.get("distributed.nanny.pre-spawn-environ")
+    assert dask.config.get("distributed.worker.profile.enabled") is True
+    states = client.run(_worker_state)
+    assert len(states) == 2
+    for worker, (malloc_trim, profiler, monitor_ms) in states.items():
+        assert malloc_trim is None, worker  # glibc's adaptive mmap threshold left on
+        assert not profiler, worker
+        assert monitor_ms == 1000, worker
+    # the settings were scoped to the cluster's creation: the driver's configuration is Dask's again
+    assert "MALLOC_TRIM_THRESHOLD_" in dask.config.get("distributed.nanny.pre-spawn-environ")
+    assert set(jacobid.fleet.worker_settings()) >= {"distributed.nanny.pre-spawn-environ", "distributed.worker.profile.enabled"}
 
 
 def test_fleet_is_identify_in_a_in_b_with_one_identification_per_robot(cli_json, fleet_logs, client):
@@ -174,3 +203,37 @@ def test_montecarlo_on_dask_is_the_commands_table(cli, cli_json, client):
     as_json = jacobid.fleet.montecarlo(None, client, runs=3, duration=8, method="both", quiet=True, format="json", runs_per_task=2, timeout=120)
     assert_same_json(as_json, cli_json("montecarlo", *options, "--format", "json"), rel=1e-9,
                      ignored=lambda key: key in ("wall_seconds", "threads"))
+
+
+def test_dask_worker_with_the_fleets_preload_runs_with_the_worker_settings(tmp_path):
+    """docs/fleet.md's command for a worker host: `dask worker ... --preload-nanny jacobid.fleet_settings`."""
+    import dask
+    import jacobid.fleet
+    import shutil
+    import subprocess
+
+    distributed = pytest.importorskip("distributed", reason="python3-distributed (Dask) is not installed")
+    dask_cli = shutil.which("dask")
+    if dask_cli is None:
+        pytest.skip("the dask command (python3-dask) is not installed")
+    scheduler_file = tmp_path / "scheduler.json"
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(Path(jacobid.__file__).parents[1]), os.environ.get("PYTHONPATH", "")]))
+    scheduler = subprocess.Popen([dask_cli, "scheduler", "--port", "0", "--dashboard-address", ":0", "--scheduler-file", str(scheduler_file)],
+                                 env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker = None
+    try:
+        worker = subprocess.Popen([dask_cli, "worker", "--scheduler-file", str(scheduler_file), "--nthreads", "1", "--nworkers", "1",
+                                   "--dashboard-address", ":0", "--preload-nanny", "jacobid.fleet_settings"],
+                                  env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        with distributed.Client(scheduler_file=str(scheduler_file), timeout=60) as c:
+            c.wait_for_workers(1, timeout=60)
+            # functions the worker can import (this test module is not on its path)
+            malloc_trim = list(c.run(os.environ.get, "MALLOC_TRIM_THRESHOLD_").values())
+            settings = [list(c.run(dask.config.get, key).values()) for key in jacobid.fleet.worker_settings()]
+        assert malloc_trim == [None]
+        assert settings == [[value] for value in jacobid.fleet.worker_settings().values()]
+    finally:
+        for process in (worker, scheduler):
+            if process is not None:
+                process.terminate()
+                process.wait(timeout=60)
