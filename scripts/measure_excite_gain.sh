@@ -6,7 +6,11 @@
 # the figure by +-15 %), each validated on noise-free motion it was not identified on
 # (random moves and a multi-sine, 40 s each). Figure per log: per joint rms_error / torque-noise std, RMS over
 # the joints, mean of the two validations (identify's defaults, or IDENTIFY_ARGS for every log alike).
-#   [IDENTIFY_ARGS="--cutoff 20"] [POSE=q1,..] bash scripts/measure_excite_gain.sh BUILD_DIR OUT_DIR ROBOT.yaml DURATION VELOCITY ACCELERATION NOISE ROOM [EXCITE_ARGS...]
+# SEEDS (default 5): logs per side (the design with SEEDS noise seeds, random moves with SEEDS seeds); one noise
+# realisation moves a log's figure by +-15 %, so the median of 5 moves by several %: 20 for a tighter comparison.
+# KEEP_DESIGN=1 reuses OUT_DIR/design.csv when it is there (a design made with an evaluation budget depends on its
+# options and --seed only), e.g. to score it again with more seeds.
+#   [IDENTIFY_ARGS="--cutoff 20"] [POSE=q1,..] [SEEDS=20] [KEEP_DESIGN=1] bash scripts/measure_excite_gain.sh BUILD_DIR OUT_DIR ROBOT.yaml DURATION VELOCITY ACCELERATION NOISE ROOM [EXCITE_ARGS...]
 # ROOM (rad, one or per joint) bounds the multi-sine's excursion from POSE (default 0): inside the joint limits.
 # e.g. bash scripts/measure_excite_gain.sh build out/gain examples/robots/ur5_like.yaml 20 3.15 10 0.15,0.15,0.1,0.03,0.03,0.02 2.4
 set -euo pipefail
@@ -23,12 +27,13 @@ sim=(--robot "$robot" --encoder-counts 262144 --quiet)
 $PY "$here/multisine_trajectory.py" "$out/multisine.csv" --joints "$joints" --duration 40 --pose "${POSE:-0}" --room "$room" --velocity-limit "$vel" --acceleration-limit "$acc" --seed 7
 "$J" simulate "${sim[@]}" --trajectory "$out/multisine.csv" -o "$out/val_multisine.csv"
 # The design, then its log; random moves with 5 seeds.
-"$J" excite --robot "$robot" --duration "$duration" --velocity-limit "$vel" --acceleration-limit "$acc" --torque-noise "$noise" \
+seeds=$(seq 1 "${SEEDS:-5}")
+[ "${KEEP_DESIGN:-0}" = 1 ] && [ -f "$out/design.csv" ] || "$J" excite --robot "$robot" --duration "$duration" --velocity-limit "$vel" --acceleration-limit "$acc" --torque-noise "$noise" \
     -o "$out/design.csv" --json "$out/design.json" --quiet "$@"
-for s in 1 2 3 4 5; do
+for s in $seeds; do
   "$J" simulate "${sim[@]}" --trajectory "$out/design.csv" --torque-noise "$noise" --noise-seed $((10 + s)) -o "$out/log_design$s.csv"
 done
-for s in 1 2 3 4 5; do
+for s in $seeds; do
   "$J" simulate "${sim[@]}" --duration "$duration" --velocity-limit "$vel" --acceleration-limit "$acc" --seed "$s" --torque-noise "$noise" \
       --noise-seed $((20 + s)) -o "$out/log_moves$s.csv"
 done
@@ -48,9 +53,9 @@ PY
 }
 echo "log: random-move validation, multi-sine validation, mean"
 : > "$out/design.txt"
-for s in 1 2 3 4 5; do d=$(score "$out/log_design$s.csv"); echo "design noise seed $s $d"; echo "$d" >> "$out/design.txt"; done
+for s in $seeds; do d=$(score "$out/log_design$s.csv"); echo "design noise seed $s $d"; echo "$d" >> "$out/design.txt"; done
 : > "$out/moves.txt"
-for s in 1 2 3 4 5; do m=$(score "$out/log_moves$s.csv"); echo "moves seed $s $m"; echo "$m" >> "$out/moves.txt"; done
+for s in $seeds; do m=$(score "$out/log_moves$s.csv"); echo "moves seed $s $m"; echo "$m" >> "$out/moves.txt"; done
 $PY - "$out/moves.txt" "$out/design.txt" <<'PY'
 import statistics, sys
 moves = [float(l.split()[2]) for l in open(sys.argv[1])]

@@ -23,6 +23,7 @@
 #include "options/option_checks.hpp"
 #include "options/output_file.hpp"
 #include "options/robot_files.hpp"
+#include "core/errors.hpp"
 #include "core/per_joint.hpp"
 #include "excite/design_checks.hpp"
 #include "excite/excitation_design.hpp"
@@ -30,6 +31,7 @@
 #include "excite/identification_bandwidth.hpp"
 #include "excite/motion_information.hpp"
 #include "excite/payload_target.hpp"
+#include "excite/reference_motion.hpp"
 #include "plot/gnuplot.hpp"
 #include "robot/robot_description.hpp"
 
@@ -137,6 +139,22 @@ void plot(const std::string& path, const Sampled& s, const std::optional<excite:
 excite::SampledMotion motion_of(const Sampled& s) { return {s.q, s.qd, s.qdd, 0, 0}; }
 
 // What a design and its predictions are, for the JSON and the text.
+// --criterion i-optimal's M: the information per sample of --reference's motion, or of 60 s of random moves within the
+// design's limits (docs/excite.md, "Designing for the motion the model will serve").
+Eigen::MatrixXd reference_information(const robot::RobotDescription& robot, const robot::RobotModel& model, const std::vector<excite::JointLimits>& limits,
+                                      const Eigen::VectorXd& pose, const ExcitePrior& prior, const ExciteOptions& o) {
+    if (o.payload) throw InputError("--criterion i-optimal: not with --payload (the payload's designs weigh the payload's parameters only)");
+    if (!o.reference.empty()) return excite::reference_information(model, read_compare_motion(o.reference, robot, model, o.compare_format, o.quiet).motion, prior.noise_std);
+    for (std::size_t j = 0; j < limits.size(); ++j) {
+        if (!std::isfinite(limits[j].lower) || !std::isfinite(limits[j].upper)) {
+            throw InputError(fmt::format("--criterion i-optimal: joint {} has no finite position range for the default reference's random moves; give "
+                                         "--position-limit or --reference", j + 1));
+        }
+    }
+    constexpr double kReferenceSeconds = 60.0, kReferenceRate = 100.0;
+    return excite::reference_information(model, excite::random_moves(limits, pose, kReferenceSeconds, kReferenceRate, 1), prior.noise_std);
+}
+
 struct Outcome {
     const ExciteOptions& o;
     const robot::RobotModel& model;
@@ -315,7 +333,8 @@ void run(ExciteOptions o) {
     const std::optional<excite::Workspace> box = workspace(robot, pose, o);
     excite::ProblemSettings ps;
     ps.criterion = *excite::criterion_from_string(o.criterion);
-    ps.information = {prior.noise_std, target.scales, 1.0, payload ? payload->projection : Eigen::MatrixXd()};
+    ps.information = {prior.noise_std, target.scales, 1.0, payload ? payload->projection : Eigen::MatrixXd(), {}};
+    if (ps.criterion == excite::Criterion::IOptimal) ps.information.reference = reference_information(robot, *model, limits, pose, prior, o);
     ps.samples = o.samples;
     for (const auto route : {excite::DerivativeRoute::Adjoint, excite::DerivativeRoute::CentralDifferences, excite::DerivativeRoute::Automatic}) {
         if (o.derivatives == excite::to_string(route)) ps.derivatives = route;
@@ -348,7 +367,7 @@ void run(ExciteOptions o) {
     Outcome r{o, *model, prior, target, names, payload, limits, pose, box, problem, d, trajectory, {}, {}, {}, {}, {}, {}, {}};
     // The prediction from every control sample (not the optimizer's), the same way as --compare's.
     auto predict_from = [&](const Eigen::MatrixXd& information, Eigen::VectorXd* inertial_std) {
-        if (!payload) return excite::predict(information, prior.scales);
+        if (!payload) return excite::predict(information, prior.scales, ps.information.reference.size() > 0 ? &ps.information.reference : nullptr);
         if (inertial_std) *inertial_std = excite::predicted_inertial_std(information, *payload);
         return excite::predict_payload(information, *payload);
     };

@@ -93,6 +93,7 @@ double prediction_score(excite::Criterion criterion, const excite::Prediction& p
     switch (criterion) {
         case excite::Criterion::DOptimal: return -p.log_det;
         case excite::Criterion::ARelative: return std::log(p.relative_std.squaredNorm());
+        case excite::Criterion::IOptimal: return 2.0 * std::log(p.reference_rms);
         default: return 2.0 * std::log(p.worst_relative_std);
     }
 }
@@ -108,6 +109,7 @@ nlohmann::json prediction_json(const std::vector<std::string>& names, const Exci
             {"log_det_information", p.identifiable ? nlohmann::json(p.log_det) : nlohmann::json()},
             {"worst_relative_std", number(p.worst_relative_std)},
             {"worst_parameter", p.worst >= 0 ? nlohmann::json(names[static_cast<std::size_t>(p.worst)]) : nlohmann::json()},
+            {"reference_rms", number(p.reference_rms)},
             {"parameters", parameters}};
 }
 

@@ -231,7 +231,7 @@ LocalResult best_of_starts(const ExcitationProblem& problem, const DesignSetting
             // The relative criteria (a sum or a max of ratios spanning decades) stall from a random start far from
             // the limits: each start first maximizes the information (d-optimal) for half its time, then refines.
             const Criterion wanted = local.criterion_kind();
-            const bool warm = wanted == Criterion::ARelative || wanted == Criterion::ERelative;
+            const bool warm = wanted == Criterion::ARelative || wanted == Criterion::ERelative || wanted == Criterion::IOptimal;
             if (warm) {
                 local.set_criterion(Criterion::DOptimal);
                 start = local_run(local, start, budget / 2, settings.max_evaluations, count).c;

@@ -3,8 +3,10 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 
 namespace jacobid::excite {
@@ -86,12 +88,13 @@ const char* to_string(Criterion c) {
         case Criterion::DOptimal: return "d-optimal";
         case Criterion::ARelative: return "a-relative";
         case Criterion::ERelative: return "e-relative";
+        case Criterion::IOptimal: return "i-optimal";
     }
     return "?";
 }
 
 std::optional<Criterion> criterion_from_string(const std::string& name) {
-    for (const Criterion c : {Criterion::Cond, Criterion::LogDet, Criterion::DOptimal, Criterion::ARelative, Criterion::ERelative}) {
+    for (const Criterion c : {Criterion::Cond, Criterion::LogDet, Criterion::DOptimal, Criterion::ARelative, Criterion::ERelative, Criterion::IOptimal}) {
         if (name == to_string(c)) return c;
     }
     return std::nullopt;
@@ -137,6 +140,14 @@ double evaluate_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joi
     if (criterion == Criterion::DOptimal) {
         value = -A.log_det;
         if (dW) inner = C;
+    } else if (criterion == Criterion::IOptimal) {
+        if (model.reference.rows() != C.rows() || model.reference.cols() != C.cols()) {
+            throw std::invalid_argument("i-optimal: the reference information must have one row and column per base parameter");
+        }
+        const Eigen::MatrixXd MC = model.reference * C;
+        const double trace = MC.trace();
+        value = std::log(trace);
+        if (dW) inner = C * MC / trace;  // C M C / trace(M C)
     } else {
         const Eigen::ArrayXd scale2 = model.scale.array().square();
         const Eigen::ArrayXd r = C.diagonal().array() / scale2;  // predicted relative variances
@@ -164,7 +175,7 @@ double evaluate_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joi
     return std::isfinite(value) ? value : kRankDeficient;
 }
 
-Prediction predict(const Eigen::MatrixXd& information, const Eigen::VectorXd& scale) {
+Prediction predict(const Eigen::MatrixXd& information, const Eigen::VectorXd& scale, const Eigen::MatrixXd* reference) {
     Prediction p;
     const Eigen::Index n = information.rows();
     p.std_dev = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
@@ -174,7 +185,9 @@ Prediction predict(const Eigen::MatrixXd& information, const Eigen::VectorXd& sc
     if (!A.ok) return p;
     p.identifiable = true;
     p.log_det = A.log_det;
-    p.std_dev = A.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
+    const Eigen::MatrixXd covariance = A.inverse();
+    p.std_dev = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+    if (reference && reference->rows() == covariance.rows()) p.reference_rms = std::sqrt(std::max(0.0, (*reference * covariance).trace()));
     p.relative_std = p.std_dev.cwiseQuotient(scale);
     p.worst_relative_std = p.relative_std.maxCoeff(&p.worst);
     return p;

@@ -12,20 +12,25 @@
 //   covariance of the WLS estimate;
 //   - d-optimal:  -log det A;
 //   - a-relative: log sum_k C_kk / s_k^2, s_k the prior scale of parameter k (parameter_scales.hpp);
-//   - e-relative: a smooth maximum (log-sum-exp, sharpness kMaxSharpness in log space) of log C_kk / s_k^2.
+//   - e-relative: a smooth maximum (log-sum-exp, sharpness kMaxSharpness in log space) of log C_kk / s_k^2;
+//   - i-optimal:  log trace(M C), M the reference motion's information per sample (InformationModel::reference):
+//     the mean over that motion of the predicted variance of the model's torque, in units of each joint's noise
+//     variance; what a validation on that motion measures of the estimate's noise (docs/excite.md).
 //   Gradients: dA = gamma (dW^T S^-1 W + W^T S^-1 dW) and dC = -C dA C give, for F = f(C_kk),
-//   dF/dW = -2 gamma S^-1 W C diag(df/dC_kk) C, and for d-optimal dF/dW = -2 S^-1 W (W^T S^-1 W)^-1.
+//   dF/dW = -2 gamma S^-1 W C diag(df/dC_kk) C, for i-optimal -2 gamma S^-1 W C M C / trace(M C), and for
+//   d-optimal dF/dW = -2 S^-1 W (W^T S^-1 W)^-1.
 // Column-normalised criteria (kept for comparison; blind to the size of the motion):
 //   - cond:   log cond(W_s), W_s = W diag(1 / ||w_k||);
 //   - logdet: -log det(W_s^T W_s).
 // A rank-deficient W gives kRankDeficient and a zero gradient (the worst value, not a NaN for the optimizer).
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <string>
 
 namespace jacobid::excite {
 
-enum class Criterion { Cond, LogDet, DOptimal, ARelative, ERelative };
+enum class Criterion { Cond, LogDet, DOptimal, ARelative, ERelative, IOptimal };
 const char* to_string(Criterion c);
 std::optional<Criterion> criterion_from_string(const std::string& name);
 // Whether the criterion weighs the noise and the size of the motion (the information criteria).
@@ -45,6 +50,9 @@ struct InformationModel {
     // regrouping's columns of the last link's ten standard parameters (payload_target.hpp), so the information
     // matrix is K^T A K and dF/dW = dF/d(WK) K^T.
     Eigen::MatrixXd projection;
+    // i-optimal: M = (1 / N) sum over the reference motion's N samples of W_i^T S^-1 W_i (base parameters x base
+    // parameters, symmetric positive semi-definite; reference_information() in motion_information.hpp).
+    Eigen::MatrixXd reference;
 };
 
 // F(W) and, when `dW` is not null, dF/dW (W's shape). `model` is read by the information criteria only, except
@@ -63,7 +71,10 @@ struct Prediction {
     // The largest relative std and its parameter (index), over every base parameter.
     double worst_relative_std = 0.0;
     int worst = -1;
+    // With a reference information M (i-optimal): sqrt(trace(M C)), the predicted rms error of the model's torque
+    // over the reference motion from the estimate's noise, in units of each joint's noise std (NaN: no reference).
+    double reference_rms = std::numeric_limits<double>::quiet_NaN();
 };
-Prediction predict(const Eigen::MatrixXd& information, const Eigen::VectorXd& scale);
+Prediction predict(const Eigen::MatrixXd& information, const Eigen::VectorXd& scale, const Eigen::MatrixXd* reference = nullptr);
 
 }  // namespace jacobid::excite

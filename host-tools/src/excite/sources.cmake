@@ -8,6 +8,7 @@ add_library(jacobid_excite ${JACOBID_LIBRARY_KIND}
   ${CMAKE_CURRENT_LIST_DIR}/parameter_scales.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prior_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/motion_information.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/reference_motion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frequency_rule.cpp
   ${CMAKE_CURRENT_LIST_DIR}/regressor_derivatives.cpp
   ${CMAKE_CURRENT_LIST_DIR}/identification_bandwidth.cpp

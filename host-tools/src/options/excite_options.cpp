@@ -163,8 +163,9 @@ void add_excite_options(CLI::App* cmd, ExciteOptions& o_) {
         ->capture_default_str();
     cmd->add_option("--criterion", o->criterion,
                     "d-optimal (-log det of the noise-weighted information matrix of the base parameters), a-relative (sum of the predicted "
-                    "relative variances), e-relative (their max), or, for comparison, cond / logdet of the column-scaled regressor")
-        ->check(CLI::IsMember({"d-optimal", "a-relative", "e-relative", "cond", "logdet"}))
+                    "relative variances), e-relative (their max), i-optimal (the predicted variance of the model's torque over --reference's "
+                    "motion), or, for comparison, cond / logdet of the column-scaled regressor")
+        ->check(CLI::IsMember({"d-optimal", "a-relative", "e-relative", "i-optimal", "cond", "logdet"}))
         ->capture_default_str();
     cmd->add_option("--prior", o->prior,
                     "an earlier identification (jacobid identify --format json): its parameters are the prior (torque limits, relative std) and "
@@ -174,6 +175,10 @@ void add_excite_options(CLI::App* cmd, ExciteOptions& o_) {
     cmd->add_option("--compare", o->compare,
                     "a trajectory (t, q1.., qd1.., qdd1..) or a recorded log (the description's columns, or --log-format): its predicted std "
                     "beside the design's")->check(file_path());
+    cmd->add_option("--reference", o->reference,
+                    "--criterion i-optimal: the motion the identified model will serve, a trajectory or a log as for --compare (default: 60 s of "
+                    "random point-to-point moves within the design's position, velocity and acceleration limits, seed 1)")
+        ->check(file_path());
     cmd->add_option("--position-limit", o->position_limit, "rad: LOWER:UPPER, one range or one per joint (default: the description's limits)")
         ->delimiter(',');
     cmd->add_option("--pose", o->pose, "rad: the rest pose at both ends of each period, one value or one per joint (default: the middle of each joint's limits)")

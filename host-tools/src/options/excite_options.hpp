@@ -32,6 +32,7 @@ struct ExciteOptions {
     std::string criterion = "d-optimal";
     std::string derivatives = "adjoint";
     std::string prior, compare;
+    std::string reference;  // i-optimal: the motion the model will serve (empty: random moves within the limits)
     std::vector<double> torque_noise;
     std::vector<std::string> position_limit;  // LOWER:UPPER, one or one per joint
     LogFormatOptions compare_format;
