@@ -298,13 +298,18 @@ void print_outcome(const Outcome& r) {
                r.bandwidth.decimation_cutoff_hz(), 100.0 * r.after_fp.worst_relative_std, r.worst_name(r.after_fp));
     fmt::print(stderr, "excite: worst relative std {:.3g} % ({}){}\n", 100.0 * r.predicted.worst_relative_std, r.worst_name(r.predicted),
                compared ? fmt::format("; --compare: {:.3g} % ({})", 100.0 * compared->worst_relative_std, r.worst_name(*compared)) : std::string());
+    if (std::isfinite(r.predicted.reference_rms)) {
+        fmt::print(stderr, "excite: predicted rms error of the model's torque over the reference ({}), in noise std summed over the joints: {:.4g}{}\n",
+                   o.reference.empty() ? "60 s of random moves within the limits" : o.reference, r.predicted.reference_rms,
+                   compared ? fmt::format("; --compare: {:.4g}", compared->reference_rms) : std::string());
+    }
 }
 
 void run(ExciteOptions o) {
     resolve_payload_options(o);
     const robot::RobotDescription robot = robot::load_robot_description(o.robot);
     std::vector<NamedPath> inputs = robot_files("--robot", o.robot, robot);
-    inputs.insert(inputs.end(), {{"--prior", o.prior}, {"--compare", o.compare}, {"--log-format", o.compare_format.file}});
+    inputs.insert(inputs.end(), {{"--prior", o.prior}, {"--compare", o.compare}, {"--reference", o.reference}, {"--log-format", o.compare_format.file}});
     check_outputs({{"--output", o.output}, {"--json", o.json}, {"--plot", o.plot}}, inputs);
     const auto model = robot::make_robot_model(robot);
     const int n = model->joint_count();

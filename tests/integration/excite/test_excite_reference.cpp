@@ -128,6 +128,11 @@ TEST(ExciteCli, IOptimalDesignPredictsLessErrorOnItsReferenceThanTheDOptimalDesi
     EXPECT_LT(mine, theirs) << "the i-optimal design predicts more error on its own reference than the d-optimal design";
     EXPECT_FALSE(j["compare"]["design_worse"].get<bool>());
     EXPECT_NEAR(j["predicted"]["score"].get<double>(), 2.0 * std::log(mine), 1e-12);
+    // Without --quiet, the text gives the figure too.
+    const auto text = run_command(kJacobid + " excite" + common.substr(0, common.size() - 8) + " --criterion i-optimal --reference " + reference +
+                                  " -o " + scratch("iopt_text.csv"));
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.err.find("excite: predicted rms error of the model's torque over the reference (" + reference + ")"), std::string::npos) << text.err;
     // The default reference (random moves within the design's limits) runs too; a payload design is refused in one line.
     const auto def = run_command(kJacobid + " excite" + common + " --criterion i-optimal -o " + scratch("default.csv") + " --json " + scratch("default.json"));
     ASSERT_EQ(def.exit_code, 0) << def.err;
