@@ -340,6 +340,9 @@ void run(ExciteOptions o) {
     ps.criterion = *excite::criterion_from_string(o.criterion);
     ps.information = {prior.noise_std, target.scales, 1.0, payload ? payload->projection : Eigen::MatrixXd(), {}};
     if (ps.criterion == excite::Criterion::IOptimal) ps.information.reference = reference_information(robot, *model, limits, pose, prior, o);
+    if (!o.reference.empty() && ps.criterion != excite::Criterion::IOptimal) {
+        throw InputError(fmt::format("--reference {}: used by --criterion i-optimal only (the criterion is {})", o.reference, o.criterion));
+    }
     ps.samples = o.samples;
     for (const auto route : {excite::DerivativeRoute::Adjoint, excite::DerivativeRoute::CentralDifferences, excite::DerivativeRoute::Automatic}) {
         if (o.derivatives == excite::to_string(route)) ps.derivatives = route;

@@ -140,6 +140,10 @@ TEST(ExciteCli, IOptimalDesignPredictsLessErrorOnItsReferenceThanTheDOptimalDesi
     const auto bad = run_command(kJacobid + " excite" + common + " --criterion i-optimal --payload --payload-mass 1 -o " + scratch("bad.csv"));
     EXPECT_NE(bad.exit_code, 0);
     EXPECT_NE(bad.err.find("--criterion i-optimal: not with --payload"), std::string::npos) << bad.err;
+    // A reference the criterion would not use is refused, not ignored.
+    const auto unused = run_command(kJacobid + " excite" + common + " --reference " + reference + " -o " + scratch("unused.csv"));
+    EXPECT_NE(unused.exit_code, 0);
+    EXPECT_NE(unused.err.find("--reference " + reference + ": used by --criterion i-optimal only (the criterion is d-optimal)"), std::string::npos) << unused.err;
 }
 
 }  // namespace
