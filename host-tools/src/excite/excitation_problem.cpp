@@ -24,6 +24,11 @@ double ks_aggregate(const std::vector<double>& terms, double rho, std::vector<do
     return top + std::log(sum) / rho;
 }
 
+// Whether a kind limits |value| (terms of both signs) rather than the excursion toward one bound.
+bool two_sided(LimitKind k) { return k != LimitKind::Upper && k != LimitKind::Lower; }
+// The position kinds' excursion toward their bound: +1 upper, -1 lower (and +1 for the others).
+double side(LimitKind k) { return k == LimitKind::Lower ? -1.0 : 1.0; }
+
 }  // namespace
 
 const char* to_string(LimitKind k) {
@@ -91,6 +96,7 @@ bool ExcitationProblem::torque_limited() const {
 void ExcitationProblem::set_limits(std::vector<JointLimits> limits) {
     if (static_cast<int>(limits.size()) != joints_) throw std::invalid_argument("ExcitationProblem::set_limits: one limit per joint");
     limits_ = std::move(limits);
+    dtau_ready_ = false;  // the samples whose torque derivatives count depend on the limits (select_torque_samples)
 }
 
 void ExcitationProblem::set_workspace(std::optional<Workspace> workspace) {
@@ -142,6 +148,56 @@ void ExcitationProblem::prepare(const Eigen::VectorXd& c) {
     prepared_for_ = c;
 }
 
+double ExcitationProblem::limit_aggregate(int joint, LimitKind kind, Eigen::VectorXd* net) {
+    const double room = limit(joint, kind), sign = side(kind);
+    const bool both = two_sided(kind);
+    terms_.clear();
+    for (int i = 0; i < samples_; ++i) {
+        double value = 0.0;
+        switch (kind) {
+            case LimitKind::Upper:
+            case LimitKind::Lower: value = sign * (q_(joint, i) - pose_[joint]); break;
+            case LimitKind::Velocity: value = qd_(joint, i); break;
+            case LimitKind::Acceleration: value = qdd_(joint, i); break;
+            case LimitKind::Torque: value = tau_(joint, i); break;
+        }
+        terms_.push_back(value / room - 1.0);
+        if (both) terms_.push_back(-value / room - 1.0);
+    }
+    const double ks = ks_aggregate(terms_, settings_.ks_rho, net ? &weights_ : nullptr);
+    if (net) {
+        // d KS / d value: the sample's net weight (w+ - w-) over the limit.
+        net->resize(samples_);
+        for (int i = 0; i < samples_; ++i) {
+            const auto t = static_cast<std::size_t>(i);
+            (*net)[i] = (both ? weights_[2 * t] - weights_[2 * t + 1] : weights_[t]) / room;
+        }
+    }
+    return ks;
+}
+
+// A sample's torque derivatives enter joint j's torque row only times its net KS weight there, and a design's
+// torques reach their limits at a few peaks: the weights exp(rho (t_i - t_max)) of the other samples fall below
+// 1e-14 once their torque is 0.16 of the limit below the peak's (rho = 200). A sample is swept when some joint's
+// |net weight| is at least negligible_torque_weight / samples of that joint's largest; the samples left out then
+// weigh together less than negligible_torque_weight (default eps = 2.2e-16) times the largest weight, so that what
+// they would add to an entry of the row, at most eps max|net| max_i |dtau_i psi_i|, is one rounding unit of the
+// peak's own term max|net| |dtau_peak psi_peak| times the ratio of the largest torque derivative to the peak's: the
+// rounding of the kept sum itself.
+void ExcitationProblem::select_torque_samples() {
+    torque_swept_.setConstant(samples_, false);
+    torque_ks_.resize(joints_);
+    torque_net_.resize(samples_, joints_);
+    const double share = settings_.negligible_torque_weight / samples_;
+    for (int j = 0; j < joints_; ++j) {
+        if (!std::isfinite(limit(j, LimitKind::Torque))) continue;
+        torque_ks_[j] = limit_aggregate(j, LimitKind::Torque, &net_);
+        torque_net_.col(j) = net_;
+        const double floor = share * net_.cwiseAbs().maxCoeff();
+        torque_swept_ = torque_swept_ || (net_.array().abs() >= floor);
+    }
+}
+
 void ExcitationProblem::prepare_derivatives(const Eigen::VectorXd& c) {
     prepare(c);
     const bool torque = torque_limited();
@@ -149,13 +205,16 @@ void ExcitationProblem::prepare_derivatives(const Eigen::VectorXd& c) {
     value_ = evaluate_criterion(settings_.criterion, W_, joints_, settings_.information, &GW_);
     const int n = joints_;
     dphi_.resize(samples_, 3 * n);
-    if (torque) dtau_.resize(3 * static_cast<Eigen::Index>(samples_), n * n);
+    select_torque_samples();
+    // The samples not swept keep zero rows (not stale ones): the torque rows multiply them by their weights.
+    if (torque) dtau_.setZero(3 * static_cast<Eigen::Index>(samples_), n * n);
     Eigen::VectorXd dphi;
     for (int i = 0; i < samples_; ++i) {
+        const bool swept = torque_swept_[i];
         derivatives_->evaluate(q_.col(i).data(), qd_.col(i).data(), qdd_.col(i).data(), GW_.middleRows(static_cast<Eigen::Index>(i) * n, n), x_, dphi,
-                               torque ? &sample_dtau_ : nullptr);
+                               swept ? &sample_dtau_ : nullptr);
         dphi_.row(i) = dphi.transpose();
-        if (!torque) continue;
+        if (!swept) continue;
         for (int z = 0; z < 3; ++z) {  // q, qd, qdd
             for (int j = 0; j < n; ++j) {
                 dtau_.row(static_cast<Eigen::Index>(z) * samples_ + i).segment(static_cast<Eigen::Index>(j) * n, n) = sample_dtau_.row(j).segment(z * n, n);
@@ -197,51 +256,33 @@ Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, E
     if (jacobian) jacobian->setZero(constraints(), variables());
     // One KS aggregate over (sample, sign) of sign * value / limit - 1. Its gradient: per sample, the weights' net
     // d KS / d value (w+ - w-) / limit times d value / dc, summed into `slope` (joint a's coefficients: segment a).
-    std::vector<double> terms, weights;
-    Eigen::VectorXd slope(variables()), net(samples_);
+    Eigen::VectorXd slope(variables());
     auto segment = [&](int joint) { return slope.segment(static_cast<Eigen::Index>(joint) * m, m); };
     for (int j = 0; j < joints_; ++j) {
         for (int kind = 0; kind < kLimitKinds; ++kind) {
             const auto k = static_cast<LimitKind>(kind);
             const int row = j * kLimitKinds + kind;
-            const double room = limit(j, k);
-            if (!std::isfinite(room)) {
+            if (!std::isfinite(limit(j, k))) {
                 g[row] = -1.0;
                 continue;
             }
-            const bool two_sided = k != LimitKind::Upper && k != LimitKind::Lower;
-            const double side = k == LimitKind::Lower ? -1.0 : 1.0;  // the position kinds: the excursion toward their bound
-            terms.clear();
-            for (int i = 0; i < samples_; ++i) {
-                double value = 0.0;
-                switch (k) {
-                    case LimitKind::Upper:
-                    case LimitKind::Lower: value = side * (q_(j, i) - pose_[j]); break;
-                    case LimitKind::Velocity: value = qd_(j, i); break;
-                    case LimitKind::Acceleration: value = qdd_(j, i); break;
-                    case LimitKind::Torque: value = tau_(j, i); break;
-                }
-                terms.push_back(value / room - 1.0);
-                if (two_sided) terms.push_back(-value / room - 1.0);
-            }
-            g[row] = ks_aggregate(terms, settings_.ks_rho, jacobian ? &weights : nullptr);
+            // With the Jacobian, the torque rows' aggregates and weights at c are select_torque_samples' (their exponentials once).
+            const bool selected = jacobian && k == LimitKind::Torque;
+            g[row] = selected ? torque_ks_[j] : limit_aggregate(j, k, jacobian ? &net_ : nullptr);
             if (!jacobian) continue;
-            for (int i = 0; i < samples_; ++i) {
-                const auto t = static_cast<std::size_t>(i);
-                net[i] = (two_sided ? weights[2 * t] - weights[2 * t + 1] : weights[t]) / room;
-            }
+            if (selected) net_ = torque_net_.col(j);
             slope.setZero();
             switch (k) {
                 case LimitKind::Upper:
-                case LimitKind::Lower: segment(j).noalias() = side * (psi_ * net); break;
-                case LimitKind::Velocity: segment(j).noalias() = dpsi_ * net; break;
-                case LimitKind::Acceleration: segment(j).noalias() = ddpsi_ * net; break;
+                case LimitKind::Lower: segment(j).noalias() = side(k) * (psi_ * net_); break;
+                case LimitKind::Velocity: segment(j).noalias() = dpsi_ * net_; break;
+                case LimitKind::Acceleration: segment(j).noalias() = ddpsi_ * net_; break;
                 case LimitKind::Torque: {
                     // Every joint's coefficients (column a of the map: segment a) from joint j's columns of dtau_.
                     weighted_.resize(dtau_.rows(), joints_);
                     for (int z = 0; z < 3; ++z) {  // q, qd, qdd
                         weighted_.middleRows(static_cast<Eigen::Index>(z) * samples_, samples_).noalias() =
-                            net.asDiagonal() * dtau_.block(static_cast<Eigen::Index>(z) * samples_, static_cast<Eigen::Index>(j) * joints_, samples_, joints_);
+                            net_.asDiagonal() * dtau_.block(static_cast<Eigen::Index>(z) * samples_, static_cast<Eigen::Index>(j) * joints_, samples_, joints_);
                     }
                     Eigen::Map<Eigen::MatrixXd>(slope.data(), m, joints_).noalias() = bases_ * weighted_;
                     break;
@@ -256,14 +297,14 @@ Eigen::VectorXd ExcitationProblem::constraint_values(const Eigen::VectorXd& c, E
         for (int f = 0; f < kBoxFaces; ++f) {
             const int axis = f / 2, row = workspace_row() + f;
             const double sign = f % 2 == 0 ? 1.0 : -1.0, room = face_room(workspace_->box, workspace_->start, f);
-            terms.clear();
-            for (int i = 0; i < samples_; ++i) terms.push_back(sign * (points_(axis, i) - workspace_->start[axis]) / room - 1.0);
-            g[row] = ks_aggregate(terms, settings_.ks_rho, jacobian ? &weights : nullptr);
+            terms_.clear();
+            for (int i = 0; i < samples_; ++i) terms_.push_back(sign * (points_(axis, i) - workspace_->start[axis]) / room - 1.0);
+            g[row] = ks_aggregate(terms_, settings_.ks_rho, jacobian ? &weights_ : nullptr);
             if (!jacobian) continue;
             slope.setZero();
             for (int i = 0; i < samples_; ++i) {
                 const Eigen::Matrix3Xd& J = point_jacobians_[static_cast<std::size_t>(i)];
-                const double w = weights[static_cast<std::size_t>(i)] * sign / room;
+                const double w = weights_[static_cast<std::size_t>(i)] * sign / room;
                 for (int k = 0; k < joints_; ++k) segment(k) += (w * J(axis, k)) * psi_.col(i);
             }
             jacobian->row(row) = slope.transpose();

@@ -48,6 +48,11 @@ struct ProblemSettings {
     int samples = 0;       // per period for the criterion and constraints; 0: 20 per period of the highest harmonic (>= 100; information criteria: 40, >= 400)
     double ks_rho = 200.0; // sharpness of the KS aggregate (dimensionless g): over-estimate <= log(2 N) / rho
     DerivativeRoute derivatives = DerivativeRoute::Adjoint;  // the regressor's derivatives (regressor_derivatives.hpp)
+    // The torque constraints' Jacobian weighs each sample's torque derivatives by its KS weight, and at a design most
+    // weights are far below rounding: the torque's derivatives are computed only at the samples where some joint's
+    // weight is at least this share of that joint's largest divided by the samples, so that the weights left out
+    // sum to at most this share of the largest (the default: one rounding unit); 0: at every sample.
+    double negligible_torque_weight = std::numeric_limits<double>::epsilon();
 };
 
 class ExcitationProblem {
@@ -99,12 +104,19 @@ public:
     const std::optional<Workspace>& workspace() const { return workspace_; }
     // A new box for the same point (the optimizer's margin and tightening rounds).
     void set_workspace_box(const WorkspaceBox& box);
+    // Per sample, whether the last derivatives (criterion or constraints with a gradient) computed its torque
+    // derivatives (ProblemSettings::negligible_torque_weight); none without a torque limit.
+    const Eigen::Array<bool, Eigen::Dynamic, 1>& torque_swept() const { return torque_swept_; }
 
 private:
     void prepare(const Eigen::VectorXd& c);              // per-sample states, regressors and torques at c (cached)
     void prepare_derivatives(const Eigen::VectorXd& c);  // and dF/dW, the criterion, per-sample dphi and (with a torque limit) dtau (cached)
     bool torque_limited() const;                         // whether a joint's torque limit is finite (the constraints need dtau)
+    void select_torque_samples();                        // torque_swept_ from the torque constraints' KS weights at the prepared point
     double limit(int joint, LimitKind kind) const;
+    // The KS aggregate of joint j's constraint of kind k at the prepared point; with `net`, its derivative in the
+    // limited value (position excursion, velocity, acceleration or torque) at each sample.
+    double limit_aggregate(int joint, LimitKind kind, Eigen::VectorXd* net);
 
     const robot::RobotModel& model_;
     Eigen::VectorXd x_;
@@ -126,10 +138,19 @@ private:
     // When torque_limited(): d tau_j / dz_(kind, a) at sample i in row kind * samples + i, column j * joints + a
     // (kind 0, 1, 2: q, qd, qdd), so that joint j's columns, each sample's rows scaled by its KS weight, times
     // bases_ are that torque constraint's Jacobian row; weighted_ holds them scaled.
+    // Rows only at the samples in torque_swept_ (select_torque_samples); the others' are 0.
     Eigen::MatrixXd dtau_, weighted_;
     Eigen::MatrixXd sample_dtau_;       // one sample's joints x 3 * joints (the derivatives' output, reused)
+    Eigen::Array<bool, Eigen::Dynamic, 1> torque_swept_;  // per sample: whether dtau_ has its rows
+    // The torque constraints where dtau_ was computed (select_torque_samples): each aggregate (joints) and its net
+    // KS weight at each sample (samples x joints), for constraint_values.
+    Eigen::VectorXd torque_ks_;
+    Eigen::MatrixXd torque_net_;
     Eigen::VectorXd derivatives_for_;
-    bool dtau_ready_ = false;           // dtau_ holds derivatives_for_'s
+    bool dtau_ready_ = false;           // dtau_ holds derivatives_for_'s, for the current limits
+    // The KS aggregates' terms, their weights and each sample's net weight (kept: no allocation per evaluation).
+    std::vector<double> terms_, weights_;
+    Eigen::VectorXd net_;
     std::optional<Workspace> workspace_;
     Eigen::Matrix3Xd points_;                      // the workspace point at every sample (base frame)
     std::vector<Eigen::Matrix3Xd> point_jacobians_;  // per sample, dp/dq (3 x joints)

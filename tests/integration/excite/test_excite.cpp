@@ -18,6 +18,7 @@
 #include "robot/robot_description.hpp"
 #include "run_command.hpp"
 #include "excite_test_support.hpp"
+#include "puma560_torque_limited_design.hpp"
 #include "scratch_directory.hpp"
 
 namespace {
@@ -98,6 +99,82 @@ TEST(ExcitationProblem, CriterionGradientsMatchCentralDifferencesOfTheCriterion)
         EXPECT_LT(worst_constraint, 1e-4) << file << " " << excite::to_string(criterion) << " " << excite::to_string(route);
     }
   }
+}
+
+// The model's torque at each of the problem's samples of c (joints x samples): the regressor at the trajectory's
+// own positions, velocities and accelerations, not the problem's.
+Eigen::MatrixXd sample_torques(const excite::ExcitationProblem& problem, const robot::RobotModel& model, const Eigen::VectorXd& x, const Eigen::VectorXd& c) {
+    const excite::FourierTrajectory trajectory = problem.trajectory(c);
+    const int n = model.joint_count();
+    Eigen::MatrixXd tau(n, problem.samples()), Y(n, model.parameter_count());
+    Eigen::VectorXd q(n), qd(n), qdd(n);
+    for (int i = 0; i < problem.samples(); ++i) {
+        trajectory.evaluate(problem.basis().period() * i / problem.samples(), q, qd, qdd);
+        model.regressor(q.data(), qd.data(), qdd.data(), Y);
+        tau.col(i) = Y * x;
+    }
+    return tau;
+}
+
+// The largest difference between two Jacobians' rows, relative to each row's largest entry in `reference`.
+double worst_row_difference(const Eigen::MatrixXd& J, const Eigen::MatrixXd& reference) {
+    double worst = 0.0;
+    for (Eigen::Index r = 0; r < J.rows(); ++r) {
+        const double scale = reference.row(r).cwiseAbs().maxCoeff();
+        if (scale > 0.0) worst = std::max(worst, (J.row(r) - reference.row(r)).cwiseAbs().maxCoeff() / scale);
+    }
+    return worst;
+}
+
+// The torque constraints' Jacobian takes the torque's derivatives only at the samples whose KS weight is not
+// negligible (ProblemSettings::negligible_torque_weight). At a torque-limited design of the PUMA 560 with the
+// robot's torque limits (puma560_torque_limited_design.hpp: torques at their limits at a few peaks, as at the
+// optimizer's iterates): most samples are left out (193 of 400), every joint's peak is kept, the criterion, its
+// gradient and the constraints are unchanged, and the Jacobian equals the one with every sample swept to rounding,
+// also after new limits at the same point (the samples kept depend on them: the cached derivatives must not
+// outlive them). A coarser floor, which leaves out samples whose weight is 1e-3 of the peak's, misses by far more
+// than the tolerance: the comparison catches a wrong skip.
+TEST(ExcitationProblem, TorqueDerivativesOnlyWhereTheKsWeightCountsGiveTheSameJacobian) {
+    const robot::RobotDescription robot = robot::load_robot_description(std::string(JACOBID_SOURCE_DIR) + "/examples/robots/puma560.yaml");
+    const auto model = robot::make_robot_model(robot);
+    const Eigen::VectorXd x = robot::true_parameters(robot, *model);
+    auto make = [&](double negligible) {
+        excite::ProblemSettings settings;
+        settings.negligible_torque_weight = negligible;
+        return test::puma560_torque_limited_problem(robot, *model, x, settings);
+    };
+    excite::ExcitationProblem skipping = make(std::numeric_limits<double>::epsilon()), every = make(0.0), coarse = make(400 * 1e-3);
+    const Eigen::VectorXd c = test::puma560_torque_limited_design();
+    const Eigen::MatrixXd tau = sample_torques(skipping, *model, x, c);
+
+    Eigen::VectorXd gradient, gradient_every;
+    EXPECT_EQ(skipping.criterion(c, &gradient), every.criterion(c, &gradient_every));
+    EXPECT_EQ(gradient, gradient_every);
+    Eigen::MatrixXd J, J_every, J_coarse;
+    EXPECT_EQ(skipping.constraint_values(c, &J), every.constraint_values(c, &J_every));
+    coarse.constraint_values(c, &J_coarse);
+    const Eigen::Index swept = skipping.torque_swept().count();
+    EXPECT_EQ(every.torque_swept().count(), every.samples());
+    EXPECT_LT(swept, every.samples() / 2);  // most samples left out
+    for (int j = 0; j < 6; ++j) {
+        Eigen::Index peak = 0;
+        tau.row(j).cwiseAbs().maxCoeff(&peak);
+        EXPECT_TRUE(skipping.torque_swept()[peak]) << "joint " << j << "'s peak, sample " << peak;
+    }
+    EXPECT_LT(worst_row_difference(J, J_every), 1e-12);
+    EXPECT_GT(worst_row_difference(J_coarse, J_every), 1e-6);
+
+    // Looser limits at the same point: more samples count, and the derivatives cached for the old ones must not be
+    // reused (the reference is a problem that never saw the old limits).
+    std::vector<excite::JointLimits> limits = test::puma560_torque_limited_limits(robot);
+    for (auto& l : limits) l.torque *= 3.0;
+    skipping.set_limits(limits);
+    excite::ExcitationProblem fresh = make(0.0);
+    fresh.set_limits(limits);
+    skipping.constraint_values(c, &J);
+    fresh.constraint_values(c, &J_every);
+    EXPECT_GT(skipping.torque_swept().count(), swept);
+    EXPECT_LT(worst_row_difference(J, J_every), 1e-12);
 }
 
 // Column-scaled condition number of the model's regressor stacked over the rows of q, qd, qdd (every `stride`-th).
