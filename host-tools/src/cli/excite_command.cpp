@@ -9,10 +9,12 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <thread>
 #include <nlohmann/json.hpp>
 
@@ -138,9 +140,15 @@ void plot(const std::string& path, const Sampled& s, const std::optional<excite:
 // The trajectory at every control sample as a motion (excite/motion_information.hpp).
 excite::SampledMotion motion_of(const Sampled& s) { return {s.q, s.qd, s.qdd, 0, 0}; }
 
-// What a design and its predictions are, for the JSON and the text.
-// --criterion i-optimal's M: the information per sample of --reference's motion, or of 60 s of random moves within the
-// design's limits (docs/excite.md, "Designing for the motion the model will serve").
+// --criterion i-optimal's default reference: random moves within the design's limits, sampled at 100 Hz.
+constexpr double kReferenceSeconds = 60.0, kReferenceRate = 100.0;
+constexpr std::uint64_t kReferenceSeed = 1;
+std::string reference_name(const ExciteOptions& o) {
+    return o.reference.empty() ? fmt::format("{:g} s of random moves within the limits", kReferenceSeconds) : o.reference;
+}
+
+// --criterion i-optimal's M: the information per sample of --reference's motion, or of the default reference's
+// (docs/excite.md, "Designing for the motion the model will serve").
 Eigen::MatrixXd reference_information(const robot::RobotDescription& robot, const robot::RobotModel& model, const std::vector<excite::JointLimits>& limits,
                                       const Eigen::VectorXd& pose, const ExcitePrior& prior, const ExciteOptions& o) {
     if (o.payload) throw InputError("--criterion i-optimal: not with --payload (the payload's designs weigh the payload's parameters only)");
@@ -151,10 +159,10 @@ Eigen::MatrixXd reference_information(const robot::RobotDescription& robot, cons
                                          "--position-limit or --reference", j + 1));
         }
     }
-    constexpr double kReferenceSeconds = 60.0, kReferenceRate = 100.0;
-    return excite::reference_information(model, excite::random_moves(limits, pose, kReferenceSeconds, kReferenceRate, 1), prior.noise_std);
+    return excite::reference_information(model, excite::random_moves(limits, pose, kReferenceSeconds, kReferenceRate, kReferenceSeed), prior.noise_std);
 }
 
+// What a design and its predictions are, for the JSON and the text.
 struct Outcome {
     const ExciteOptions& o;
     const robot::RobotModel& model;
@@ -299,8 +307,9 @@ void print_outcome(const Outcome& r) {
     fmt::print(stderr, "excite: worst relative std {:.3g} % ({}){}\n", 100.0 * r.predicted.worst_relative_std, r.worst_name(r.predicted),
                compared ? fmt::format("; --compare: {:.3g} % ({})", 100.0 * compared->worst_relative_std, r.worst_name(*compared)) : std::string());
     if (std::isfinite(r.predicted.reference_rms)) {
-        fmt::print(stderr, "excite: predicted rms error of the model's torque over the reference ({}), in noise std summed over the joints: {:.4g}{}\n",
-                   o.reference.empty() ? "60 s of random moves within the limits" : o.reference, r.predicted.reference_rms,
+        fmt::print(stderr, "excite: predicted rms error of the model's torque over the reference ({}), in each joint's noise std, the joints summed in "
+                   "quadrature: {:.4g}{}\n",
+                   reference_name(o), r.predicted.reference_rms,
                    compared ? fmt::format("; --compare: {:.4g}", compared->reference_rms) : std::string());
     }
 }

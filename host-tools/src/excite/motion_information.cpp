@@ -12,8 +12,7 @@ namespace jacobid::excite {
 Eigen::MatrixXd motion_information(const robot::RobotModel& model, const SampledMotion& motion, const Eigen::VectorXd& noise_std,
                                    std::size_t max_rows) {
     const int n = model.joint_count(), p = model.parameter_count();
-    const std::size_t last = motion.last == 0 ? motion.samples() : std::min(motion.last, motion.samples());
-    const std::size_t first = std::min(motion.first, last), count = last - first;
+    const std::size_t first = motion.begin(), last = motion.end(), count = motion.counted();
     const std::size_t stride = std::max<std::size_t>(1, (count + max_rows - 1) / std::max<std::size_t>(1, max_rows));
     constexpr std::size_t kBatch = 256;  // samples stacked per rank update
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p, p);
@@ -41,9 +40,8 @@ Eigen::MatrixXd motion_information(const robot::RobotModel& model, const Sampled
 Eigen::MatrixXd filtered_motion_information(const robot::RobotModel& model, const SampledMotion& motion, const Eigen::VectorXd& noise_std,
                                             double sample_period, double cutoff_hz, int order) {
     const int n = model.joint_count(), p = model.parameter_count();
-    const std::size_t last = motion.last == 0 ? motion.samples() : std::min(motion.last, motion.samples());
-    const std::size_t first = std::min(motion.first, last);
-    const auto count = static_cast<Eigen::Index>(last - first);
+    const std::size_t first = motion.begin();
+    const auto count = static_cast<Eigen::Index>(motion.counted());
     const signal::ButterworthSos fp = signal::design_butterworth_or_throw(order, cutoff_hz, sample_period, "the prediction's decimation filter F_p");
     // One joint's rows at a time (samples x columns), the regressor evaluated again per joint: memory of one
     // joint's columns instead of all joints' (a 120 s log at 1 kHz: 50 MB instead of 300 MB).

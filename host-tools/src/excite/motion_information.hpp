@@ -6,6 +6,7 @@
 // "Predicted std"). Long motions are summed over every k-th sample, each weighing k (at most `max_rows`
 // samples: the regressor varies far slower than 1 / max_rows of a log).
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -17,6 +18,10 @@ struct SampledMotion {
     std::vector<std::vector<double>> q, qd, qdd;  // per joint
     std::size_t first = 0, last = 0;              // the samples [first, last) count (last 0: all)
     std::size_t samples() const { return q.empty() ? 0 : q.front().size(); }
+    // The samples [first, end) that count (first and last clamped to the samples).
+    std::size_t end() const { return last == 0 ? samples() : std::min(last, samples()); }
+    std::size_t begin() const { return std::min(first, end()); }
+    std::size_t counted() const { return end() - begin(); }
 };
 
 Eigen::MatrixXd motion_information(const robot::RobotModel& model, const SampledMotion& motion, const Eigen::VectorXd& noise_std,

@@ -9,10 +9,8 @@
 namespace jacobid::excite {
 
 Eigen::MatrixXd reference_information(const robot::RobotModel& model, const SampledMotion& motion, const Eigen::VectorXd& noise_std) {
-    const std::size_t last = motion.last == 0 ? motion.samples() : std::min(motion.last, motion.samples());
-    const std::size_t counted = last - std::min(motion.first, last);
     // motion_information weighs each sample it evaluates by its stride, so its sum stands for every counted sample.
-    return motion_information(model, motion, noise_std) / static_cast<double>(std::max<std::size_t>(1, counted));
+    return motion_information(model, motion, noise_std) / static_cast<double>(std::max<std::size_t>(1, motion.counted()));
 }
 
 SampledMotion random_moves(const std::vector<JointLimits>& limits, const Eigen::VectorXd& pose, double duration, double rate, std::uint64_t seed) {
