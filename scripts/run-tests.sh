@@ -9,6 +9,12 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
 source "$root/scripts/ccache-env.sh"  # also for the builds ctest starts (the install/consume test)
+# scipy's reference values, computed once per run by the native tests and read by the sanitizer run and the
+# qemu-user unit tests (tests/reference/scipy_reference.hpp); a fresh folder each run.
+if [ -z "${JACOBID_REFERENCE_CACHE:-}" ]; then
+  export JACOBID_REFERENCE_CACHE="$root/build-reference-cache"
+  rm -rf "$JACOBID_REFERENCE_CACHE"
+fi
 step=$(date +%s)
 "$root/scripts/build.sh"
 echo "run-tests: native build finished in $(( $(date +%s) - step )) s"

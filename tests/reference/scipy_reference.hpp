@@ -3,16 +3,29 @@
 // Test-side helper: runs tests/reference/scipy_baseline.py with the python that has scipy
 // (JACOBID_REFERENCE_PYTHON) and parses its output, one array per line "<name> <v0> <v1> ..." printed
 // with %.17g, so the doubles arrive bit for bit. Also the comparisons the baseline tests share.
+//
+// JACOBID_REFERENCE_CACHE (a folder; scripts/run-tests.sh sets a fresh one per run): scipy's output is kept
+// there, so the sanitizer run and the aarch64 and armhf unit tests under qemu-user read what the native run
+// computed instead of starting python and importing scipy again for each case (about 1 s each; 80 cases under
+// qemu-user). The key is the script's text and its arguments, hashed with FNV-1a (the same on every
+// architecture, unlike std::hash), and the entry repeats them, so a collision reads as a miss. Unset: every
+// call runs the script.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include "../support/file_text.hpp"
 #include "../support/run_command.hpp"
 #include "jacobid/baseline/sos.hpp"
 
@@ -30,15 +43,50 @@ inline std::string exact(double value) {
     return text;
 }
 
-// Runs `scipy_baseline.py <arguments>`; throws (a test failure, with the script's stderr) if it fails.
-inline ReferenceArrays run_scipy_baseline(const std::string& arguments) {
+namespace detail {
+
+using jacobid::test::file_text;
+
+inline std::uint64_t fnv1a(const std::string& text) {
+    std::uint64_t hash = 14695981039346656037ull;
+    for (unsigned char c : text) hash = (hash ^ c) * 1099511628211ull;
+    return hash;
+}
+
+// The script's output for `arguments`, from JACOBID_REFERENCE_CACHE when it holds it (see the top).
+inline std::string scipy_output(const std::string& arguments) {
     const std::string command =
         std::string("\"") + JACOBID_REFERENCE_PYTHON + "\" \"" + scipy_baseline_script() + "\" " + arguments;
+    const char* cache = std::getenv("JACOBID_REFERENCE_CACHE");
+    std::string key;
+    std::filesystem::path entry;
+    if (cache != nullptr && *cache != '\0') {
+        key = file_text(scipy_baseline_script()) + "\n--arguments: " + arguments + "\n";
+        char name[32];
+        std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+        entry = std::filesystem::path(cache) / name;
+        const std::string kept = file_text(entry);
+        if (kept.size() > key.size() && kept.compare(0, key.size(), key) == 0) return kept.substr(key.size());
+    }
     const jacobid::test::CommandResult result = jacobid::test::run_command(command);
     if (result.exit_code != 0) throw std::runtime_error("reference script failed: " + command + "\n" + result.err);
+    if (!entry.empty()) {
+        // Written whole under a name of this process's, then renamed: a reader never sees half an entry.
+        std::error_code ignored;
+        std::filesystem::create_directories(entry.parent_path(), ignored);
+        const std::filesystem::path part = entry.string() + "." + std::to_string(::getpid());
+        std::ofstream(part, std::ios::binary) << key << result.out;
+        std::filesystem::rename(part, entry, ignored);
+    }
+    return result.out;
+}
 
+}  // namespace detail
+
+// Runs `scipy_baseline.py <arguments>`; throws (a test failure, with the script's stderr) if it fails.
+inline ReferenceArrays run_scipy_baseline(const std::string& arguments) {
     ReferenceArrays arrays;
-    std::istringstream lines(result.out);
+    std::istringstream lines(detail::scipy_output(arguments));
     for (std::string line; std::getline(lines, line);) {
         std::istringstream fields(line);
         std::string name;

@@ -4,21 +4,15 @@
 // project's way (exit status 2, one "jacobid <command>: error: ..." line holding every key word).
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <initializer_list>
-#include <sstream>
 #include <string>
 
+#include "file_text.hpp"
 #include "run_command.hpp"
 
 namespace jacobid::test {
 
-inline std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+inline std::string read_text(const std::string& path) { return file_text(path); }
 
 inline void expect_refused(const CommandResult& r, std::initializer_list<std::string> words) {
     EXPECT_EQ(r.exit_code, 2) << r.err;

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "file_text.hpp"
 #include "run_command.hpp"
 #include "scratch_directory.hpp"
 
@@ -33,13 +34,6 @@ struct CachedCommand {
 };
 
 namespace detail {
-
-inline std::string read_text(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 inline void replace_all(std::string& text, const std::string& from, const std::string& to) {
     for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) text.replace(at, from.size(), to);
@@ -56,7 +50,7 @@ inline CachedCommand cached_command(std::string command, const std::string& exec
     if (::stat(executable.c_str(), &st) == 0) {
         key_text += "\n" + std::to_string(st.st_size) + " " + std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec);
     }
-    for (const auto& input : inputs) key_text += "\n" + input.substr(input.find_last_of('/') + 1) + "\n" + detail::read_text(input);
+    for (const auto& input : inputs) key_text += "\n" + input.substr(input.find_last_of('/') + 1) + "\n" + file_text(input);
     char key[17];
     std::snprintf(key, sizeof key, "%016zx", std::hash<std::string>{}(key_text));
 
@@ -65,10 +59,10 @@ inline CachedCommand cached_command(std::string command, const std::string& exec
     CachedCommand cached{{}, root / key};
     const int lock = ::open((root / (std::string(key) + ".lock")).c_str(), O_RDWR | O_CREAT, 0644);
     if (lock >= 0) ::flock(lock, LOCK_EX);  // released when closed
-    if (fs::exists(cached.dir / "exit_code") && detail::read_text(cached.dir / "command") == key_text) {
-        cached.result.exit_code = std::stoi(detail::read_text(cached.dir / "exit_code"));
-        cached.result.out = detail::read_text(cached.dir / "stdout");
-        cached.result.err = detail::read_text(cached.dir / "stderr");
+    if (fs::exists(cached.dir / "exit_code") && file_text(cached.dir / "command") == key_text) {
+        cached.result.exit_code = std::stoi(file_text(cached.dir / "exit_code"));
+        cached.result.out = file_text(cached.dir / "stdout");
+        cached.result.err = file_text(cached.dir / "stderr");
     } else {
         fs::remove_all(cached.dir);
         fs::create_directories(cached.dir);

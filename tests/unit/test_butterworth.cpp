@@ -7,8 +7,15 @@
 
 #include <cmath>
 #include <complex>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 #include "../reference/scipy_reference.hpp"
 
@@ -191,6 +198,35 @@ TEST(ButterworthDesignErrors, NonPositiveOrNonFiniteRippleIsInvalidRipple) {
         EXPECT_EQ(jacobid::chebyshev1_lowpass(4, ripple, 25.0, 1000.0, sos), FilterStatus::InvalidRipple);
         expect_unchanged(sos);
     }
+}
+
+// The reference cache (tests/reference/scipy_reference.hpp) answers from its entry only when the entry repeats
+// the script and the arguments: an entry whose values were changed is read back as such (so it is read, not
+// recomputed), and one whose key no longer matches is recomputed by scipy.
+TEST(ScipyReferenceCache, AnEntryIsReadOnlyWhenItsKeyMatches) {
+    namespace fs = std::filesystem;
+    const fs::path cache = fs::temp_directory_path() / ("jacobid-reference-cache-" + std::to_string(::getpid()));
+    fs::remove_all(cache);
+    const char* previous = std::getenv("JACOBID_REFERENCE_CACHE");
+    const std::string kept_previous = previous ? previous : "";
+    ::setenv("JACOBID_REFERENCE_CACHE", cache.c_str(), 1);
+    const std::string arguments = "butter 2 25 1000";
+    const auto computed = run_scipy_baseline(arguments);
+    ASSERT_EQ(array_named(computed, "sos_2").size(), 6u);
+    ASSERT_EQ(std::distance(fs::directory_iterator(cache), fs::directory_iterator()), 1);
+    const fs::path entry = fs::directory_iterator(cache)->path();
+    std::string text = jacobid::test::file_text(entry);
+    const std::size_t line = text.rfind("sos_2 ");
+    ASSERT_NE(line, std::string::npos);
+
+    std::ofstream(entry, std::ios::binary) << text.substr(0, line) << "sos_2 1 2 3 4 5 6\n";
+    EXPECT_EQ(array_named(run_scipy_baseline(arguments), "sos_2"), (std::vector<double>{1, 2, 3, 4, 5, 6}));
+
+    std::ofstream(entry, std::ios::binary) << "another script\n" << text.substr(text.find("\n--arguments")) << "sos_2 1 2 3 4 5 6\n";
+    EXPECT_EQ(array_named(run_scipy_baseline(arguments), "sos_2"), array_named(computed, "sos_2"));
+
+    if (previous) ::setenv("JACOBID_REFERENCE_CACHE", kept_previous.c_str(), 1); else ::unsetenv("JACOBID_REFERENCE_CACHE");
+    fs::remove_all(cache);
 }
 
 }  // namespace

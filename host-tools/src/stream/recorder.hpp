@@ -10,6 +10,7 @@
 // traced back to its datagram. See docs/stream-format.md, "Recording".
 #include <cstddef>
 #include <cstdint>
+#include <fmt/format.h>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -80,6 +81,7 @@ private:
     RecorderOptions options_;
     SequenceTracker tracker_;
     std::unique_ptr<std::ofstream> out_;
+    fmt::memory_buffer line_;  // the row being written, reused
     std::vector<OutputFile> files_;
 
     // Stream description, from the first valid datagram; later datagrams must agree.
