@@ -55,6 +55,11 @@ export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_stri
 # ctest starts the longest tests first, from the native run's durations when there is one (a fresh build
 # directory has none, and the longest test then often starts last and runs alone).
 export JACOBID_REALDATA_ONE_PER_FAMILY=1
+# The tests' simulated input logs come from the native build's jacobid when there is one (tests/support/command_cache.hpp,
+# fixture_executable): what runs under ASan is the code each test checks; simulate is checked sanitized by the tests
+# that run it themselves.
+native_jacobid="${JACOBID_BUILD_DIR:-$root/build}/host-tools/jacobid"
+[ -x "$native_jacobid" ] && export JACOBID_FIXTURE_EXECUTABLE="$native_jacobid"
 native_costs="${JACOBID_BUILD_DIR:-$root/build}/Testing/Temporary/CTestCostData.txt"
 if [ -f "$native_costs" ] && [ ! -f "$build/Testing/Temporary/CTestCostData.txt" ]; then
     mkdir -p "$build/Testing/Temporary" && cp "$native_costs" "$build/Testing/Temporary/CTestCostData.txt"

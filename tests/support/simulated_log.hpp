@@ -7,6 +7,8 @@
 // jacobid executable, and the contents of every file the arguments name that exists when asked (the robot
 // description, a trajectory, a log format): a case with another description gets its own simulation.
 //
+// The simulator is fixture_executable()'s (command_cache.hpp): in the sanitizer run, the native build's.
+//
 // The log and what simulate writes beside it (`<stem>.truth.json`, and the files --states and --truth name, which
 // must lie in the log's folder) are copied into the caller's folder, so a case may change its copy.
 #include <gtest/gtest.h>
@@ -27,7 +29,8 @@ inline CommandResult simulated_log(const std::string& out, const std::string& ar
     namespace fs = std::filesystem;
     const fs::path target(out);
     std::vector<std::string> inputs, outputs{target.filename().string(), target.stem().string() + ".truth.json"};
-    std::string command = std::string(JACOBID_EXECUTABLE) + " simulate --out {dir}/" + outputs.front();
+    const std::string simulator = fixture_executable(JACOBID_EXECUTABLE);
+    std::string command = simulator + " simulate --out {dir}/" + outputs.front();
     std::istringstream tokens(args);
     for (std::string token; tokens >> token;) {
         if (token == "--states" || token == "--truth") {
@@ -44,7 +47,7 @@ inline CommandResult simulated_log(const std::string& out, const std::string& ar
         if (token.find('/') != std::string::npos && fs::is_regular_file(token)) inputs.push_back(token);
         command += " " + token;
     }
-    const CachedCommand c = cached_command(command, JACOBID_EXECUTABLE, inputs);
+    const CachedCommand c = cached_command(command, simulator, inputs);
     if (c.result.exit_code != 0) return c.result;
     for (const std::string& file : outputs) {
         if (fs::exists(c.dir / file)) fs::copy_file(c.dir / file, target.parent_path() / file, fs::copy_options::overwrite_existing);

@@ -38,9 +38,10 @@ const std::string& noisy_log() {
     static const std::string log = [] {
         namespace fs = std::filesystem;
         const std::string description = robot();
-        const auto c = jacobid::test::cached_command(std::string(JACOBID_EXECUTABLE) + " simulate --quiet --robot " + description +
+        const std::string simulator = jacobid::test::fixture_executable(JACOBID_EXECUTABLE);  // tests/support/command_cache.hpp
+        const auto c = jacobid::test::cached_command(simulator + " simulate --quiet --robot " + description +
                                                          " --out {dir}/noisy.csv --duration 10 --seed 3 --torque-noise 0.05,0.01 --position-noise 1e-3",
-                                                     JACOBID_EXECUTABLE, {description});
+                                                     simulator, {description});
         EXPECT_EQ(c.result.exit_code, 0) << c.result.err;
         for (const char* file : {"noisy.csv", "noisy.truth.json"}) fs::copy_file(c.dir / file, path(file), fs::copy_options::overwrite_existing);
         return path("noisy.csv");

@@ -30,8 +30,9 @@ const std::string kCalibration = " --velocity-window 0.04 --xi 0.5 --standing-ve
 
 std::string scratch(const std::string& name) { return jacobid::test::scratch_file("monitor", name).string(); }
 
+// The runs the monitor is tested on; their simulator is fixture_executable()'s (tests/support/command_cache.hpp).
 std::string simulate_command(const std::string& out, int seed, const std::string& effects = "", double duration = 20.0) {
-    return kJacobid + " simulate --robot " + kRobot + " --out " + out + " --duration " + std::to_string(duration) + " --seed " + std::to_string(seed) +
+    return jacobid::test::fixture_executable(kJacobid) + " simulate --robot " + kRobot + " --out " + out + " --duration " + std::to_string(duration) + " --seed " + std::to_string(seed) +
            " --noise-seed " + std::to_string(seed + 100) + " --torque-noise 0.5,0.5,0.3,0.1,0.1,0.1 --quiet" + effects;
 }
 

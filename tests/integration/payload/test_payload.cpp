@@ -66,8 +66,9 @@ Runs simulate_runs(const std::string& name, int noise_seed) {
     fs::create_directories(dir);
     const std::string common = " simulate --quiet --duration 30 --seed 3 --torque-noise 0.3";
     const std::string robot = loaded_robot(dir);
+    const std::string simulator = jacobid::test::fixture_executable(kJacobid);  // tests/support/command_cache.hpp
     const auto c = jacobid::test::cached_command(
-        kJacobid + common + " --noise-seed " + std::to_string(noise_seed) + " --robot " + kRobot + " -o {dir}/unloaded.csv && " + kJacobid + common +
+        simulator + common + " --noise-seed " + std::to_string(noise_seed) + " --robot " + kRobot + " -o {dir}/unloaded.csv && " + simulator + common +
             " --noise-seed " + std::to_string(noise_seed + 1) + " --robot " + robot + " -o {dir}/loaded_full.csv && " + kJacobid +
             " identify --quiet --format json --robot " + kRobot + " --in {dir}/unloaded.csv -o {dir}/arm.json",
         kJacobid, {kRobot, robot});
