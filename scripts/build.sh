@@ -9,7 +9,7 @@ build="${JACOBID_BUILD_DIR:-$root/build}"
 # -march=native by default: the streaming tick meets its 0.5 us target only with the machine's SIMD width
 # (docs/performance.md); set JACOBID_MARCH= (empty) for a portable build.
 # Unity batches for the host tools: half the compile time of a clean build (CMakeLists.txt, JACOBID_UNITY_HOST_TOOLS).
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DJACOBID_MARCH="${JACOBID_MARCH-native}" -DJACOBID_UNITY_HOST_TOOLS=ON ${JACOBID_CMAKE_ARGS:-} >/dev/null
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DJACOBID_MARCH="${JACOBID_MARCH-native}" -DJACOBID_UNITY_HOST_TOOLS=ON -DJACOBID_UNITY_BATCH_SIZE=4 ${JACOBID_CMAKE_ARGS:-} >/dev/null
 targets=()
 [ $# -eq 0 ] || targets=(--target "$@")
 cmake --build "$build" -j "$(nproc)" "${targets[@]}"

@@ -19,7 +19,17 @@ step=$(date +%s)
 "$root/scripts/build.sh"
 echo "run-tests: native build finished in $(( $(date +%s) - step )) s"
 step=$(date +%s)
-ctest --test-dir "${JACOBID_BUILD_DIR:-$root/build}" -j "$(nproc)" --output-on-failure --timeout 600
+# ctest starts the longest tests first when it knows their durations (Testing/Temporary/CTestCostData.txt); a fresh
+# clone has none, and a 25 s test that starts last runs alone on one core. The previous run's durations are kept
+# beside the compiler cache (outside the clone) and given to a build folder that has none.
+native_build="${JACOBID_BUILD_DIR:-$root/build}"
+costs_kept="${JACOBID_TEST_COSTS:-${CCACHE_DIR:+$CCACHE_DIR-test-costs}}"
+costs="$native_build/Testing/Temporary/CTestCostData.txt"
+if [ -n "$costs_kept" ] && [ -f "$costs_kept/native.txt" ] && [ ! -f "$costs" ]; then
+  mkdir -p "$(dirname "$costs")" && cp "$costs_kept/native.txt" "$costs"
+fi
+ctest --test-dir "$native_build" -j "$(nproc)" --output-on-failure --timeout 600
+if [ -n "$costs_kept" ] && [ -f "$costs" ]; then mkdir -p "$costs_kept" && cp "$costs" "$costs_kept/native.txt"; fi
 echo "run-tests: native tests finished in $(( $(date +%s) - step )) s"
 # Hardening (docs/reliability.md): the whole suite again under ASan + UBSan, then every parser's libFuzzer
 # target for a short fixed time. JACOBID_SKIP_HARDENING=1 skips both (a quick local run).
