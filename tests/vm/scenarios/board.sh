@@ -56,10 +56,13 @@ EOF
 SIM_ARGS=--follow
 IDENTIFY=host
 
-# The lines as gpiolib sees them (the chip's data register), every 0.25 s while sim-can runs.
+# The lines as gpiolib sees them (the chip's data register), every 0.25 or 0.251 s at random while sim-can runs.
+# The sync line toggles every 1 ms cycle and the guest's clock is exact (-icount): at a fixed period the samples
+# could all fall on the same level (a run saw "sync high 0 / low 79"); the random extra millisecond flips the
+# phase by half a toggle period.
 gpio_watch() {
   case "$1" in
-    start) ( while :; do grep "jacobid-fw" /sys/kernel/debug/gpio; echo "--"; sleep 0.25; done ) > gpio.log 2>&1 &
+    start) ( while :; do grep "jacobid-fw" /sys/kernel/debug/gpio; echo "--"; sleep "0.25$((RANDOM % 2))"; done ) > gpio.log 2>&1 &
            watcher=$! ;;
     stop) kill $watcher ;;
   esac
