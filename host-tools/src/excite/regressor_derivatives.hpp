@@ -9,7 +9,7 @@
 //    pass with a lane per joint dtau/dz; the default, because it is the fastest (docs/excite.md, "Speed");
 //  - central differences of the model's regressor (step 1e-6 in q and qd, exact in qdd where Y is linear),
 //    5n + 1 regressor calls per sample: any model (the route every other model takes);
-//  - forward-mode automatic differentiation (Eigen's AutoDiffScalar, 3n derivative lanes of fixed size) of a
+//  - forward-mode automatic differentiation (Eigen's AutoDiffScalar, 3n derivative lanes in a fixed capacity) of a
 //    Newton-Euler regressor written again here with a template scalar (link kinematics, the 6 x 10 wrench
 //    matrices, their projections on the carrying joints; friction and rotor inertia by hand), serial robots
 //    only: exact, and an independent check of the others, but the slowest (every derivative lane rides along
