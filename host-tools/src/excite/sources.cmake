@@ -26,7 +26,3 @@ add_library(jacobid_excite ${JACOBID_LIBRARY_KIND}
 set_source_files_properties(${CMAKE_CURRENT_LIST_DIR}/regressor_derivatives_adjoint.cpp PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
 target_link_libraries(jacobid_excite PUBLIC jacobid_host PRIVATE NLopt::nlopt_cxx)
 jacobid_set_warnings(jacobid_excite)
-target_sources(jacobid PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/excite_command.cpp ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/excite_prediction.cpp
-  ${CMAKE_CURRENT_SOURCE_DIR}/src/options/excite_options.cpp)
-target_link_libraries(jacobid PRIVATE jacobid_excite)
-target_compile_definitions(jacobid PRIVATE JACOBID_WITH_NLOPT=1)
