@@ -58,9 +58,9 @@ export JACOBID_REALDATA_ONE_PER_FAMILY=1
 # The tests' simulated input logs come from the native build's jacobid when there is one (tests/support/command_cache.hpp,
 # fixture_executable): what runs under ASan is the code each test checks; simulate is checked sanitized by the tests
 # that run it themselves.
-native_jacobid="${JACOBID_BUILD_DIR:-$root/build}/host-tools/jacobid"
-[ -x "$native_jacobid" ] && export JACOBID_FIXTURE_EXECUTABLE="$native_jacobid"
-native_costs="${JACOBID_BUILD_DIR:-$root/build}/Testing/Temporary/CTestCostData.txt"
+native_build="${JACOBID_BUILD_DIR:-$root/build}"
+[ -x "$native_build/host-tools/jacobid" ] && export JACOBID_FIXTURE_EXECUTABLE="$native_build/host-tools/jacobid"
+native_costs="$native_build/Testing/Temporary/CTestCostData.txt"
 if [ -f "$native_costs" ] && [ ! -f "$build/Testing/Temporary/CTestCostData.txt" ]; then
     mkdir -p "$build/Testing/Temporary" && cp "$native_costs" "$build/Testing/Temporary/CTestCostData.txt"
 fi

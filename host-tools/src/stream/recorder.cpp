@@ -30,11 +30,12 @@ std::uint64_t total(const std::vector<SequenceRange>& ranges) {
 
 // Seconds relative to the origin with exact nanoseconds (a double of epoch seconds would round to 0.24 us). The difference of two int64 time stamps can exceed int64 (a corrupt
 // or foreign sender's clock), so it is taken as a sign and an unsigned magnitude: no overflow.
-std::string relative_seconds(std::int64_t ns, std::int64_t origin_ns) {
+// Appended to the row being written, like its other fields.
+void append_relative_seconds(fmt::memory_buffer& row, std::int64_t ns, std::int64_t origin_ns) {
     const bool negative = ns < origin_ns;
     const auto a = static_cast<std::uint64_t>(ns), b = static_cast<std::uint64_t>(origin_ns);
     const std::uint64_t magnitude = negative ? b - a : a - b;
-    return fmt::format("{}{}.{:09d}", negative ? "-" : "", magnitude / 1000000000u, magnitude % 1000000000u);
+    fmt::format_to(std::back_inserter(row), "{}{}.{:09d}", negative ? "-" : "", magnitude / 1000000000u, magnitude % 1000000000u);
 }
 
 std::string reason_key(DatagramStatus s) {
@@ -239,7 +240,8 @@ void Recorder::row(const HostDatagram& d) {
     }
     fmt::format_to(out, ",{},{}", d.sequence, d.flags);
     for (std::size_t j = 0; j < n; ++j) fmt::format_to(out, ",{}", d.joints[j].flags);
-    fmt::format_to(out, ",{}", relative_seconds(d.timestamp_ns, time_origin_ns_));
+    line_.push_back(',');
+    append_relative_seconds(line_, d.timestamp_ns, time_origin_ns_);
     if (version_ == kDatagramVersionMonitor) {
         for (std::size_t j = 0; j < n; ++j) fmt::format_to(out, ",{}", d.joints[j].tau_ext);
     }
