@@ -105,8 +105,9 @@ private:
         M3 R0;
     };
 
-    // Every scalar carries all 3n lanes, constants zeros: a lane vector of size 0 would be resized by Eigen's
-    // AutoDiff only in some operations.
+    // Constants carry all 3n lanes as zeros, so every kinematic quantity has lanes of one size. The parameters and
+    // weights cast to AD (`cast<AD>()`: lanes of size 0) only ever multiply a full-size operand, where Eigen's AutoDiff
+    // makes the two coherent (make_coherent resizes the empty one to zeros).
     AD constant(double v) const { return AD(v, Lanes::Zero(3 * n_)); }
     AD lane(double v, int k) const { return AD(v, 3 * n_, k); }
     V3 constant_vector(const Eigen::Vector3d& v) const { return V3(constant(v.x()), constant(v.y()), constant(v.z())); }
