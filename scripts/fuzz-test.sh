@@ -15,12 +15,14 @@
 # after a clean run also to a corpus kept outside the clone, beside the compiler cache (JACOBID_FUZZ_CORPUS,
 # default ${CCACHE_DIR}-fuzz-corpus; empty: none). A run that finds a kept corpus resumes from it: every input
 # an earlier run found is replayed first (each path reached before is checked again) and the exploration goes on
-# from there, for half the time (FUZZ_RESUME_SECONDS, default seconds / 2; the one-frame decoders half theirs).
+# from there, for half the default time (FUZZ_RESUME_SECONDS, default 10 s; the one-frame decoders half theirs).
+# Times given explicitly (the seconds argument, FUZZ_FRAME_SECONDS) are always run in full.
 # A fresh machine (CI's) has none and fuzzes from the seeds for the full time.
 # A reproducer is re-run with: build-hardening/fuzz/fuzz_<target> <crash-file>.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-20}"
+seconds_given=$#
 # The targets whose input is one CAN frame or one datagram (fuzz/CMakeLists.txt: FRAME; the four device
 # profiles and the estimate datagram) get a quarter of that by default: a few dozen bytes through one
 # decoder, they reach in the first 5 s all the coverage 20 s gives (CI's run of 2026-12-05: cov at half
@@ -36,9 +38,11 @@ start=$(date +%s)
 source "$root/scripts/hardening-config.sh"
 kept="${JACOBID_FUZZ_CORPUS-${CCACHE_DIR:+$CCACHE_DIR-fuzz-corpus}}"
 if [ -n "$kept" ] && [ -n "$(ls -A "$kept" 2>/dev/null)" ]; then
-  seconds="${FUZZ_RESUME_SECONDS:-$(( seconds >= 2 ? seconds / 2 : 1 ))}"
-  frame_seconds=$(( frame_seconds >= 2 ? (frame_seconds + 1) / 2 : 1 ))
   echo "fuzz-test: resuming from the corpus kept in $kept"
+  if [ "$seconds_given" -eq 0 ]; then
+    seconds="${FUZZ_RESUME_SECONDS:-$(( seconds / 2 ))}"
+    [ -n "${FUZZ_FRAME_SECONDS:-}" ] || frame_seconds=$(( (frame_seconds + 1) / 2 ))
+  fi
 fi
 configure_hardening "$root" "$build"
 mapfile -t all_targets < <(grep -v '^$' "$build/fuzz/fuzzers.txt" | cut -d' ' -f1)

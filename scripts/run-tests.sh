@@ -67,7 +67,7 @@ if [ "$hardening" = 1 ]; then
   bash "$root/scripts/sanitize-test.sh" || hardening_status=$?
   echo "run-tests: sanitize-test finished in $(( $(date +%s) - step )) s (status $hardening_status)"
   step=$(date +%s)
-  bash "$root/scripts/fuzz-test.sh" "${JACOBID_FUZZ_SECONDS:-20}" || hardening_status=$?
+  bash "$root/scripts/fuzz-test.sh" ${JACOBID_FUZZ_SECONDS:+"$JACOBID_FUZZ_SECONDS"} || hardening_status=$?
   echo "run-tests: fuzz-test finished in $(( $(date +%s) - step )) s (status $hardening_status)"
 fi
 if [ "$emulated" = 1 ]; then
