@@ -64,7 +64,6 @@ std::unique_ptr<RegressorDerivatives> make_fixed(const robot::SerialRobotModel& 
     }
 }
 
-
 }  // namespace
 
 std::unique_ptr<RegressorDerivatives> make_adjoint_derivatives(const robot::SerialRobotModel& model) { return make_fixed(model); }

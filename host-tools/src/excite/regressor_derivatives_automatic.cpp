@@ -162,7 +162,7 @@ private:
                 const M3 turn = constant_matrix(Eigen::Matrix3d::Identity()) * c + skew(axis) * s + (axis * axis.transpose()) * (constant(1.0) - c);
                 R = R * turn;
             } else {
-                p += constant_matrix(joint.rotation) * (axis * qj);
+                p += R * (axis * qj);  // R is still the joint's fixed rotation
             }
             LinkState& link = links[static_cast<std::size_t>(j)];
             const M3 Rt = R.transpose();
