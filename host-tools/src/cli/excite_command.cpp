@@ -232,6 +232,7 @@ nlohmann::json outcome_json(const Outcome& r) {
     j["top_frequency"] = excite::top_frequency(r.limits);
     j["rate"] = o.rate;
     j["samples"] = r.problem.samples();
+    j["decimation_cutoff_hz"] = o.decimation_cutoff > 0.0 ? nlohmann::json(o.decimation_cutoff) : nlohmann::json();
     j["pose"] = std::vector<double>(r.pose.data(), r.pose.data() + n);
     j["parameters"] = r.model.parameter_names();
     j["noise_std"] = std::vector<double>(r.prior.noise_std.data(), r.prior.noise_std.data() + n);
@@ -347,7 +348,7 @@ void run(ExciteOptions o) {
     const std::optional<excite::Workspace> box = workspace(robot, pose, o);
     excite::ProblemSettings ps;
     ps.criterion = *excite::criterion_from_string(o.criterion);
-    ps.information = {prior.noise_std, target.scales, 1.0, payload ? payload->projection : Eigen::MatrixXd(), {}};
+    ps.information = {prior.noise_std, target.scales, 1.0, payload ? payload->projection : Eigen::MatrixXd(), {}, {}};
     if (ps.criterion == excite::Criterion::IOptimal) ps.information.reference = reference_information(robot, *model, limits, pose, prior, o);
     if (!o.reference.empty() && ps.criterion != excite::Criterion::IOptimal) {
         throw InputError(fmt::format("--reference {}: used by --criterion i-optimal only (the criterion is {})", o.reference, o.criterion));
@@ -359,6 +360,7 @@ void run(ExciteOptions o) {
     excite::ExcitationProblem problem(*model, x, excite::FourierBasis(1.0 / o.base_frequency, o.harmonics, o.base_frequency), pose, limits, ps);
     // Each criterion sample stands for rate x duration / samples log samples (the information of the whole run).
     problem.set_sample_weight(o.rate * o.duration / problem.samples());
+    if (o.decimation_cutoff > 0.0) problem.set_decimation_cutoff(o.decimation_cutoff);
     problem.set_workspace(box);
     if (!o.quiet) {
         fmt::print(stderr, "excite: {} joints x {} harmonics of {:g} Hz{} = {} coefficients, {}, {} samples per {:g} s period; criterion {}; noise {}; prior {}; {} "
@@ -366,7 +368,8 @@ void run(ExciteOptions o) {
                    n, o.harmonics, o.base_frequency, o.base_frequency_text == "auto" || o.harmonics_text == "auto" ? " (auto)" : "", problem.variables(),
                    payload ? fmt::format("the payload's 10 parameters ({:g} kg expected; the arm's {} base parameters held)", payload->mass, model->parameter_count())
                            : fmt::format("{} base parameters", model->parameter_count()),
-                   problem.samples(), 1.0 / o.base_frequency, o.criterion, prior.noise_source, prior.values_source, o.starts, o.time_limit);
+                   problem.samples(), 1.0 / o.base_frequency,
+                   o.decimation_cutoff > 0.0 ? fmt::format("{} after F_p at {:g} Hz", o.criterion, o.decimation_cutoff) : o.criterion, prior.noise_source, prior.values_source, o.starts, o.time_limit);
         for (const auto& name : prior.fallbacks) fmt::print(stderr, "excite: --prior: {} was not identified there: the description's value is its prior\n", name);
     }
     excite::DesignSettings ds;

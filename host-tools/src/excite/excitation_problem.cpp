@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "excite/periodic_lowpass.hpp"
+
 namespace jacobid::excite {
 namespace {
 
@@ -83,6 +85,13 @@ ExcitationProblem::ExcitationProblem(const ExcitationProblem& o)
     : model_(o.model_), x_(o.x_), basis_(o.basis_), pose_(o.pose_), limits_(o.limits_), settings_(o.settings_), joints_(o.joints_), columns_(o.columns_),
       samples_(o.samples_), psi_(o.psi_), dpsi_(o.dpsi_), ddpsi_(o.ddpsi_), bases_(o.bases_), W_(o.W_),
       derivatives_(make_regressor_derivatives(o.model_, o.derivatives_->route())), workspace_(o.workspace_) {}
+
+void ExcitationProblem::set_decimation_cutoff(double cutoff_hz) {
+    Eigen::MatrixXd& F = settings_.information.time_filter;
+    if (cutoff_hz > 0.0) F = periodic_lowpass(samples_, basis_.period(), cutoff_hz);
+    else F.resize(0, 0);
+    derivatives_for_.resize(0);
+}
 
 void ExcitationProblem::use_derivative_route(DerivativeRoute route) {
     derivatives_ = make_regressor_derivatives(model_, route);

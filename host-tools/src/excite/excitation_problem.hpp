@@ -86,6 +86,10 @@ public:
         derivatives_for_.resize(0);
     }
 
+    // The information criteria of the regressor filtered like identify's F_p at `cutoff_hz` (periodic_lowpass.hpp,
+    // InformationModel::time_filter); 0: unfiltered (the default).
+    void set_decimation_cutoff(double cutoff_hz);
+
     // c: joints x 2L coefficients, row-major flattened (joint 0's first). The criterion, its gradient when
     // `gradient` is not null.
     double criterion(const Eigen::VectorXd& c, Eigen::VectorXd* gradient);

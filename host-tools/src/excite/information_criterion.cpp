@@ -113,14 +113,37 @@ Eigen::MatrixXd information_matrix(const Eigen::MatrixXd& W, int joints, const E
     return A.selfadjointView<Eigen::Lower>();
 }
 
+namespace {
+
+// The criterion of W as it is (InformationModel::time_filter not applied).
+double unfiltered_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joints, const InformationModel& model, bool project, Eigen::MatrixXd* dW);
+
+}  // namespace
+
 double evaluate_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joints, const InformationModel& model, Eigen::MatrixXd* dW) {
-    if (model.projection.size() > 0) {
+    const Eigen::MatrixXd& F = model.time_filter;
+    if (F.size() == 0 || !is_information_criterion(criterion)) return unfiltered_criterion(criterion, W, joints, model, true, dW);
+    if (F.rows() != W.rows() / joints || F.cols() != F.rows()) throw std::invalid_argument("evaluate_criterion: the time filter needs one row and column per sample");
+    // Per-thread storage, reused: the optimizer asks for the same sizes at every evaluation.
+    thread_local Eigen::MatrixXd Wf, dWf;
+    Wf.resize(W.rows(), W.cols());
+    for (int j = 0; j < joints; ++j) joint_rows(Wf, joints, j).noalias() = F * joint_rows(W, joints, j);
+    const double value = unfiltered_criterion(criterion, Wf, joints, model, true, dW ? &dWf : nullptr);
+    if (dW) {
+        dW->resize(W.rows(), W.cols());
+        for (int j = 0; j < joints; ++j) joint_rows(*dW, joints, j).noalias() = F * joint_rows(dWf, joints, j);  // F symmetric: F^T = F
+    }
+    return value;
+}
+
+namespace {
+
+double unfiltered_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joints, const InformationModel& model, bool project, Eigen::MatrixXd* dW) {
+    if (project && model.projection.size() > 0) {
         // The criterion of V = W K (the parameters designed for), chained back: dF/dW = dF/dV K^T.
-        InformationModel of_v = model;
-        of_v.projection.resize(0, 0);
         thread_local Eigen::MatrixXd V, dV;
         V.noalias() = W * model.projection;
-        const double value = evaluate_criterion(criterion, V, joints, of_v, dW ? &dV : nullptr);
+        const double value = unfiltered_criterion(criterion, V, joints, model, false, dW ? &dV : nullptr);
         if (dW) {
             dW->resize(W.rows(), W.cols());
             dW->noalias() = dV * model.projection.transpose();
@@ -174,6 +197,8 @@ double evaluate_criterion(Criterion criterion, const Eigen::MatrixXd& W, int joi
     }
     return std::isfinite(value) ? value : kRankDeficient;
 }
+
+}  // namespace
 
 Prediction predict(const Eigen::MatrixXd& information, const Eigen::VectorXd& scale, const Eigen::MatrixXd* reference) {
     Prediction p;

@@ -53,6 +53,10 @@ struct InformationModel {
     // i-optimal: M = (1 / N) sum over the reference motion's N samples of W_i^T S^-1 W_i (base parameters x base
     // parameters, symmetric positive semi-definite; reference_information() in motion_information.hpp).
     Eigen::MatrixXd reference;
+    // Empty: each sample's regressor counts as it is. Else (samples x samples, symmetric: periodic_lowpass.hpp)
+    // identify's F_p along the samples of one period: the information criteria are of F W, each joint's rows
+    // filtered (what identify's decimated rows keep), and dF/dW = F dF/d(FW).
+    Eigen::MatrixXd time_filter;
 };
 
 // F(W) and, when `dW` is not null, dF/dW (W's shape). `model` is read by the information criteria only, except

@@ -5,6 +5,7 @@
 add_library(jacobid_excite ${JACOBID_LIBRARY_KIND}
   ${CMAKE_CURRENT_LIST_DIR}/fourier_trajectory.cpp
   ${CMAKE_CURRENT_LIST_DIR}/information_criterion.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/periodic_lowpass.cpp
   ${CMAKE_CURRENT_LIST_DIR}/parameter_scales.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prior_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/motion_information.cpp

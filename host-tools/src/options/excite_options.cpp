@@ -146,6 +146,16 @@ void resolve_frequencies(ExciteOptions& o, const std::vector<excite::JointLimits
         if (h != std::round(h) || h < 1 || h > 50) throw InputError(fmt::format("--harmonics {}: expected auto or a whole number 1 .. 50", o.harmonics_text));
         o.harmonics = static_cast<int>(h);
     }
+    // identify puts F_p at 5 x the motion's bandwidth (docs/method.md, "Motion bandwidth estimate"), which on a
+    // design is at most its highest harmonic (the PUMA 560's 15 x 0.05 Hz: 3.75 Hz against identify's 3.66 Hz).
+    if (o.decimation_cutoff_text == "off") {
+        o.decimation_cutoff = 0.0;
+    } else if (o.decimation_cutoff_text == "auto") {
+        o.decimation_cutoff = 5.0 * o.harmonics * o.base_frequency;
+    } else {
+        o.decimation_cutoff = number(o.decimation_cutoff_text, "--decimation-cutoff", "a frequency > 0 Hz, or off");
+        if (!(o.decimation_cutoff > 0.0)) throw InputError(fmt::format("--decimation-cutoff {}: expected off, auto or a frequency > 0 Hz", o.decimation_cutoff_text));
+    }
 }
 
 void add_excite_options(CLI::App* cmd, ExciteOptions& o_) {
@@ -192,6 +202,11 @@ void add_excite_options(CLI::App* cmd, ExciteOptions& o_) {
     cmd->add_option("--rate", o->rate, "Hz: control rate of the CSV; every sample is checked against the limits")->check(positive_number())->capture_default_str();
     cmd->add_option("--samples", o->samples, "samples per period seen by the optimizer (0: 20 per period of the highest harmonic, at least 100)")
         ->check(whole_number_in(0, 1e6))
+        ->capture_default_str();
+    cmd->add_option("--decimation-cutoff", o->decimation_cutoff_text,
+                    "Hz: the information criteria of the regressor filtered as identify's decimation filter F_p at this cutoff will filter it "
+                    "(its rows keep only that), or auto: 5 x the highest harmonic (identify's F_p is 5 x the motion's bandwidth), or off: every "
+                    "sample's regressor as it is")
         ->capture_default_str();
     cmd->add_option("--derivatives", o->derivatives,
                     "the regressor's derivatives in the gradients: adjoint (reverse-mode Newton-Euler, serial robots), or for comparison central "

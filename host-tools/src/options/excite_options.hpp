@@ -42,6 +42,10 @@ struct ExciteOptions {
     std::vector<double> pose, velocity_limit, acceleration_limit, torque_limit;
     double rate = 1000.0;
     int samples = 0;
+    // --decimation-cutoff: "off" (the criteria of every sample's regressor), "auto" (5 x the highest harmonic) or Hz;
+    // decimation_cutoff is the resolved Hz (0: off).
+    std::string decimation_cutoff_text = "off";
+    double decimation_cutoff = 0.0;
     int starts = 4;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     double time_limit = 60.0;

@@ -67,7 +67,7 @@ TEST(ExcitationProblem, CriterionGradientsMatchCentralDifferencesOfTheCriterion)
         excite::ProblemSettings settings;
         settings.criterion = criterion;
         settings.samples = 40;
-        settings.information = {Eigen::VectorXd::LinSpaced(6, 0.2, 0.02), Eigen::VectorXd::LinSpaced(model->parameter_count(), 0.01, 2.0), 50.0, {}};
+        settings.information = {Eigen::VectorXd::LinSpaced(6, 0.2, 0.02), Eigen::VectorXd::LinSpaced(model->parameter_count(), 0.01, 2.0), 50.0, {}, {}, {}};
         excite::ExcitationProblem problem(*model, x, excite::FourierBasis(5.0, 2, 0.2), Eigen::VectorXd::Zero(6), limits, settings);
         problem.use_derivative_route(route);
         ASSERT_EQ(problem.derivative_route(), route);

@@ -21,11 +21,14 @@
 #include "excite/information_criterion.hpp"
 #include "excite/motion_information.hpp"
 #include "excite/parameter_scales.hpp"
+#include "excite/periodic_lowpass.hpp"
 #include "excite/prior_file.hpp"
 #include "excite/regressor_derivatives.hpp"
 #include "io/csv_table.hpp"
 #include "robot/robot_description.hpp"
 #include "robot/serial_robot_model.hpp"
+#include "signal/baseline_response.hpp"
+#include "signal/kernel_design_checked.hpp"
 #include "run_command.hpp"
 #include "excite_test_support.hpp"
 
@@ -49,9 +52,19 @@ TEST(InformationCriterion, GradientsInWMatchCentralDifferences) {
     Eigen::MatrixXd W(samples * joints, p);
     for (Eigen::Index i = 0; i < W.size(); ++i) W.data()[i] = normal(rng);
     W.col(2) *= 30.0;  // columns of different units
-    excite::InformationModel model{Eigen::Vector3d(0.5, 0.2, 0.05), Eigen::VectorXd::LinSpaced(p, 0.1, 3.0), 7.0, {}};
+    excite::InformationModel model{Eigen::Vector3d(0.5, 0.2, 0.05), Eigen::VectorXd::LinSpaced(p, 0.1, 3.0), 7.0, {}, {}, {}};
     for (const auto criterion : kAll) {
         EXPECT_LT(test::criterion_gradient_error(criterion, W, joints, model, 5), 1e-5) << excite::to_string(criterion);
+    }
+    // The criteria of F W, F identify's F_p over the samples of a period (--decimation-cutoff): chained back through F.
+    excite::InformationModel filtered = model;
+    filtered.time_filter = excite::periodic_lowpass(samples, 1.0, 2.0);
+    for (const auto criterion : kAll) {
+        EXPECT_LT(test::criterion_gradient_error(criterion, W, joints, filtered, 5), 1e-5) << excite::to_string(criterion) << " after F_p";
+        if (excite::is_information_criterion(criterion)) {
+            EXPECT_GT(std::abs(excite::evaluate_criterion(criterion, W, joints, filtered, nullptr) - excite::evaluate_criterion(criterion, W, joints, model, nullptr)), 1e-3)
+                << excite::to_string(criterion) << ": the filter should change the criterion";
+        }
     }
     // A rank-deficient W is the worst value with a zero gradient, not a NaN.
     Eigen::MatrixXd deficient = W;
@@ -141,6 +154,41 @@ TEST(FilteredInformation, KeepsWhatLiesBelowFpAndLosesTheCoulombStepsAboveIt) {
         }
     }
     EXPECT_EQ(coulomb, n);
+}
+
+// The optimizer's F_p (a circulant over one period's samples, built from the Butterworth's gain) against the
+// filter identify runs: the Butterworth's second-order sections (bilinear design) run forward and backward by
+// filtfilt over seven periods played back to back, the middle period compared. And a harmonic k of the period is
+// an eigenvector: F cos = g(k / T) cos, g = 1 / (1 + (f / fc)^8), exactly.
+TEST(PeriodicLowpass, IsIdentifysZeroPhaseButterworthOverPeriodsPlayedBackToBack) {
+    const int n = 1000;
+    const double period = 1.0, ts = period / n, fc = 20.0;
+    const Eigen::MatrixXd F = excite::periodic_lowpass(n, period, fc);
+    ASSERT_EQ(F.rows(), n);
+    EXPECT_LT((F - F.transpose()).cwiseAbs().maxCoeff(), 1e-15);
+    for (const int k : {0, 3, 20, 45, 200}) {
+        Eigen::VectorXd x(n);
+        for (int i = 0; i < n; ++i) x[i] = std::cos(2.0 * M_PI * k * i / n + 0.3);
+        const double g = 1.0 / (1.0 + std::pow(k / (period * fc), 8.0));
+        EXPECT_LT((F * x - g * x).cwiseAbs().maxCoeff(), 1e-12) << "harmonic " << k;
+    }
+    // A square wave (the Coulomb columns' steps) plus two harmonics: content far above and near the cutoff.
+    Eigen::VectorXd x(n);
+    for (int i = 0; i < n; ++i) x[i] = (i < 400 ? 1.0 : -1.0) + 0.5 * std::sin(2.0 * M_PI * 5.0 * i / n) + 0.3 * std::cos(2.0 * M_PI * 19.0 * i / n);
+    const int repeats = 7;
+    std::vector<double> played(static_cast<std::size_t>(repeats * n)), out(played.size()), workspace;
+    for (std::size_t i = 0; i < played.size(); ++i) played[i] = x[static_cast<Eigen::Index>(i % n)];
+    signal::filtfilt_or_throw(signal::design_butterworth_or_throw(4, fc, ts, "test"), played.data(), out.data(), played.size(), workspace);
+    const Eigen::VectorXd circulant = F * x;
+    double worst = 0.0, moved = 0.0;
+    for (int i = 0; i < n; ++i) {
+        worst = std::max(worst, std::abs(out[static_cast<std::size_t>(3 * n + i)] - circulant[i]));
+        moved = std::max(moved, std::abs(circulant[i] - x[i]));
+    }
+    EXPECT_GT(moved, 0.3);     // the filter does something: the steps are rounded off
+    EXPECT_LT(worst, 3e-3);    // the bilinear design's frequency warping at fc / fs = 0.02: tan(pi 0.02) / (pi 0.02) - 1 = 1.3e-3
+    EXPECT_THROW(excite::periodic_lowpass(1, period, fc), std::invalid_argument);
+    EXPECT_THROW(excite::periodic_lowpass(n, period, 0.0), std::invalid_argument);
 }
 
 TEST(RegressorDerivatives, AdjointAndAutomaticDifferentiationEqualCentralDifferences) {
@@ -319,6 +367,8 @@ TEST(ExciteCli, BadPriorNoiseAndFrequencyAreOneLineNamingTheOption) {
         {"--harmonics 2.5", "--harmonics 2.5: expected auto or a whole number"},
         {"--position-limit 1:-1", "--position-limit: joint 1: '1:-1'"},
         {"--criterion best", "--criterion"},
+        {"--decimation-cutoff fast", "--decimation-cutoff 'fast': expected auto or a frequency > 0 Hz, or off"},
+        {"--decimation-cutoff -1", "--decimation-cutoff -1: expected off, auto or a frequency > 0 Hz"},
     };
     for (const auto& c : cases) {
         const auto r = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " -o " + scratch("bad.csv") + " " + c.args);
@@ -328,6 +378,42 @@ TEST(ExciteCli, BadPriorNoiseAndFrequencyAreOneLineNamingTheOption) {
     const auto both = run_command(kJacobid + " simulate --quiet --robot " + kTwoLink + " --velocity-limit 1 --trajectory x.csv -o " + scratch("x.csv"));
     EXPECT_EQ(both.exit_code, 2);
     EXPECT_NE(both.err.find("--velocity-limit shapes the random moves"), std::string::npos) << both.err;
+}
+
+// --decimation-cutoff: the optimizer's criterion of its samples' regressor filtered by the circulant F_p equals the
+// information of the whole 1 kHz trajectory filtered by identify's Butterworth filtfilt (filtered_motion_information),
+// and without it that of every sample unfiltered (motion_information): two constructions each.
+TEST(ExciteCli, DecimationCutoffDesignsForTheInformationIdentifysRowsKeep) {
+    const robot::RobotDescription robot = robot::load_robot_description(kTwoLink);
+    const auto model = robot::make_robot_model(robot);
+    const Eigen::Vector2d noise(0.05, 0.01);
+    double criterion[2] = {0.0, 0.0};
+    for (const bool filtered : {false, true}) {
+        const std::string csv = scratch(filtered ? "fp.csv" : "all.csv"), json_path = csv + ".json";
+        const auto r = run_command(kJacobid + " excite --quiet --robot " + kTwoLink + " --duration 20 --velocity-limit 2 --acceleration-limit 8 " +
+                                   "--torque-noise 0.05,0.01 --starts 1 --max-evaluations 150 --time-limit 600 -o " + csv + " --json " + json_path +
+                                   (filtered ? " --decimation-cutoff 1" : ""));
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const nlohmann::json j = nlohmann::json::parse(std::ifstream(json_path));
+        if (filtered) {
+            EXPECT_DOUBLE_EQ(j.at("decimation_cutoff_hz").get<double>(), 1.0);
+        } else {
+            EXPECT_TRUE(j.at("decimation_cutoff_hz").is_null());
+        }
+        const io::CsvTable t = io::read_csv(csv);
+        excite::SampledMotion motion;
+        for (int k = 1; k <= 2; ++k) {
+            motion.q.push_back(t.column("q" + std::to_string(k)));
+            motion.qd.push_back(t.column("qd" + std::to_string(k)));
+            motion.qdd.push_back(t.column("qdd" + std::to_string(k)));
+        }
+        const Eigen::MatrixXd A = filtered ? excite::filtered_motion_information(*model, motion, noise, 1e-3, 1.0) : excite::motion_information(*model, motion, noise);
+        const double value = j.at("criterion_value").get<double>();
+        EXPECT_NEAR(value, -std::log(A.determinant()), 0.1) << (filtered ? "after F_p" : "unfiltered");
+        criterion[filtered ? 1 : 0] = value;
+    }
+    // F_p at 1 Hz takes most of the Coulomb columns' steps: less information (a higher -log det).
+    EXPECT_GT(criterion[1], criterion[0] + 0.5);
 }
 
 TEST(SimulateCli, RandomMovesStayWithinTheVelocityAndAccelerationLimits) {
