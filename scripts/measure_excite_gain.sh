@@ -57,10 +57,14 @@ for s in $seeds; do d=$(score "$out/log_design$s.csv"); echo "design noise seed 
 : > "$out/moves.txt"
 for s in $seeds; do m=$(score "$out/log_moves$s.csv"); echo "moves seed $s $m"; echo "$m" >> "$out/moves.txt"; done
 $PY - "$out/moves.txt" "$out/design.txt" <<'PY'
-import statistics, sys
+import random, statistics, sys
 moves = [float(l.split()[2]) for l in open(sys.argv[1])]
 design = [float(l.split()[2]) for l in open(sys.argv[2])]
 dm, mm = statistics.median(design), statistics.median(moves)
 print(f"median of the design's logs {dm:.4f} ({min(design):.4f}-{max(design):.4f}); of the random moves {mm:.4f} "
       f"({min(moves):.4f}-{max(moves):.4f}); design / random moves = {dm / mm:.3f}")
+# How far the ratio of medians moves with the logs drawn: both sides resampled with replacement (bootstrap, 4 000 draws).
+rng = random.Random(1)
+draws = sorted(statistics.median(rng.choices(design, k=len(design))) / statistics.median(rng.choices(moves, k=len(moves))) for _ in range(4000))
+print(f"bootstrap: 90 % of the ratios within {draws[200]:.3f}-{draws[3799]:.3f}; share <= 0.6: {sum(r <= 0.6 for r in draws) / len(draws):.3f}")
 PY
