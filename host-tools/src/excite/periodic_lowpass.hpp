@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 // identify's decimation filter F_p as the excitation optimizer can see it (docs/excite.md, "The criterion and
-// the limits", `--decimation-cutoff`): identify filters both sides of its equations with a zero-phase Butterworth
-// (filtfilt of order `order`, so the power gain |H(f)|^2 = 1 / (1 + (f / fc)^(2 order)) applied twice is the
-// amplitude gain g(f) = 1 / (1 + (f / fc)^(2 order))), and the design is periodic: on N samples of one period T
+// the limits", `--decimation-cutoff`): identify filters both sides of its equations with a Butterworth of order
+// `order` run forward and backward (filtfilt: zero phase, amplitude gain g(f) = |H(f)|^2 = 1 / (1 + (f / fc)^(2
+// order))), and the design is periodic: on N samples of one period T
 // that filter is the symmetric circulant matrix F with F_ab = (1 / N) sum_k g(k / T) cos(2 pi k (a - b) / N), k
 // over the N frequencies of the discrete Fourier transform (|k| <= N / 2). F W filters each regressor column along
 // time as identify's F_p does once the periods play back to back (the ends of a log aside).
