@@ -11,15 +11,17 @@ Eigen::MatrixXd periodic_lowpass(int samples, double period, double cutoff_hz, i
         throw std::invalid_argument("periodic_lowpass: needs samples >= 2, period > 0, cutoff > 0 and order >= 1");
     }
     const int n = samples;
-    // The circulant's first column: c_d = (1 / N) sum_k g(k / T) cos(2 pi k d / N), the k and -k terms together.
+    // The gain of each frequency k / T, k = 0 .. N / 2, counted with its -k twin (Nyquist, even N, once).
+    Eigen::VectorXd weight(n / 2 + 1);
+    for (int k = 0; 2 * k <= n; ++k) {
+        const double g = 1.0 / (1.0 + std::pow(k / (period * cutoff_hz), 2.0 * order));
+        weight[k] = k == 0 || 2 * k == n ? g : 2.0 * g;
+    }
+    // The circulant's first column: c_d = (1 / N) sum_k g(k / T) cos(2 pi k d / N).
     Eigen::VectorXd first(n);
     for (int d = 0; d < n; ++d) {
-        double sum = 1.0;  // k = 0: g = 1
-        for (int k = 1; 2 * k <= n; ++k) {
-            const double g = 1.0 / (1.0 + std::pow(k / (period * cutoff_hz), 2.0 * order));
-            const double term = g * std::cos(2.0 * M_PI * static_cast<double>(k) * d / n);
-            sum += 2 * k == n ? term : 2.0 * term;  // Nyquist (even N) once, the others with their -k twin
-        }
+        double sum = 0.0;
+        for (int k = 0; 2 * k <= n; ++k) sum += weight[k] * std::cos(2.0 * M_PI * static_cast<double>(k) * d / n);
         first[d] = sum / n;
     }
     Eigen::MatrixXd F(n, n);
